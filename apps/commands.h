@@ -1,0 +1,21 @@
+// The symembed subcommands. Each takes its arguments (after the subcommand name) and returns
+// the process exit code; usage errors throw UsageError (exit 2), other errors symembed::Error
+// (exit 1, one line on stderr).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace symembed {
+
+using Args = std::vector<std::string>;
+
+int RunCommand(const Args& args);       // run CONFIG: run an experiment
+int EvalCommand(const Args& args);      // eval: score a folder of maps
+int CheckCommand(const Args& args);     // check SUMMARY --baseline FILE
+int MergeCommand(const Args& args);     // merge DIR...: join shard outputs
+int StagesCommand(const Args& args);    // stages: list registered stages
+int SynthCommand(const Args& args);     // synth: write a synthetic dataset
+int ValidateCommand(const Args& args);  // validate MESH...: mesh validation report
+
+}  // namespace symembed

@@ -1,0 +1,182 @@
+#include "registry/options.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.h"
+
+namespace symembed {
+
+std::string NodeLocation(const std::string& file, const YAML::Node& node) {
+  std::ostringstream out;
+  out << (file.empty() ? "<config>" : file);
+  if (node.IsDefined() && node.Mark().line >= 0) {
+    out << ":" << node.Mark().line + 1 << ":" << node.Mark().column + 1;
+  }
+  return out.str();
+}
+
+namespace {
+
+std::string Join(const std::vector<std::string>& items) {
+  std::string out;
+  for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return out;
+}
+
+std::string Scalar(const YAML::Node& node) { return node.IsScalar() ? node.Scalar() : "<non-scalar>"; }
+
+}  // namespace
+
+OptionReader::OptionReader(YAML::Node node, std::string file, std::string path)
+    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)),
+      resolved_(YAML::NodeType::Map) {
+  if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap()) {
+    throw ConfigError(NodeLocation(file_, node_) + ": " + (path_.empty() ? "<root>" : path_) +
+                      ": expected a map of options");
+  }
+}
+
+std::string OptionReader::KeyPath(const std::string& key) const {
+  return path_.empty() ? key : (key.empty() ? path_ : path_ + "." + key);
+}
+
+void OptionReader::Fail(const std::string& key, const std::string& what) const {
+  const YAML::Node& n = node_;
+  YAML::Node at = (!key.empty() && n.IsMap() && n[key]) ? n[key] : n;
+  throw ConfigError(NodeLocation(file_, at) + ": " + KeyPath(key) + ": " + what);
+}
+
+bool OptionReader::Has(const std::string& key) const {
+  const YAML::Node& n = node_;
+  return n.IsMap() && n[key].IsDefined();
+}
+
+YAML::Node OptionReader::Lookup(const std::string& key) {
+  read_.insert(key);
+  const YAML::Node& n = node_;
+  if (!n.IsMap()) return YAML::Node();
+  return n[key];
+}
+
+double OptionReader::GetDouble(const std::string& key, double default_value, double min,
+                               double max) {
+  YAML::Node v = Lookup(key);
+  double value = default_value;
+  if (v.IsDefined() && !v.IsNull()) {
+    try {
+      if (!v.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
+      value = v.as<double>();
+    } catch (const YAML::Exception&) {
+      Fail(key, "expected a number, got '" + Scalar(v) + "'");
+    }
+    if (!std::isfinite(value)) Fail(key, "expected a finite number, got '" + Scalar(v) + "'");
+  }
+  if (value < min || value > max) {
+    std::ostringstream out;
+    out << "value " << value << " is out of range [" << min << ", " << max << "]";
+    Fail(key, out.str());
+  }
+  resolved_[key] = value;
+  return value;
+}
+
+int OptionReader::GetInt(const std::string& key, int default_value, int min, int max) {
+  YAML::Node v = Lookup(key);
+  long long value = default_value;
+  if (v.IsDefined() && !v.IsNull()) {
+    try {
+      if (!v.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
+      value = v.as<long long>();
+    } catch (const YAML::Exception&) {
+      Fail(key, "expected an integer, got '" + Scalar(v) + "'");
+    }
+  }
+  if (value < min || value > max) {
+    std::ostringstream out;
+    out << "value " << value << " is out of range [" << min << ", " << max << "]";
+    Fail(key, out.str());
+  }
+  resolved_[key] = static_cast<int>(value);
+  return static_cast<int>(value);
+}
+
+bool OptionReader::GetBool(const std::string& key, bool default_value) {
+  YAML::Node v = Lookup(key);
+  bool value = default_value;
+  if (v.IsDefined() && !v.IsNull()) {
+    try {
+      if (!v.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
+      value = v.as<bool>();
+    } catch (const YAML::Exception&) {
+      Fail(key, "expected true or false, got '" + Scalar(v) + "'");
+    }
+  }
+  resolved_[key] = value;
+  return value;
+}
+
+std::string OptionReader::GetString(const std::string& key, const std::string& default_value) {
+  YAML::Node v = Lookup(key);
+  std::string value = default_value;
+  if (v.IsDefined() && !v.IsNull()) {
+    if (!v.IsScalar()) Fail(key, "expected a string");
+    value = v.Scalar();
+  }
+  resolved_[key] = value;
+  return value;
+}
+
+std::string OptionReader::GetRequiredString(const std::string& key) {
+  if (!Has(key)) Fail("", "missing required key '" + key + "'");
+  return GetString(key, "");
+}
+
+std::string OptionReader::GetChoice(const std::string& key, const std::string& default_value,
+                                    const std::vector<std::string>& choices) {
+  const std::string value = GetString(key, default_value);
+  for (const auto& c : choices) {
+    if (c == value) return value;
+  }
+  Fail(key, "invalid value '" + value + "'; expected one of: " + Join(choices));
+}
+
+std::vector<std::string> OptionReader::GetStringList(const std::string& key,
+                                                     const std::vector<std::string>& default_value) {
+  YAML::Node v = Lookup(key);
+  std::vector<std::string> value = default_value;
+  if (v.IsDefined() && !v.IsNull()) {
+    if (!v.IsSequence()) Fail(key, "expected a list of strings");
+    value.clear();
+    for (const auto& item : v) {
+      if (!item.IsScalar()) Fail(key, "expected a list of strings");
+      value.push_back(item.Scalar());
+    }
+  }
+  YAML::Node out(YAML::NodeType::Sequence);
+  for (const auto& s : value) out.push_back(s);
+  resolved_[key] = out;
+  return value;
+}
+
+OptionReader OptionReader::Child(const std::string& key) {
+  return OptionReader(Lookup(key), file_, KeyPath(key));
+}
+
+void OptionReader::AdoptChild(const std::string& key, const OptionReader& child) {
+  resolved_[key] = child.resolved();
+}
+
+void OptionReader::Finish() const {
+  const YAML::Node& n = node_;
+  if (!n.IsMap()) return;
+  std::vector<std::string> known(read_.begin(), read_.end());
+  for (const auto& kv : n) {
+    const std::string key = kv.first.Scalar();
+    if (read_.count(key)) continue;
+    throw ConfigError(NodeLocation(file_, kv.first) + ": " + KeyPath(key) + ": unknown key '" +
+                      key + "'; known keys: " + (known.empty() ? "(none)" : Join(known)));
+  }
+}
+
+}  // namespace symembed

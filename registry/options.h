@@ -1,0 +1,86 @@
+// Strict reading of stage options and config sections from YAML.
+//
+// Every key is read through an OptionReader, which records it; Finish() then rejects any key
+// that was not read, naming file:line:col, the dotted path and the known keys. Values are
+// type-checked and range-checked on read. The reader also builds the resolved node (every
+// option with its default filled in), which is written beside results and hashed for caching.
+// Only const YAML::Node access is used, so reading never inserts keys.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <limits>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace symembed {
+
+// "file:line:col" of a node (1-based), or "file" when the node has no position.
+std::string NodeLocation(const std::string& file, const YAML::Node& node);
+
+class OptionReader {
+ public:
+  // node: a YAML map (or null/undefined: all defaults). file: the config file the node came
+  // from. path: the dotted path of node in the config ("pipeline.embedding").
+  OptionReader(YAML::Node node, std::string file, std::string path);
+
+  double GetDouble(const std::string& key, double default_value,
+                   double min = -std::numeric_limits<double>::infinity(),
+                   double max = std::numeric_limits<double>::infinity());
+  int GetInt(const std::string& key, int default_value, int min = std::numeric_limits<int>::min(),
+             int max = std::numeric_limits<int>::max());
+  bool GetBool(const std::string& key, bool default_value);
+  std::string GetString(const std::string& key, const std::string& default_value);
+  // A required string (throws ConfigError when missing).
+  std::string GetRequiredString(const std::string& key);
+  // One of `choices` (the error lists them all).
+  std::string GetChoice(const std::string& key, const std::string& default_value,
+                        const std::vector<std::string>& choices);
+  // Enum through a string table.
+  template <typename E>
+  E GetEnum(const std::string& key, E default_value,
+            const std::vector<std::pair<std::string, E>>& table) {
+    std::string default_name;
+    std::vector<std::string> names;
+    for (const auto& [name, value] : table) {
+      names.push_back(name);
+      if (value == default_value) default_name = name;
+    }
+    const std::string chosen = GetChoice(key, default_name, names);
+    for (const auto& [name, value] : table) {
+      if (name == chosen) return value;
+    }
+    return default_value;
+  }
+  std::vector<std::string> GetStringList(const std::string& key,
+                                         const std::vector<std::string>& default_value);
+  // A nested map, read with its own reader (recorded as read; its keys checked by its Finish).
+  OptionReader Child(const std::string& key);
+  // Marks the nested reader's resolved values as part of this reader's resolved node.
+  void AdoptChild(const std::string& key, const OptionReader& child);
+
+  bool Has(const std::string& key) const;
+  // Throws ConfigError for every key present but never read.
+  void Finish() const;
+
+  // Throws ConfigError located at `key` (or at the map when key is empty).
+  [[noreturn]] void Fail(const std::string& key, const std::string& what) const;
+
+  const YAML::Node& resolved() const { return resolved_; }
+  const std::string& file() const { return file_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  YAML::Node Lookup(const std::string& key);
+  std::string KeyPath(const std::string& key) const;
+
+  YAML::Node node_;
+  std::string file_;
+  std::string path_;
+  std::set<std::string> read_;
+  YAML::Node resolved_;
+};
+
+}  // namespace symembed

@@ -1,0 +1,103 @@
+// The stage interfaces, one per kind of DESIGN.md's table. Each implementation is a thin
+// adapter around a free function; it parses its options in its factory (OptionReader) and
+// does no file I/O. Stages are const after construction and safe to call from several threads.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "registry/types.h"
+
+namespace symembed {
+
+class Stage {
+ public:
+  virtual ~Stage() = default;
+  // The resolved options of this stage (type and every option with defaults filled in).
+  const YAML::Node& resolved_options() const { return resolved_options_; }
+  void set_resolved_options(YAML::Node node) { resolved_options_ = std::move(node); }
+
+ private:
+  YAML::Node resolved_options_;
+};
+
+class PreprocessStage : public Stage {
+ public:
+  virtual PreprocessResult Run(const Surface& input) const = 0;
+};
+
+class SamplingStage : public Stage {
+ public:
+  virtual SamplingResult Run(const Surface& surface) const = 0;
+};
+
+// Distances from a set of sources to every vertex, on one prepared surface. A solver keeps
+// what it may reuse across sources (a factorisation, a graph).
+class GeodesicSolver {
+ public:
+  virtual ~GeodesicSolver() = default;
+  // #sources x #V distances (in the surface's units). Thread-safe.
+  virtual Eigen::MatrixXd Distances(const std::vector<int>& sources) const = 0;
+};
+
+class GeodesicsStage : public Stage {
+ public:
+  virtual std::unique_ptr<GeodesicSolver> Prepare(const Surface& surface) const = 0;
+};
+
+struct EmbeddingInput {
+  const Surface& surface;
+  const std::vector<int>& samples;    // #S
+  const Eigen::MatrixXd& D;           // #S x #V geodesic distances from each sample
+};
+
+class EmbeddingStage : public Stage {
+ public:
+  virtual EmbeddingResult Run(const EmbeddingInput& input) const = 0;
+};
+
+struct SymmetryInput {
+  const Surface& surface;
+  const std::vector<int>& samples;
+  const Eigen::MatrixXd& D;           // #S x #V
+  const EmbeddingResult& embedding;   // 3D
+};
+
+class SymmetryStage : public Stage {
+ public:
+  virtual SymmetryResult Run(const SymmetryInput& input) const = 0;
+};
+
+class SymmetrizeStage : public Stage {
+ public:
+  // Returns the embedding moved so that the symmetry plane is x = 0, and symmetrized.
+  virtual SymmetrizeResult Run(const SymmetryInput& input, const SymmetryResult& symmetry) const = 0;
+};
+
+// Per-pair stages may compute per-shape data once (features, eigenbases) into ShapeData::aux.
+class PairStage : public Stage {
+ public:
+  // Adds this stage's per-shape data to shape.aux (cached by the runner).
+  virtual void PrepareShape(ShapeData& /*shape*/) const {}
+};
+
+class FlipStage : public PairStage {
+ public:
+  virtual FlipResult Run(const PairInput& pair) const = 0;
+};
+
+class MatchingStage : public PairStage {
+ public:
+  // Ys: #Vs x 3 source embedding; Yt: #Vt x 3 target embedding, already rotated.
+  virtual MatchResult Run(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt) const = 0;
+};
+
+class RefineStage : public PairStage {
+ public:
+  virtual MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const = 0;
+};
+
+}  // namespace symembed

@@ -1,0 +1,109 @@
+// Data passed between stages. Shapes and units follow libigl notation in each comment.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace symembed {
+
+// What a stage reports about its numerical outcome (data, not an exception).
+struct StageStatus {
+  bool converged = true;
+  int iterations = 0;
+  double residual = 0.0;
+  std::string message;
+};
+
+// Named counters of what a stage changed or measured ("flipped_faces": 3, ...), in order.
+using Report = std::vector<std::pair<std::string, double>>;
+
+struct PreprocessResult {
+  Surface surface;              // repaired surface, scaled to unit total area
+  std::vector<int> input_ids;   // #V: input vertex id of each kept vertex
+  double scale = 1.0;           // output coordinates = input coordinates * scale (after centring)
+  Report report;                // every change counted
+  StageStatus status;
+};
+
+struct SamplingResult {
+  std::vector<int> samples;     // #S vertex ids, in sampling order
+  double coverage_radius = 0.0; // max over vertices of the distance to the nearest sample
+  StageStatus status;
+};
+
+struct EmbeddingResult {
+  Eigen::MatrixXd Y;                  // #V x dims embedding of every vertex (sample rows exact)
+  double normalized_stress = 0.0;     // sqrt(stress / sum d_ij^2) over sample pairs
+  int reflection = 1;                 // sign of det of the Procrustes fit input -> embedding
+  std::vector<double> stress_history; // per iteration (lsmds), empty otherwise
+  StageStatus status;
+};
+
+struct SymmetryResult {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // unit plane normal in the 3D embedding
+  double offset = 0.0;                // plane: normal . y = offset
+  std::vector<int> sigma;             // #S: sample index -> index of its mirror sample
+  Eigen::VectorXd confidence;         // #S in [0, 1]
+  double score = 0.0;                 // symmetry quality, lower is better (relative to size)
+  StageStatus status;
+};
+
+struct SymmetrizeResult {
+  Eigen::MatrixX3d Y;                 // #V x 3, symmetric about the plane x = 0
+  double asymmetry_before = 0.0;      // mean ||M y_i - y_sigma(i)|| / size, M = diag(-1,1,1)
+  double asymmetry_after = 0.0;
+  StageStatus status;
+};
+
+// Everything the per-pair stages need about one shape. Built once per shape and shared by
+// every pair and every variant that resolves to the same per-shape stages.
+struct ShapeData {
+  std::string name;
+  Surface surface;                    // after preprocessing
+  std::vector<int> input_ids;         // #V: input vertex id of each vertex
+  double scale = 1.0;
+  std::vector<int> samples;           // #S
+  EmbeddingResult embedding;          // before symmetrization
+  SymmetryResult symmetry;
+  Eigen::MatrixX3d Y;                 // #V x 3 canonical symmetric embedding (plane normal = x)
+  // Per-shape data computed by per-pair stages' PrepareShape (features, eigenbases, ...).
+  std::map<std::string, Eigen::MatrixXd> aux;
+};
+
+// Ground truth of one pair in the vertex ids of the preprocessed shapes: line i says that
+// source_ids[i] corresponds to target_ids[i] (and to target_sym_ids[i] under the symmetry).
+// Lines whose vertex was removed by preprocessing are dropped.
+struct PairGroundTruth {
+  std::vector<int> source_ids;
+  std::vector<int> target_ids;
+  std::vector<int> target_sym_ids;    // empty when the dataset has no symmetric ground truth
+};
+
+struct PairInput {
+  const ShapeData& source;
+  const ShapeData& target;
+  const PairGroundTruth* ground_truth = nullptr;  // only the oracle may use it
+};
+
+// The four proper rotations that remain once both shapes are in their canonical frames:
+// {I, Rx(pi), Ry(pi), Rz(pi)}, applied to the target embedding (y' = R y).
+std::array<Eigen::Matrix3d, 4> CandidateRotations();
+
+struct FlipResult {
+  std::array<double, 4> scores{};     // per candidate, lower is better
+  int chosen = 0;                     // index into CandidateRotations()
+  StageStatus status;
+};
+
+struct MatchResult {
+  std::vector<int> map;               // #V_source: target vertex of each source vertex
+  StageStatus status;
+};
+
+}  // namespace symembed

@@ -1,0 +1,8 @@
+#include "stages/register.h"
+
+namespace symembed {
+
+// No symmetrize implementation is built in yet.
+void RegisterSymmetrizeStages(Registry& /*registry*/) {}
+
+}  // namespace symembed

@@ -1,0 +1,8 @@
+#include "stages/register.h"
+
+namespace symembed {
+
+// No symmetry implementation is built in yet.
+void RegisterSymmetryStages(Registry& /*registry*/) {}
+
+}  // namespace symembed
