@@ -1,5 +1,6 @@
 #include "core/laplacian.h"
 
+#include <Eigen/Geometry>
 #include <vector>
 
 namespace symembed {

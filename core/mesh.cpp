@@ -1,5 +1,6 @@
 #include "core/mesh.h"
 
+#include <Eigen/Geometry>
 #include <vector>
 
 #include "core/errors.h"
