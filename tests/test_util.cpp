@@ -1,12 +1,17 @@
 #include "tests/test_util.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 #include <random>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/primitives.h"
 
 namespace fs = std::filesystem;
 
@@ -67,6 +72,54 @@ int RunShell(const std::string& command, std::string* output) {
   const int status = pclose(pipe);
   if (output) *output = text;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+Surface BumpyBlob(int n, unsigned seed) {
+  Surface s = BoxMesh(n);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  struct Bump {
+    Eigen::Vector3d centre;
+    double height, width;
+  };
+  std::vector<Bump> bumps(7);
+  for (auto& b : bumps) {
+    b.centre = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    b.height = 0.1 + 0.25 * uniform(rng);
+    b.width = 0.3 + 0.3 * uniform(rng);
+  }
+  for (int i = 0; i < s.NumVertices(); ++i) {
+    const Eigen::Vector3d p = s.V.row(i).transpose().normalized();
+    double r = 1.0;
+    for (const auto& b : bumps) {
+      r += b.height * std::exp(-(p - b.centre).squaredNorm() / (2.0 * b.width * b.width));
+    }
+    s.V.row(i) << 1.3 * r * p.x(), 1.0 * r * p.y(), 0.8 * r * p.z();
+  }
+  return s;
+}
+
+Surface TwistedShuffledCopy(const Surface& surface, double twist, unsigned seed,
+                            std::vector<int>* ground_truth) {
+  const int n = surface.NumVertices();
+  std::vector<int> perm(n);
+  std::iota(perm.begin(), perm.end(), 0);
+  std::mt19937 rng(seed);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  Surface out;
+  out.V.resize(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d p = surface.V.row(i);
+    const double a = twist * p.z(), c = std::cos(a), s = std::sin(a);
+    out.V.row(perm[i]) << c * p.x() - s * p.y(), s * p.x() + c * p.y(), p.z();
+  }
+  out.F.resize(surface.NumFaces(), 3);
+  for (int f = 0; f < surface.NumFaces(); ++f) {
+    for (int k = 0; k < 3; ++k) out.F(f, k) = perm[surface.F(f, k)];
+  }
+  if (ground_truth != nullptr) *ground_truth = perm;
+  return out;
 }
 
 }  // namespace symembed::testing

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/mesh.h"
 
@@ -34,5 +35,17 @@ std::string DataRoot();
 
 // Runs a shell command, returns its exit code; its stdout+stderr go to *output when given.
 int RunShell(const std::string& command, std::string* output = nullptr);
+
+// A closed, smooth, asymmetric blob with 6 n^2 + 2 vertices: BoxMesh(n) projected to
+// the unit sphere, stretched to an ellipsoid with semi-axes (1.3, 1.0, 0.8) and displaced
+// radially by random Gaussian bumps (seeded). It has no nontrivial self-isometry, so maps onto a
+// deformed copy are unambiguous.
+Surface BumpyBlob(int n, unsigned seed = 1);
+
+// A near-isometric pose of `surface`: twisted about the z axis by `twist` radians per unit of
+// height, then its vertices shuffled (seeded). (*ground_truth)[i] is the vertex of the result
+// that vertex i of `surface` became.
+Surface TwistedShuffledCopy(const Surface& surface, double twist, unsigned seed,
+                            std::vector<int>* ground_truth);
 
 }  // namespace symembed::testing
