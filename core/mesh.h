@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products on rows of V
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <string>
 

@@ -1,8 +1,9 @@
 #include "stages/register.h"
 
+#include "stages/geodesics/dijkstra.h"
+
 namespace symembed {
 
-// No geodesics implementation is built in yet.
-void RegisterGeodesicsStages(Registry& /*registry*/) {}
+void RegisterGeodesicsStages(Registry& registry) { RegisterDijkstraGeodesics(registry); }
 
 }  // namespace symembed

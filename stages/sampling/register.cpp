@@ -1,8 +1,12 @@
 #include "stages/register.h"
 
+#include "stages/sampling/farthest_point.h"
+
 namespace symembed {
 
-// No sampling implementation is built in yet.
-void RegisterSamplingStages(Registry& /*registry*/) {}
+void RegisterSamplingStages(Registry& registry) {
+  RegisterAllSampling(registry);
+  RegisterFarthestPointSampling(registry);
+}
 
 }  // namespace symembed

@@ -1,0 +1,153 @@
+#include "core/mesh_graph.h"
+
+#include <algorithm>
+#include <functional>
+
+#include "core/errors.h"
+
+namespace symembed {
+
+MeshGraph BuildMeshGraph(const Surface& s) {
+  const int n = s.NumVertices();
+  // Collect each directed edge (both directions of every face edge), then deduplicate.
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(6 * s.F.rows());
+  for (int f = 0; f < s.F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
+      SYMEMBED_CHECK(a >= 0 && a < n && b >= 0 && b < n, "face " << f << " has a bad vertex id");
+      if (a == b) continue;
+      edges.emplace_back(a, b);
+      edges.emplace_back(b, a);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  MeshGraph g;
+  g.offsets.assign(n + 1, 0);
+  for (const auto& e : edges) ++g.offsets[e.first + 1];
+  for (int v = 0; v < n; ++v) g.offsets[v + 1] += g.offsets[v];
+  g.neighbors.resize(edges.size());
+  g.lengths.resize(edges.size());
+  for (size_t i = 0; i < edges.size(); ++i) {
+    g.neighbors[i] = edges[i].second;
+    g.lengths[i] = (s.V.row(edges[i].first) - s.V.row(edges[i].second)).norm();
+  }
+  return g;
+}
+
+namespace {
+
+// A binary min-heap on (distance, vertex) with lazy deletion: stale entries are skipped when
+// popped. Cheaper in practice than an indexed heap with decrease-key on mesh graphs, where
+// each vertex is pushed only a few times.
+template <typename Scalar>
+struct MinHeap {
+  std::vector<std::pair<Scalar, int>>& items;
+  static bool Greater(const std::pair<Scalar, int>& a, const std::pair<Scalar, int>& b) {
+    return a.first > b.first;
+  }
+  void Push(Scalar d, int v) {
+    items.emplace_back(d, v);
+    std::push_heap(items.begin(), items.end(), Greater);
+  }
+  std::pair<Scalar, int> Pop() {
+    std::pop_heap(items.begin(), items.end(), Greater);
+    auto top = items.back();
+    items.pop_back();
+    return top;
+  }
+  bool Empty() const { return items.empty(); }
+};
+
+}  // namespace
+
+template <typename Scalar>
+void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Scalar>* ws) {
+  const int n = g.NumVertices();
+  SYMEMBED_CHECK(source >= 0 && source < n, "source " << source << " out of range");
+  std::fill(dist, dist + n, std::numeric_limits<Scalar>::infinity());
+  ws->heap.clear();
+  MinHeap<Scalar> heap{ws->heap};
+  dist[source] = 0;
+  heap.Push(0, source);
+  while (!heap.Empty()) {
+    const auto [d, v] = heap.Pop();
+    if (d > dist[v]) continue;  // stale entry
+    for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+      const int w = g.neighbors[k];
+      const Scalar nd = d + static_cast<Scalar>(g.lengths[k]);
+      if (nd < dist[w]) {
+        dist[w] = nd;
+        heap.Push(nd, w);
+      }
+    }
+  }
+}
+
+template void Dijkstra<double>(const MeshGraph&, int, double*, DijkstraWorkspace<double>*);
+template void Dijkstra<float>(const MeshGraph&, int, float*, DijkstraWorkspace<float>*);
+
+void DijkstraBall(const MeshGraph& g, int source, double radius,
+                  std::vector<std::pair<int, double>>* ball, DijkstraWorkspace<double>* ws) {
+  const int n = g.NumVertices();
+  SYMEMBED_CHECK(source >= 0 && source < n, "source " << source << " out of range");
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double>& dist = ws->ball_dist;
+  if (static_cast<int>(dist.size()) != n) dist.assign(n, kInf);
+  ball->clear();
+  ws->heap.clear();
+  MinHeap<double> heap{ws->heap};
+  // Every vertex given a finite value is remembered so that it can be reset afterwards.
+  std::vector<int> touched{source};
+  dist[source] = 0.0;
+  heap.Push(0.0, source);
+  while (!heap.Empty()) {
+    const auto [d, v] = heap.Pop();
+    if (d > dist[v]) continue;
+    ball->emplace_back(v, d);
+    for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+      const int w = g.neighbors[k];
+      const double nd = d + g.lengths[k];
+      if (nd <= radius && nd < dist[w]) {
+        if (dist[w] == kInf) touched.push_back(w);
+        dist[w] = nd;
+        heap.Push(nd, w);
+      }
+    }
+  }
+  for (int v : touched) dist[v] = kInf;
+}
+
+int DijkstraUpdateMin(const MeshGraph& g, int source, std::vector<double>* min_dist,
+                      DijkstraWorkspace<double>* ws) {
+  std::vector<double>& dist = *min_dist;
+  SYMEMBED_CHECK(static_cast<int>(dist.size()) == g.NumVertices(), "min_dist has the wrong size");
+  ws->heap.clear();
+  MinHeap<double> heap{ws->heap};
+  int changed = 0;
+  if (dist[source] > 0.0) {
+    dist[source] = 0.0;
+    ++changed;
+  }
+  heap.Push(0.0, source);
+  // Every vertex whose distance to `source` is below its current value is reached through
+  // vertices that are also improved (a shortest path's prefix is shortest), so the search can
+  // stop expanding wherever it does not improve.
+  while (!heap.Empty()) {
+    const auto [d, v] = heap.Pop();
+    if (d > dist[v]) continue;
+    for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+      const int w = g.neighbors[k];
+      const double nd = d + g.lengths[k];
+      if (nd < dist[w]) {
+        dist[w] = nd;
+        ++changed;
+        heap.Push(nd, w);
+      }
+    }
+  }
+  return changed;
+}
+
+}  // namespace symembed

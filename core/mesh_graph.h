@@ -1,0 +1,55 @@
+// The edge graph of a triangle mesh and shortest paths on it.
+//
+// The graph has one node per vertex and one undirected edge per mesh edge, weighted by its
+// Euclidean length. Graph distances are lengths of paths along mesh edges, so they never
+// underestimate the geodesic distance; on regular meshes they overestimate it by a bounded
+// factor (about 8% on a grid with diagonals, see tests/stages/geodesics_test.cpp).
+//
+// [Dijkstra 1959] A note on two problems in connexion with graphs.
+#pragma once
+
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace symembed {
+
+// Compressed adjacency: the neighbours of vertex v are neighbors[offsets[v] .. offsets[v+1]),
+// with edge lengths in lengths[] at the same positions. Unreferenced vertices have none.
+struct MeshGraph {
+  std::vector<int> offsets;     // #V + 1
+  std::vector<int> neighbors;   // 2 * #E
+  std::vector<double> lengths;  // 2 * #E, Euclidean edge lengths
+
+  int NumVertices() const { return static_cast<int>(offsets.size()) - 1; }
+};
+
+// Builds the edge graph of F (each edge once per direction, however many faces share it).
+MeshGraph BuildMeshGraph(const Surface& surface);
+
+// Reusable per-thread state of Dijkstra's algorithm, so repeated calls do not allocate.
+template <typename Scalar>
+struct DijkstraWorkspace {
+  std::vector<std::pair<Scalar, int>> heap;
+  std::vector<Scalar> ball_dist;  // used by DijkstraBall: +infinity except during a call
+};
+
+// Single-source shortest paths. dist: #V values, on return the graph distance from `source`
+// (+infinity where unreachable).
+template <typename Scalar>
+void Dijkstra(const MeshGraph& graph, int source, Scalar* dist, DijkstraWorkspace<Scalar>* ws);
+
+// The vertices within graph distance `radius` of `source` and their distances, in order of
+// increasing distance. Cost is proportional to the size of the ball, not to #V.
+void DijkstraBall(const MeshGraph& graph, int source, double radius,
+                  std::vector<std::pair<int, double>>* ball, DijkstraWorkspace<double>* ws);
+
+// Incremental form used by farthest point sampling: lowers min_dist[v] to the graph distance
+// from `source` wherever that is smaller, visiting only vertices whose value decreases.
+// Returns the number of values lowered (a vertex lowered twice counts twice).
+int DijkstraUpdateMin(const MeshGraph& graph, int source, std::vector<double>* min_dist,
+                      DijkstraWorkspace<double>* ws);
+
+}  // namespace symembed

@@ -1,0 +1,43 @@
+// Geodesic farthest point sampling (`farthest_point`) and the trivial `all` sampling.
+//
+// FPS starts from a vertex drawn with the seed, then repeatedly adds the vertex farthest (in
+// edge-graph distance, core/mesh_graph.h) from every sample so far. The nearest-sample distance
+// of every vertex is kept up to date incrementally: each new sample runs a Dijkstra search that
+// only expands where it lowers that distance, so the total cost is far below #S full searches.
+// The samples of a smaller count are a prefix of those of a larger one (same seed).
+//
+// [Eldar et al. 1997] The farthest point strategy for progressive image sampling;
+// [Moenning & Dodgson 2003] Fast marching farthest point sampling.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/mesh.h"
+#include "registry/registry.h"
+#include "registry/types.h"
+
+namespace symembed {
+
+struct FarthestPointOptions {
+  int count = 1000;        // number of samples; clamped to the number of usable vertices
+  std::uint32_t seed = 1;  // seeds the choice of the first sample
+
+  bool IsValid(std::string* error) const;
+};
+
+// Returns `count` distinct vertex ids in sampling order and the coverage radius (the largest
+// graph distance from a vertex to its nearest sample; +infinity if some component has no
+// sample). Vertices in no face are never sampled. status.message says when count was clamped.
+// Throws InvalidInputError when the surface has no faces.
+SamplingResult FarthestPointSampling(const Surface& surface,
+                                     const FarthestPointOptions& options = {});
+
+// Every vertex, in id order; coverage radius 0.
+SamplingResult AllVerticesSampling(const Surface& surface);
+
+// Registers sampling/farthest_point and sampling/all.
+void RegisterFarthestPointSampling(Registry& registry);
+void RegisterAllSampling(Registry& registry);
+
+}  // namespace symembed
