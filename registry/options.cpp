@@ -1,6 +1,8 @@
 #include "registry/options.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "core/errors.h"
@@ -16,6 +18,15 @@ std::string NodeLocation(const std::string& file, const YAML::Node& node) {
   return out.str();
 }
 
+std::string FormatNumber(double x) {
+  char buffer[64];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", precision, x);
+    if (std::strtod(buffer, nullptr) == x) break;
+  }
+  return buffer;
+}
+
 namespace {
 
 std::string Join(const std::vector<std::string>& items) {
@@ -29,8 +40,8 @@ std::string Scalar(const YAML::Node& node) { return node.IsScalar() ? node.Scala
 }  // namespace
 
 OptionReader::OptionReader(YAML::Node node, std::string file, std::string path)
-    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)),
-      resolved_(YAML::NodeType::Map) {
+    : node_(node.IsDefined() ? std::move(node) : YAML::Node()), file_(std::move(file)),
+      path_(std::move(path)), resolved_(YAML::NodeType::Map) {
   if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap()) {
     throw ConfigError(NodeLocation(file_, node_) + ": " + (path_.empty() ? "<root>" : path_) +
                       ": expected a map of options");
@@ -77,7 +88,7 @@ double OptionReader::GetDouble(const std::string& key, double default_value, dou
     out << "value " << value << " is out of range [" << min << ", " << max << "]";
     Fail(key, out.str());
   }
-  resolved_[key] = value;
+  resolved_[key] = FormatNumber(value);
   return value;
 }
 

@@ -17,6 +17,9 @@
 
 namespace symembed {
 
+// Shortest decimal text that reads back to exactly x ("0.1", not "0.10000000000000001").
+std::string FormatNumber(double x);
+
 // "file:line:col" of a node (1-based), or "file" when the node has no position.
 std::string NodeLocation(const std::string& file, const YAML::Node& node);
 

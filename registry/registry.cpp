@@ -41,14 +41,17 @@ void Registry::Add(const std::string& kind, const std::string& name,
 
 std::unique_ptr<Stage> Registry::Create(const std::string& kind, const YAML::Node& node,
                                         const std::string& file, const std::string& path,
-                                        const std::string& default_type) const {
+                                        const std::string& default_type,
+                                        const std::string& type_key) const {
   OptionReader reader(node, file, path);
-  std::string type = reader.GetString("type", default_type);
-  if (type.empty()) reader.Fail("", "missing required key 'type'; known " + kind + " types: " +
-                                        JoinNames(Names(kind)));
+  std::string type = reader.GetString(type_key, default_type);
+  if (type.empty()) {
+    reader.Fail("", "missing required key '" + type_key + "'; known " + kind + " types: " +
+                        JoinNames(Names(kind)));
+  }
   auto it = entries_.find(std::make_pair(kind, type));
   if (it == entries_.end()) {
-    reader.Fail(reader.Has("type") ? "type" : "",
+    reader.Fail(reader.Has(type_key) ? type_key : "",
                 "unknown " + kind + " type '" + type + "'; known: " + JoinNames(Names(kind)));
   }
   std::unique_ptr<Stage> stage = it->second.factory(reader);

@@ -40,15 +40,18 @@ class Registry {
   // Creates the stage named by `type` in `node` (a map with `type` and options; when `type` is
   // missing, default_type is used). Unknown names fail with the list of known ones; unknown
   // options fail through OptionReader::Finish. The stage's resolved options are set.
+  // type_key names the key holding the type (`format` for datasets).
   std::unique_ptr<Stage> Create(const std::string& kind, const YAML::Node& node,
                                 const std::string& file, const std::string& path,
-                                const std::string& default_type = "") const;
+                                const std::string& default_type = "",
+                                const std::string& type_key = "type") const;
 
   template <typename T>
   std::unique_ptr<T> CreateAs(const std::string& kind, const YAML::Node& node,
                               const std::string& file, const std::string& path,
-                              const std::string& default_type = "") const {
-    std::unique_ptr<Stage> stage = Create(kind, node, file, path, default_type);
+                              const std::string& default_type = "",
+                              const std::string& type_key = "type") const {
+    std::unique_ptr<Stage> stage = Create(kind, node, file, path, default_type, type_key);
     T* typed = dynamic_cast<T*>(stage.get());
     SYMEMBED_CHECK(typed != nullptr, "stage of kind '" << kind << "' has the wrong interface");
     stage.release();

@@ -1,0 +1,368 @@
+#include "registry/config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "core/errors.h"
+
+namespace symembed {
+
+const std::vector<std::string>& PipelineKinds() {
+  static const std::vector<std::string> kinds = {"preprocess", "sampling",   "geodesics",
+                                                 "embedding",  "symmetry",   "symmetrize",
+                                                 "flip",       "matching",   "refine"};
+  return kinds;
+}
+
+std::string DefaultStageType(const std::string& kind) {
+  static const std::map<std::string, std::string> defaults = {
+      {"preprocess", "standard"}, {"sampling", "farthest_point"}, {"geodesics", "dijkstra"},
+      {"embedding", "lsmds"},     {"symmetry", "plane2d"},        {"symmetrize", "ceres"},
+      {"flip", "extrinsic"},      {"matching", "nearest"},        {"refine", "none"}};
+  auto it = defaults.find(kind);
+  return it == defaults.end() ? "" : it->second;
+}
+
+const Stage& Pipeline::StageOf(const std::string& kind) const {
+  const Stage* stages[] = {preprocess.get(), sampling.get(), geodesics.get(),
+                           embedding.get(),  symmetry.get(), symmetrize.get(),
+                           flip.get(),       matching.get(), refine.get()};
+  const auto& kinds = PipelineKinds();
+  for (size_t i = 0; i < kinds.size(); ++i) {
+    if (kinds[i] == kind) return *stages[i];
+  }
+  SYMEMBED_CHECK(false, "unknown pipeline kind '" << kind << "'");
+}
+
+const VariantConfig* ExperimentConfig::Find(const std::string& variant) const {
+  for (const auto& v : variants) {
+    if (v.name == variant) return &v;
+  }
+  return nullptr;
+}
+
+std::string ExpandEnvironment(const std::string& text, const std::string& where) {
+  static const std::regex pattern(R"(\$\{([A-Za-z_][A-Za-z0-9_]*)(:-([^}]*))?\})");
+  std::string out;
+  auto begin = std::sregex_iterator(text.begin(), text.end(), pattern);
+  size_t last = 0;
+  for (auto it = begin; it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    out += text.substr(last, m.position() - last);
+    const char* value = std::getenv(m[1].str().c_str());
+    if (value && *value) {
+      out += value;
+    } else if (m[2].matched) {
+      out += m[3].str();
+    } else {
+      throw ConfigError(where + ": environment variable " + m[1].str() +
+                        " is not set and has no default (write ${" + m[1].str() +
+                        ":-default})");
+    }
+    last = m.position() + m.length();
+  }
+  out += text.substr(last);
+  return out;
+}
+
+namespace {
+
+const std::set<std::string> kTopLevelKeys = {"name", "description", "dataset", "pipeline",
+                                             "evaluation", "variants"};
+
+std::string JoinSet(const std::set<std::string>& s) {
+  std::string out;
+  for (const auto& x : s) out += (out.empty() ? "" : ", ") + x;
+  return out;
+}
+
+// Substitutes the environment in the text line by line (before YAML parsing, so that
+// `root: ${SYMEMBED_DATA}/x` also works inside flow maps); comments are left alone.
+std::string SubstituteText(const std::string& text, const std::string& file) {
+  std::string out;
+  std::istringstream in(text);
+  int line_number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_number;
+    // A '#' at the start or after a blank starts a YAML comment; only the part before it is
+    // substituted, so a comment may mention ${VAR} freely.
+    size_t comment = line.find('#');
+    while (comment != std::string::npos && comment > 0 && line[comment - 1] != ' ' &&
+           line[comment - 1] != '\t') {
+      comment = line.find('#', comment + 1);
+    }
+    const std::string code = line.substr(0, comment);
+    const std::string rest = comment == std::string::npos ? "" : line.substr(comment);
+    out += (code.find("${") == std::string::npos)
+               ? code
+               : ExpandEnvironment(code, file + ":" + std::to_string(line_number));
+    out += rest + "\n";
+  }
+  return out;
+}
+
+// Sets tree[path] = value where path is dotted ("pipeline.embedding.type"), creating maps.
+// When the last key is the stage's type key and the type changes, the stage's other options
+// are dropped (they belonged to the old type).
+void ApplyOverride(YAML::Node tree, const std::string& path, const YAML::Node& value,
+                   const YAML::Node& key_node, const std::string& file) {
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+  auto fail = [&](const std::string& what) {
+    throw ConfigError(NodeLocation(file, key_node) + ": override '" + path + "': " + what);
+  };
+  if (parts.size() < 2 || parts[0].empty()) fail("expected a dotted path such as pipeline.embedding.type");
+  if (parts[0] != "dataset" && parts[0] != "pipeline" && parts[0] != "evaluation") {
+    fail("the path must start with dataset, pipeline or evaluation");
+  }
+  if (parts[0] == "pipeline") {
+    const auto& kinds = PipelineKinds();
+    if (std::find(kinds.begin(), kinds.end(), parts[1]) == kinds.end()) {
+      std::set<std::string> known(kinds.begin(), kinds.end());
+      fail("unknown stage kind '" + parts[1] + "'; known: " + JoinSet(known));
+    }
+  }
+  YAML::Node node = tree;
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    if (parts[i].empty()) fail("empty path component");
+    YAML::Node child = node[parts[i]];
+    if (!child.IsDefined() || child.IsNull()) {
+      node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      child = node[parts[i]];
+    } else if (!child.IsMap()) {
+      fail("'" + parts[i] + "' is not a map");
+    }
+    node.reset(child);  // re-point the handle; operator= would overwrite the tree
+  }
+  const std::string& last = parts.back();
+  const bool is_type = (parts.size() == 3 && parts[0] == "pipeline" && last == "type") ||
+                       (parts.size() == 2 && parts[0] == "dataset" && last == "format");
+  if (is_type) {
+    const YAML::Node old = node[last];
+    const bool changed = !old.IsDefined() || !old.IsScalar() || !value.IsScalar() ||
+                         old.Scalar() != value.Scalar();
+    if (changed) {
+      std::vector<std::string> keys;
+      for (const auto& kv : node) keys.push_back(kv.first.Scalar());
+      for (const auto& k : keys) node.remove(k);
+    }
+  }
+  node[last] = value;
+}
+
+void ValidateVariantName(const std::string& name, const YAML::Node& at, const std::string& file) {
+  static const std::regex ok("[A-Za-z0-9_.-]+");
+  if (!std::regex_match(name, ok) || name == "." || name == "..") {
+    throw ConfigError(NodeLocation(file, at) + ": variants.name: '" + name +
+                      "' is not a valid variant name (letters, digits, '_', '-', '.')");
+  }
+}
+
+EvaluationOptions ParseEvaluation(const YAML::Node& node, const std::string& file,
+                                  const Registry& registry) {
+  OptionReader r(node, file, "evaluation");
+  EvaluationOptions e;
+  e.geodesics = r.GetChoice("geodesics", e.geodesics, registry.Names("geodesics"));
+  e.max_error = r.GetDouble("max_error", e.max_error, 1e-6, 10.0);
+  e.step = r.GetDouble("step", e.step, 1e-6, e.max_error);
+  const std::string points = r.GetString("points", "all");
+  if (points != "all") {
+    char* end = nullptr;
+    const long n = std::strtol(points.c_str(), &end, 10);
+    if (points.empty() || *end != '\0' || n < 1 || n > 100000000) {
+      r.Fail("points", "invalid value '" + points + "'; expected 'all' or a positive integer");
+    }
+    e.points = static_cast<int>(n);
+  }
+  r.Finish();
+  return e;
+}
+
+}  // namespace
+
+ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
+                                       const Registry& registry) {
+  const std::string text = SubstituteText(yaml_text, file);
+  // Each variant gets its own parse of the text, so that every node keeps its file position
+  // (YAML::Clone drops positions) and no node is shared between variants.
+  auto parse = [&]() {
+    try {
+      return YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+      std::ostringstream out;
+      out << file << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
+          << ": YAML syntax error: " << e.msg;
+      throw ConfigError(out.str());
+    }
+  };
+  YAML::Node root = parse();
+  if (!root.IsMap()) throw ConfigError(file + ": expected a YAML map with keys " + JoinSet(kTopLevelKeys));
+  for (const auto& kv : root) {
+    const std::string key = kv.first.Scalar();
+    if (!kTopLevelKeys.count(key)) {
+      throw ConfigError(NodeLocation(file, kv.first) + ": " + key + ": unknown key '" + key +
+                        "'; known keys: " + JoinSet(kTopLevelKeys));
+    }
+  }
+
+  ExperimentConfig config;
+  config.file = file;
+  const YAML::Node& croot = root;
+  if (!croot["name"] || !croot["name"].IsScalar() || croot["name"].Scalar().empty()) {
+    throw ConfigError(NodeLocation(file, croot) + ": name: missing required key 'name' "
+                      "(the experiment's name; outputs go to results/<name>/)");
+  }
+  config.name = croot["name"].Scalar();
+  ValidateVariantName(config.name, croot["name"], file);
+  if (croot["description"]) {
+    if (!croot["description"].IsScalar()) {
+      throw ConfigError(NodeLocation(file, croot["description"]) + ": description: expected a string");
+    }
+    config.description = croot["description"].Scalar();
+  }
+  if (!croot["dataset"]) {
+    throw ConfigError(NodeLocation(file, croot) + ": dataset: missing required key 'dataset' "
+                      "(a map with `format` and the loader's options)");
+  }
+  const YAML::Node pipeline = croot["pipeline"];
+  if (pipeline.IsDefined() && !pipeline.IsNull()) {
+    if (!pipeline.IsMap()) throw ConfigError(NodeLocation(file, pipeline) + ": pipeline: expected a map of stage kinds");
+    const auto& kinds = PipelineKinds();
+    for (const auto& kv : pipeline) {
+      const std::string key = kv.first.Scalar();
+      if (std::find(kinds.begin(), kinds.end(), key) == kinds.end()) {
+        throw ConfigError(NodeLocation(file, kv.first) + ": pipeline." + key +
+                          ": unknown stage kind '" + key + "'; known: " +
+                          JoinSet(std::set<std::string>(kinds.begin(), kinds.end())));
+      }
+    }
+  }
+
+  YAML::Node base = parse();
+  base.remove("variants");
+  config.variants.push_back(VariantConfig{"base", base});
+
+  const YAML::Node variants = croot["variants"];
+  if (variants.IsDefined() && !variants.IsNull()) {
+    if (!variants.IsSequence()) {
+      throw ConfigError(NodeLocation(file, variants) + ": variants: expected a list of {name, set}");
+    }
+    std::set<std::string> names = {"base"};
+    for (size_t i = 0; i < variants.size(); ++i) {
+      const YAML::Node v = variants[i];
+      const std::string path = "variants[" + std::to_string(i) + "]";
+      if (!v.IsMap()) throw ConfigError(NodeLocation(file, v) + ": " + path + ": expected a map with keys name, set");
+      for (const auto& kv : v) {
+        const std::string key = kv.first.Scalar();
+        if (key != "name" && key != "set") {
+          throw ConfigError(NodeLocation(file, kv.first) + ": " + path + "." + key +
+                            ": unknown key '" + key + "'; known keys: name, set");
+        }
+      }
+      if (!v["name"] || !v["name"].IsScalar()) {
+        throw ConfigError(NodeLocation(file, v) + ": " + path + ".name: missing required key 'name'");
+      }
+      const std::string name = v["name"].Scalar();
+      ValidateVariantName(name, v["name"], file);
+      if (!names.insert(name).second) {
+        throw ConfigError(NodeLocation(file, v["name"]) + ": " + path + ".name: duplicate variant name '" + name + "'");
+      }
+      YAML::Node tree = parse();
+      const YAML::Node set = static_cast<const YAML::Node&>(tree)["variants"][i]["set"];
+      tree.remove("variants");
+      if (set.IsDefined() && !set.IsNull()) {
+        if (!set.IsMap()) throw ConfigError(NodeLocation(file, set) + ": " + path + ".set: expected a map of dotted.path: value");
+        // Type changes first, so that options set next to them are kept.
+        for (int pass = 0; pass < 2; ++pass) {
+          for (const auto& kv : set) {
+            const std::string key = kv.first.Scalar();
+            const bool is_type = key.size() >= 5 && (key.substr(key.size() - 5) == ".type" ||
+                                                     key == "dataset.format");
+            if ((pass == 0) == is_type) ApplyOverride(tree, key, kv.second, kv.first, file);
+          }
+        }
+      }
+      config.variants.push_back(VariantConfig{name, tree});
+    }
+  }
+  // Validate every variant completely before anything runs.
+  for (const auto& v : config.variants) BuildPipeline(config, v, registry);
+  return config;
+}
+
+ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path + ": cannot open config file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseExperimentConfig(text.str(), path, registry);
+}
+
+Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& variant,
+                       const Registry& registry) {
+  const std::string& file = config.file;
+  const YAML::Node& tree = variant.tree;
+  const YAML::Node stages = tree["pipeline"];
+  auto node = [&](const std::string& kind) {
+    return stages.IsMap() ? stages[kind] : YAML::Node();
+  };
+  auto create = [&](const std::string& kind, auto* tag) {
+    using T = std::remove_pointer_t<decltype(tag)>;
+    return registry.CreateAs<T>(kind, node(kind), file, "pipeline." + kind,
+                                DefaultStageType(kind));
+  };
+  Pipeline p;
+  p.dataset = registry.CreateAs<Dataset>("dataset", tree["dataset"], file, "dataset", "", "format");
+  p.preprocess = create("preprocess", static_cast<PreprocessStage*>(nullptr));
+  p.sampling = create("sampling", static_cast<SamplingStage*>(nullptr));
+  p.geodesics = create("geodesics", static_cast<GeodesicsStage*>(nullptr));
+  p.embedding = create("embedding", static_cast<EmbeddingStage*>(nullptr));
+  p.symmetry = create("symmetry", static_cast<SymmetryStage*>(nullptr));
+  p.symmetrize = create("symmetrize", static_cast<SymmetrizeStage*>(nullptr));
+  p.flip = create("flip", static_cast<FlipStage*>(nullptr));
+  p.matching = create("matching", static_cast<MatchingStage*>(nullptr));
+  p.refine = create("refine", static_cast<RefineStage*>(nullptr));
+  p.evaluation = ParseEvaluation(tree["evaluation"], file, registry);
+  YAML::Node geodesics_node(YAML::NodeType::Map);
+  geodesics_node["type"] = p.evaluation.geodesics;
+  p.evaluation_geodesics = registry.CreateAs<GeodesicsStage>("geodesics", geodesics_node, file,
+                                                             "evaluation.geodesics");
+  return p;
+}
+
+std::string ResolvedConfigYaml(const ExperimentConfig& config, const VariantConfig& variant,
+                               const Pipeline& pipeline) {
+  YAML::Emitter out;
+  out << YAML::Comment("resolved config of variant '" + variant.name + "' of " + config.file);
+  out << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << config.name;
+  if (!config.description.empty()) {
+    out << YAML::Key << "description" << YAML::Value << config.description;
+  }
+  out << YAML::Key << "dataset" << YAML::Value << pipeline.dataset->resolved_options();
+  out << YAML::Key << "pipeline" << YAML::Value << YAML::BeginMap;
+  for (const auto& kind : PipelineKinds()) {
+    out << YAML::Key << kind << YAML::Value << YAML::Flow
+        << pipeline.StageOf(kind).resolved_options();
+  }
+  out << YAML::EndMap;
+  const EvaluationOptions& e = pipeline.evaluation;
+  out << YAML::Key << "evaluation" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "geodesics" << YAML::Value << e.geodesics;
+  out << YAML::Key << "max_error" << YAML::Value << FormatNumber(e.max_error);
+  out << YAML::Key << "step" << YAML::Value << FormatNumber(e.step);
+  out << YAML::Key << "points" << YAML::Value
+      << (e.points == 0 ? std::string("all") : std::to_string(e.points));
+  out << YAML::EndMap;
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace symembed

@@ -1,0 +1,96 @@
+// Experiment configuration: one YAML file = dataset + pipeline (one entry per stage kind) +
+// evaluation + ablation variants (name + dotted-path overrides).
+//
+// Parsing is strict and complete before anything runs: every variant is resolved and every one
+// of its stages instantiated, so unknown keys, wrong types, bad enum values, out-of-range
+// numbers and missing required keys fail with `file:line:col`, the dotted path and what was
+// expected. Strings may use ${VAR} and ${VAR:-default} (environment substitution).
+//
+//   name: tosca_paper
+//   dataset: {format: pairs_vts, root: ${SYMEMBED_DATA:-../shared/data}/tosca_iso_5k}
+//   pipeline:
+//     embedding: {type: lsmds, dims: 3}
+//   evaluation: {geodesics: fast_marching, max_error: 0.25, step: 0.0025, points: all}
+//   variants:
+//     - {name: isomap, set: {pipeline.embedding.type: isomap}}
+//
+// A variant that changes a stage's `type` starts that stage from the new type's defaults: the
+// base's options for the old type are dropped unless the variant sets them again.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "registry/dataset.h"
+#include "registry/registry.h"
+
+namespace symembed {
+
+// Stage kinds of the per-shape and per-pair pipeline, in order (StageKinds() without dataset).
+const std::vector<std::string>& PipelineKinds();
+// The built-in type used when the config does not name one for a kind.
+std::string DefaultStageType(const std::string& kind);
+
+struct EvaluationOptions {
+  std::string geodesics = "fast_marching";  // a registered geodesics type
+  double max_error = 0.25;                  // right end of the cumulative curve
+  double step = 0.0025;                     // curve resolution
+  int points = 0;                           // 0 = all ground-truth points; N = N FPS points
+};
+
+// The instantiated stages of one variant.
+struct Pipeline {
+  std::unique_ptr<Dataset> dataset;
+  std::unique_ptr<PreprocessStage> preprocess;
+  std::unique_ptr<SamplingStage> sampling;
+  std::unique_ptr<GeodesicsStage> geodesics;
+  std::unique_ptr<EmbeddingStage> embedding;
+  std::unique_ptr<SymmetryStage> symmetry;
+  std::unique_ptr<SymmetrizeStage> symmetrize;
+  std::unique_ptr<FlipStage> flip;
+  std::unique_ptr<MatchingStage> matching;
+  std::unique_ptr<RefineStage> refine;
+  std::unique_ptr<GeodesicsStage> evaluation_geodesics;
+  EvaluationOptions evaluation;
+
+  // The stage of a pipeline kind ("sampling", ...).
+  const Stage& StageOf(const std::string& kind) const;
+};
+
+struct VariantConfig {
+  std::string name;   // "base" for the base pipeline
+  YAML::Node tree;    // the whole config tree after overrides and substitution (no variants)
+};
+
+struct ExperimentConfig {
+  std::string name;
+  std::string description;
+  std::string file;                     // where it was read from (for messages)
+  std::vector<VariantConfig> variants;  // "base" first, then the file's variants in order
+  const VariantConfig* Find(const std::string& variant) const;
+};
+
+// Reads, substitutes, resolves and validates (instantiating every stage of every variant).
+// Throws ConfigError (file:line:col, dotted path, expectation) or IoError.
+ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry);
+ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
+                                       const Registry& registry);
+
+// Instantiates the stages of one variant (throws ConfigError).
+Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& variant,
+                       const Registry& registry);
+
+// The fully resolved config of a variant (every option with its default), as YAML text that
+// ParseExperimentConfig reads back to the same pipeline.
+std::string ResolvedConfigYaml(const ExperimentConfig& config, const VariantConfig& variant,
+                               const Pipeline& pipeline);
+
+// Replaces ${VAR} and ${VAR:-default} in text; an unset VAR without default throws ConfigError
+// naming `where`.
+std::string ExpandEnvironment(const std::string& text, const std::string& where);
+
+}  // namespace symembed

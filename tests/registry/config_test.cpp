@@ -1,0 +1,244 @@
+#include "registry/config.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+namespace symembed {
+namespace {
+
+// Test doubles for every kind: each reads a few typed options so strictness can be exercised.
+template <typename Base>
+class Fake : public Base {};
+
+class FakeDataset : public Dataset {
+ public:
+  DatasetIndex Load() const override { return {}; }
+  ShapeGroundTruth GroundTruth(const DatasetShape&, int) const override { return {}; }
+};
+
+class FakeSampling : public SamplingStage {
+ public:
+  SamplingResult Run(const Surface&) const override { return {}; }
+};
+
+template <typename T>
+Registry::Factory Factory() {
+  return [](OptionReader&) -> std::unique_ptr<Stage> { return std::make_unique<T>(); };
+}
+
+struct FakePreprocess : PreprocessStage {
+  PreprocessResult Run(const Surface&) const override { return {}; }
+};
+struct FakeGeodesics : GeodesicsStage {
+  std::unique_ptr<GeodesicSolver> Prepare(const Surface&) const override { return nullptr; }
+};
+struct FakeEmbedding : EmbeddingStage {
+  EmbeddingResult Run(const EmbeddingInput&) const override { return {}; }
+};
+struct FakeSymmetry : SymmetryStage {
+  SymmetryResult Run(const SymmetryInput&) const override { return {}; }
+};
+struct FakeSymmetrize : SymmetrizeStage {
+  SymmetrizeResult Run(const SymmetryInput&, const SymmetryResult&) const override { return {}; }
+};
+struct FakeFlip : FlipStage {
+  FlipResult Run(const PairInput&) const override { return {}; }
+};
+struct FakeMatching : MatchingStage {
+  MatchResult Run(const Eigen::MatrixX3d&, const Eigen::MatrixX3d&) const override { return {}; }
+};
+struct FakeRefine : RefineStage {
+  MatchResult Run(const PairInput&, const std::vector<int>&) const override { return {}; }
+};
+
+Registry FakeRegistry() {
+  Registry r;
+  r.Add("dataset", "pairs_vts", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
+    o.GetRequiredString("root");
+    o.GetInt("max_pairs", 0, 0);
+    return std::make_unique<FakeDataset>();
+  });
+  r.Add("preprocess", "standard", "d", Factory<FakePreprocess>());
+  r.Add("sampling", "farthest_point", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
+    o.GetInt("count", 1000, 1, 1000000);
+    o.GetInt("seed", 1);
+    return std::make_unique<FakeSampling>();
+  });
+  r.Add("geodesics", "dijkstra", "d", Factory<FakeGeodesics>());
+  r.Add("geodesics", "fast_marching", "d", Factory<FakeGeodesics>());
+  r.Add("embedding", "lsmds", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
+    o.GetInt("dims", 3, 2, 3);
+    o.GetChoice("init", "original", {"original", "isomap", "random"});
+    o.GetDouble("tolerance", 1e-6, 0.0, 1.0);
+    return std::make_unique<FakeEmbedding>();
+  });
+  r.Add("embedding", "isomap", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
+    o.GetInt("dims", 3, 2, 3);
+    o.GetBool("fix_orientation", false);
+    return std::make_unique<FakeEmbedding>();
+  });
+  r.Add("symmetry", "plane2d", "d", Factory<FakeSymmetry>());
+  r.Add("symmetrize", "ceres", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
+    o.GetDouble("symmetry_weight", 10.0, 0.0);
+    return std::make_unique<FakeSymmetrize>();
+  });
+  r.Add("symmetrize", "none", "d", Factory<FakeSymmetrize>());
+  r.Add("flip", "extrinsic", "d", Factory<FakeFlip>());
+  r.Add("matching", "nearest", "d", Factory<FakeMatching>());
+  r.Add("refine", "none", "d", Factory<FakeRefine>());
+  return r;
+}
+
+const char* kConfig = R"(name: demo
+dataset: {format: pairs_vts, root: /data/x}  # root: ${NOT_SET_ANYWHERE}
+pipeline:
+  sampling: {type: farthest_point, count: 500}
+  embedding: {type: lsmds, init: original}
+evaluation: {geodesics: dijkstra, max_error: 0.25, step: 0.0025}
+variants:
+  - {name: isomap, set: {pipeline.embedding.type: isomap}}
+  - {name: more_samples, set: {pipeline.sampling.count: 2000}}
+)";
+
+// Parses `text` and returns the ConfigError message ("" when it parses).
+std::string ErrorOf(const std::string& text) {
+  try {
+    ParseExperimentConfig(text, "exp.yaml", FakeRegistry());
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string Replace(std::string s, const std::string& from, const std::string& to) {
+  const size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+TEST(Config, ParsesBaseAndVariants) {
+  const ExperimentConfig c = ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry());
+  EXPECT_EQ(c.name, "demo");
+  ASSERT_EQ(c.variants.size(), 3u);
+  EXPECT_EQ(c.variants[0].name, "base");
+  const Pipeline base = BuildPipeline(c, c.variants[0], FakeRegistry());
+  EXPECT_EQ(base.sampling->resolved_options()["count"].as<int>(), 500);
+  EXPECT_EQ(base.embedding->resolved_options()["type"].as<std::string>(), "lsmds");
+  EXPECT_EQ(base.symmetrize->resolved_options()["type"].as<std::string>(), "ceres");  // default
+  EXPECT_EQ(base.evaluation.geodesics, "dijkstra");
+  EXPECT_EQ(base.evaluation.points, 0);
+
+  // Changing the type drops the old type's options (init belongs to lsmds).
+  const Pipeline iso = BuildPipeline(c, *c.Find("isomap"), FakeRegistry());
+  EXPECT_EQ(iso.embedding->resolved_options()["type"].as<std::string>(), "isomap");
+  EXPECT_FALSE(iso.embedding->resolved_options()["init"]);
+  EXPECT_EQ(iso.sampling->resolved_options()["count"].as<int>(), 500);
+
+  const Pipeline more = BuildPipeline(c, *c.Find("more_samples"), FakeRegistry());
+  EXPECT_EQ(more.sampling->resolved_options()["count"].as<int>(), 2000);
+  EXPECT_EQ(more.embedding->resolved_options()["init"].as<std::string>(), "original");
+}
+
+TEST(Config, UnknownKeyNamesLinePathAndKnownKeys) {
+  const std::string msg = ErrorOf(Replace(kConfig, "init: original", "inti: original"));
+  EXPECT_NE(msg.find("exp.yaml:5:28:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pipeline.embedding.inti: unknown key 'inti'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("known keys: dims, init, tolerance, type"), std::string::npos) << msg;
+}
+
+TEST(Config, UnknownTopLevelKeyAndStageKind) {
+  std::string msg = ErrorOf(std::string(kConfig) + "evalution: {}\n");
+  EXPECT_NE(msg.find("exp.yaml:10:1: evalution: unknown key"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("evaluation"), std::string::npos) << msg;
+  msg = ErrorOf(Replace(kConfig, "  sampling:", "  smapling:"));
+  EXPECT_NE(msg.find("exp.yaml:4:3: pipeline.smapling: unknown stage kind"), std::string::npos) << msg;
+}
+
+TEST(Config, WrongTypeNamesExpectation) {
+  const std::string msg = ErrorOf(Replace(kConfig, "count: 500", "count: many"));
+  EXPECT_NE(msg.find("exp.yaml:4:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pipeline.sampling.count: expected an integer, got 'many'"), std::string::npos)
+      << msg;
+}
+
+TEST(Config, BadEnumListsValidValues) {
+  const std::string msg = ErrorOf(Replace(kConfig, "init: original", "init: orignal"));
+  EXPECT_NE(msg.find("pipeline.embedding.init: invalid value 'orignal'; expected one of: "
+                     "original, isomap, random"),
+            std::string::npos)
+      << msg;
+  const std::string type_msg = ErrorOf(Replace(kConfig, "type: lsmds", "type: lsmd"));
+  EXPECT_NE(type_msg.find("unknown embedding type 'lsmd'; known: isomap, lsmds"), std::string::npos)
+      << type_msg;
+}
+
+TEST(Config, OutOfRangeNamesTheRange) {
+  const std::string msg = ErrorOf(Replace(kConfig, "count: 500", "count: 0"));
+  EXPECT_NE(msg.find("pipeline.sampling.count: value 0 is out of range [1, 1000000]"),
+            std::string::npos)
+      << msg;
+  const std::string eval = ErrorOf(Replace(kConfig, "step: 0.0025", "step: 0.5"));
+  EXPECT_NE(eval.find("evaluation.step: value 0.5 is out of range"), std::string::npos) << eval;
+}
+
+TEST(Config, MissingRequiredKeys) {
+  std::string msg = ErrorOf(Replace(kConfig, "root: /data/x", "max_pairs: 3"));
+  EXPECT_NE(msg.find("dataset: missing required key 'root'"), std::string::npos) << msg;
+  msg = ErrorOf(Replace(kConfig, "name: demo\n", ""));
+  EXPECT_NE(msg.find("missing required key 'name'"), std::string::npos) << msg;
+  msg = ErrorOf(Replace(kConfig, "format: pairs_vts, ", ""));
+  EXPECT_NE(msg.find("dataset: missing required key 'format'; known dataset types: pairs_vts"),
+            std::string::npos) << msg;
+}
+
+TEST(Config, VariantErrorsPointAtTheVariant) {
+  std::string msg = ErrorOf(Replace(kConfig, "pipeline.sampling.count: 2000",
+                                    "pipeline.sampling.count: -3"));
+  EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pipeline.sampling.count: value -3 is out of range"), std::string::npos) << msg;
+  msg = ErrorOf(Replace(kConfig, "pipeline.sampling.count", "pipeline.smpling.count"));
+  EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("unknown stage kind 'smpling'"), std::string::npos) << msg;
+  msg = ErrorOf(Replace(kConfig, "name: more_samples", "name: isomap"));
+  EXPECT_NE(msg.find("duplicate variant name 'isomap'"), std::string::npos) << msg;
+  msg = ErrorOf(Replace(kConfig, "{name: isomap, set", "{name: isomap, sett"));
+  EXPECT_NE(msg.find("variants[0].sett: unknown key"), std::string::npos) << msg;
+}
+
+TEST(Config, YamlSyntaxErrorHasLocation) {
+  const std::string msg = ErrorOf("name: x\ndataset: {format: [\n");
+  EXPECT_NE(msg.find("exp.yaml:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("YAML syntax error"), std::string::npos) << msg;
+}
+
+TEST(Config, EnvironmentSubstitution) {
+  setenv("SYMEMBED_TEST_ROOT", "/from/env", 1);
+  unsetenv("SYMEMBED_TEST_UNSET");
+  EXPECT_EQ(ExpandEnvironment("${SYMEMBED_TEST_ROOT}/tosca", "w"), "/from/env/tosca");
+  EXPECT_EQ(ExpandEnvironment("${SYMEMBED_TEST_UNSET:-../shared/data}/t", "w"), "../shared/data/t");
+  EXPECT_EQ(ExpandEnvironment("${SYMEMBED_TEST_ROOT:-x}", "w"), "/from/env");
+  EXPECT_THROW(ExpandEnvironment("${SYMEMBED_TEST_UNSET}", "w"), ConfigError);
+  const ExperimentConfig c = ParseExperimentConfig(
+      Replace(kConfig, "/data/x", "${SYMEMBED_TEST_ROOT}/tosca"), "exp.yaml", FakeRegistry());
+  const Pipeline p = BuildPipeline(c, c.variants[0], FakeRegistry());
+  EXPECT_EQ(p.dataset->resolved_options()["root"].as<std::string>(), "/from/env/tosca");
+}
+
+TEST(Config, ResolvedConfigRoundTrips) {
+  const Registry registry = FakeRegistry();
+  const ExperimentConfig c = ParseExperimentConfig(kConfig, "exp.yaml", registry);
+  for (const auto& v : c.variants) {
+    const Pipeline p = BuildPipeline(c, v, registry);
+    const std::string resolved = ResolvedConfigYaml(c, v, p);
+    // Defaults are filled in.
+    EXPECT_NE(resolved.find("seed: 1"), std::string::npos) << resolved;
+    const ExperimentConfig again = ParseExperimentConfig(resolved, "resolved.yaml", registry);
+    ASSERT_EQ(again.variants.size(), 1u);
+    const Pipeline q = BuildPipeline(again, again.variants[0], registry);
+    EXPECT_EQ(ResolvedConfigYaml(c, v, q), resolved) << v.name;
+  }
+}
+
+}  // namespace
+}  // namespace symembed
