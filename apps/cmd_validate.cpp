@@ -33,7 +33,11 @@ int ValidateCommand(const Args& args) {
       std::string what = e.what();
       if (what.compare(0, path.size(), path) == 0) what = what.substr(path.size());
       if (!what.empty() && what[0] == ':') what = what.substr(1);
-      std::cout << path << ": cannot load:" << (what.empty() || what[0] == ' ' ? "" : " ") << what << "\n";
+      // "12: problem" (a line number) reads better as "line 12: problem".
+      const size_t digits = what.find_first_not_of("0123456789");
+      if (digits > 0 && digits != std::string::npos && what[digits] == ':') what = "line " + what;
+      while (!what.empty() && what[0] == ' ') what = what.substr(1);
+      std::cout << path << ": cannot load: " << what << "\n";
     }
   }
   const size_t total = parser.positionals().size();

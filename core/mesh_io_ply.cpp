@@ -2,6 +2,7 @@
 // file format").
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "core/mesh_io_internal.h"
@@ -190,6 +191,9 @@ void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
       } else {
         c.Fail("unknown PLY format " + Quote(f));
       }
+      const std::string_view version = c.Token();
+      double number;
+      if (!ParseDouble(version, &number)) c.Fail("invalid PLY format version " + Quote(version));
       has_format = true;
     } else if (kw == "element") {
       PlyElement e;
@@ -288,7 +292,9 @@ void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
           const double id = body.Read(p.type);
           if (!face_ids) continue;
           if (!(id >= 0 && id < static_cast<double>(nv)) || id != std::floor(id)) {
-            Fail(name, 0, "face " + std::to_string(i) + ": vertex id " + std::to_string(id) +
+            char id_text[32];
+            std::snprintf(id_text, sizeof(id_text), "%.17g", id);
+            Fail(name, 0, "face " + std::to_string(i) + ": vertex id " + id_text +
                               " out of range [0, " + std::to_string(nv) + ")");
           }
           ids.push_back(static_cast<int>(id));

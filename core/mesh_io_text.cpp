@@ -215,7 +215,7 @@ void ReadOff(std::string_view data, const std::string& name, RawMesh* mesh) {
     const int64_t n = c.Int("vertex count of face " + std::to_string(f));
     if (n < 3) {
       c.Fail("face " + std::to_string(f) + " has " + std::to_string(n) +
-             " vertices; a face needs at least 3" + (n >= 0 ? "" : hint));
+             " vertices; a face needs at least 3" + hint);
     }
     ids.clear();
     for (int64_t j = 0; j < n; ++j) {
