@@ -1,0 +1,119 @@
+// Per-shape geometry stages on smooth closed blobs (tests/test_util.h BumpyBlob) of about 5k,
+// 20k and 50k vertices. Wall-clock time (UseRealTime): the geodesic solvers run on all cores.
+//
+//   BM_Geodesics/<solver>/<n>        Prepare + Distances for 1,000 sources, n = 29 (5,048 vertices)
+//   BM_GeodesicsPrepare/<solver>/<n> Prepare only (graph, stencils, factorisations)
+//   BM_GeodesicsScaling/<solver>/<n> Prepare + 100 sources at 5k, 20k, 50k (Complexity)
+//   BM_Sampling/<n>                  farthest point sampling, 1,000 samples
+//   BM_Curvature/<n>                 ComputeCurvature with default options
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/curvature.h"
+#include "registry/registry.h"
+#include "stages/sampling/farthest_point.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+// Blob sizes: 6 n^2 + 2 vertices.
+constexpr int kSmall = 29, kMedium = 58, kLarge = 91;
+
+const Surface& Blob(int n) {
+  static std::map<int, Surface> cache;
+  auto it = cache.find(n);
+  if (it == cache.end()) it = cache.emplace(n, testing::BumpyBlob(n, 3)).first;
+  return it->second;
+}
+
+std::vector<int> SpreadSources(int num_vertices, int count) {
+  std::vector<int> sources(count);
+  for (int i = 0; i < count; ++i) sources[i] = static_cast<int>(1LL * i * num_vertices / count);
+  return sources;
+}
+
+std::unique_ptr<GeodesicsStage> MakeStage(const Registry& registry, const std::string& name) {
+  return registry.CreateAs<GeodesicsStage>("geodesics", YAML::Load("{type: " + name + "}"),
+                                           "bench", "geodesics");
+}
+
+void BM_Geodesics(benchmark::State& state, const Registry* registry, std::string name,
+                  int num_sources) {
+  const Surface& s = Blob(static_cast<int>(state.range(0)));
+  const auto stage = MakeStage(*registry, name);
+  const std::vector<int> sources = SpreadSources(s.NumVertices(), num_sources);
+  for (auto _ : state) {
+    const auto solver = stage->Prepare(s);
+    Eigen::MatrixXd D = solver->Distances(sources);
+    benchmark::DoNotOptimize(D.data());
+  }
+  state.counters["vertices"] = s.NumVertices();
+  state.counters["sources"] = num_sources;
+  state.SetComplexityN(s.NumVertices());
+}
+
+void BM_GeodesicsPrepare(benchmark::State& state, const Registry* registry, std::string name) {
+  const Surface& s = Blob(static_cast<int>(state.range(0)));
+  const auto stage = MakeStage(*registry, name);
+  for (auto _ : state) {
+    auto solver = stage->Prepare(s);
+    benchmark::DoNotOptimize(solver.get());
+  }
+  state.counters["vertices"] = s.NumVertices();
+}
+
+void BM_Sampling(benchmark::State& state) {
+  const Surface& s = Blob(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    SamplingResult r = FarthestPointSampling(s, {1000, 1});
+    benchmark::DoNotOptimize(r.samples.data());
+  }
+  state.counters["vertices"] = s.NumVertices();
+  state.SetComplexityN(s.NumVertices());
+}
+BENCHMARK(BM_Sampling)->Arg(kSmall)->Arg(kMedium)->Arg(kLarge)->Unit(benchmark::kMillisecond)
+    ->Complexity();
+
+void BM_Curvature(benchmark::State& state) {
+  const Surface& s = Blob(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    CurvatureFeatures c = ComputeCurvature(s);
+    benchmark::DoNotOptimize(c.mean.data());
+  }
+  state.counters["vertices"] = s.NumVertices();
+  state.SetComplexityN(s.NumVertices());
+}
+BENCHMARK(BM_Curvature)->Arg(kSmall)->Arg(kMedium)->Arg(kLarge)->Unit(benchmark::kMillisecond)
+    ->Complexity();
+
+}  // namespace
+}  // namespace symembed
+
+int main(int argc, char** argv) {
+  static symembed::Registry registry;
+  symembed::RegisterBuiltinStages(registry);
+  // Every registered geodesic solver on the same inputs.
+  for (const std::string& name : registry.Names("geodesics")) {
+    benchmark::RegisterBenchmark(("BM_Geodesics/" + name).c_str(), symembed::BM_Geodesics,
+                                 &registry, name, 1000)
+        ->Arg(symembed::kSmall)->Unit(benchmark::kMillisecond)->UseRealTime();
+    benchmark::RegisterBenchmark(("BM_GeodesicsPrepare/" + name).c_str(),
+                                 symembed::BM_GeodesicsPrepare, &registry, name)
+        ->Arg(symembed::kSmall)->Arg(symembed::kMedium)->Arg(symembed::kLarge)
+        ->Unit(benchmark::kMillisecond)->UseRealTime();
+    benchmark::RegisterBenchmark(("BM_GeodesicsScaling/" + name).c_str(), symembed::BM_Geodesics,
+                                 &registry, name, 100)
+        ->Arg(symembed::kSmall)->Arg(symembed::kMedium)->Arg(symembed::kLarge)
+        ->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity();
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
