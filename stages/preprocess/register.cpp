@@ -1,8 +1,9 @@
 #include "stages/register.h"
 
+#include "stages/preprocess/standard.h"
+
 namespace symembed {
 
-// No preprocess implementation is built in yet.
-void RegisterPreprocessStages(Registry& /*registry*/) {}
+void RegisterPreprocessStages(Registry& registry) { RegisterStandardPreprocess(registry); }
 
 }  // namespace symembed

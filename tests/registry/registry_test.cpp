@@ -36,7 +36,12 @@ TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
   }
   // Every built-in stage and loader; update together with RegisterBuiltinStages.
   const std::set<std::string> expected = {
-      "geodesics/dijkstra", "geodesics/fast_marching", "sampling/all", "sampling/farthest_point"};
+      "geodesics/dijkstra",
+      "geodesics/fast_marching",
+      "preprocess/standard",
+      "sampling/all",
+      "sampling/farthest_point",
+  };
   EXPECT_EQ(actual, expected);
 }
 

@@ -1,0 +1,299 @@
+#include "stages/preprocess/standard.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <tuple>
+#include <vector>
+
+#include "core/errors.h"
+
+namespace symembed {
+
+bool StandardPreprocessOptions::IsValid(std::string* error) const {
+  if (!(degenerate_tolerance >= 0.0 && degenerate_tolerance < 1.0)) {
+    if (error) *error = "degenerate_tolerance must be in [0, 1)";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+using Face = std::array<int, 3>;
+
+double FaceDoubleArea(const Eigen::MatrixX3d& V, const Face& f) {
+  const Eigen::Vector3d e1 = V.row(f[1]) - V.row(f[0]), e2 = V.row(f[2]) - V.row(f[0]);
+  return e1.cross(e2).norm();
+}
+
+int Find(std::vector<int>& parent, int x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+// Step 1: non-degenerate faces, each vertex set once.
+std::vector<Face> CleanFaces(const Surface& in, double tolerance, Report* report) {
+  std::vector<Face> faces;
+  int degenerate = 0;
+  for (int f = 0; f < in.NumFaces(); ++f) {
+    const Face face = {in.F(f, 0), in.F(f, 1), in.F(f, 2)};
+    if (face[0] == face[1] || face[1] == face[2] || face[0] == face[2]) {
+      ++degenerate;
+      continue;
+    }
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      longest = std::max(longest, (in.V.row(face[k]) - in.V.row(face[(k + 1) % 3])).squaredNorm());
+    }
+    if (0.5 * FaceDoubleArea(in.V, face) <= tolerance * longest) {
+      ++degenerate;
+      continue;
+    }
+    faces.push_back(face);
+  }
+  // Duplicates: sort (vertex set, position) pairs and keep the first of each run.
+  std::vector<std::pair<Face, int>> keys(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) {
+    Face key = faces[i];
+    std::sort(key.begin(), key.end());
+    keys[i] = {key, static_cast<int>(i)};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<char> keep(faces.size(), 1);
+  for (size_t i = 1; i < keys.size(); ++i) {
+    if (keys[i].first == keys[i - 1].first) keep[keys[i].second] = 0;
+  }
+  std::vector<Face> unique;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (keep[i]) unique.push_back(faces[i]);
+  }
+  report->emplace_back("degenerate_faces", degenerate);
+  report->emplace_back("duplicate_faces", static_cast<double>(faces.size() - unique.size()));
+  return unique;
+}
+
+// Step 2: the faces of the largest vertex-connected component (by area).
+std::vector<Face> LargestComponent(const Eigen::MatrixX3d& V, const std::vector<Face>& faces,
+                                   bool keep_largest, Report* report) {
+  std::vector<int> parent(V.rows());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Face& f : faces) {
+    parent[Find(parent, f[1])] = Find(parent, f[0]);
+    parent[Find(parent, f[2])] = Find(parent, f[0]);
+  }
+  std::vector<double> area(V.rows(), 0.0);
+  for (const Face& f : faces) area[Find(parent, f[0])] += FaceDoubleArea(V, f);
+  int components = 0, best = -1;
+  for (int v = 0; v < V.rows(); ++v) {
+    if (parent[v] != v || area[v] == 0.0) continue;
+    ++components;
+    if (best < 0 || area[v] > area[best]) best = v;
+  }
+  std::vector<Face> kept;
+  for (const Face& f : faces) {
+    if (!keep_largest || Find(parent, f[0]) == best) kept.push_back(f);
+  }
+  report->emplace_back("components", components);
+  report->emplace_back("removed_component_faces", static_cast<double>(faces.size() - kept.size()));
+  return kept;
+}
+
+// Step 3: consistent orientation per edge-connected patch; flips faces in place.
+void Orient(const Eigen::MatrixX3d& V, std::vector<Face>* faces_ptr, bool orient,
+            Report* report) {
+  std::vector<Face>& faces = *faces_ptr;
+  const int nf = static_cast<int>(faces.size());
+  struct EdgeUse {
+    int a, b, face;
+    bool forward;  // the face runs a -> b (a < b)
+    bool operator<(const EdgeUse& o) const {
+      return std::tie(a, b, face) < std::tie(o.a, o.b, o.face);
+    }
+  };
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * nf);
+  for (int f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int u = faces[f][k], w = faces[f][(k + 1) % 3];
+      uses.push_back({std::min(u, w), std::max(u, w), f, u < w});
+    }
+  }
+  std::sort(uses.begin(), uses.end());
+  // Neighbours across manifold edges, with whether both faces run the edge the same way.
+  std::vector<std::vector<std::pair<int, bool>>> nbrs(nf);
+  std::vector<char> open(nf, 0);
+  std::vector<std::array<int, 2>> manifold_pairs;
+  int boundary = 0, non_manifold = 0;
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
+    if (j - i == 2) {
+      const EdgeUse &x = uses[i], &y = uses[i + 1];
+      nbrs[x.face].emplace_back(y.face, x.forward == y.forward);
+      nbrs[y.face].emplace_back(x.face, x.forward == y.forward);
+      manifold_pairs.push_back({static_cast<int>(i), static_cast<int>(i + 1)});
+    } else {
+      (j - i == 1 ? boundary : non_manifold) += 1;
+      for (size_t k = i; k < j; ++k) open[uses[k].face] = 1;
+    }
+    i = j;
+  }
+  std::vector<char> flip(nf, 0);
+  int conflicts = 0, flipped = 0;
+  if (orient) {
+    std::vector<int> patch(nf, -1);
+    int num_patches = 0;
+    for (int seed = 0; seed < nf; ++seed) {
+      if (patch[seed] >= 0) continue;
+      const int id = num_patches++;
+      std::vector<int> members{seed};
+      patch[seed] = id;
+      for (size_t head = 0; head < members.size(); ++head) {
+        const int f = members[head];
+        for (const auto& [g, same] : nbrs[f]) {
+          if (patch[g] >= 0) continue;
+          patch[g] = id;
+          flip[g] = flip[f] ^ static_cast<char>(same);
+          members.push_back(g);
+        }
+      }
+      // Closed patch: outward orientation; open patch: the majority's input orientation.
+      bool closed = true;
+      int num_flipped = 0;
+      double volume = 0.0;
+      for (int f : members) {
+        closed = closed && !open[f];
+        num_flipped += flip[f];
+        const Eigen::Vector3d p0 = V.row(faces[f][0]), p1 = V.row(faces[f][1]),
+                              p2 = V.row(faces[f][2]);
+        const double signed_volume = p0.dot(p1.cross(p2)) / 6.0;
+        volume += flip[f] ? -signed_volume : signed_volume;
+      }
+      const bool invert = closed ? volume < 0.0 : 2 * num_flipped > static_cast<int>(members.size());
+      if (invert) {
+        for (int f : members) flip[f] ^= 1;
+      }
+    }
+    for (const auto& [i, j] : manifold_pairs) {
+      if ((uses[i].forward ^ flip[uses[i].face]) == (uses[j].forward ^ flip[uses[j].face])) {
+        ++conflicts;
+      }
+    }
+    for (int f = 0; f < nf; ++f) {
+      if (flip[f]) {
+        std::swap(faces[f][1], faces[f][2]);
+        ++flipped;
+      }
+    }
+  }
+  report->emplace_back("flipped_faces", flipped);
+  report->emplace_back("orientation_conflicts", conflicts);
+  report->emplace_back("non_manifold_edges", non_manifold);
+  report->emplace_back("boundary_edges", boundary);
+}
+
+}  // namespace
+
+PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("preprocess/standard: " + error);
+  const int nv = in.NumVertices();
+  if (!in.V.allFinite()) throw InvalidInputError("preprocess: non-finite vertex coordinates");
+  for (int f = 0; f < in.NumFaces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (in.F(f, k) < 0 || in.F(f, k) >= nv) {
+        throw InvalidInputError("preprocess: face " + std::to_string(f) +
+                                " has vertex id " + std::to_string(in.F(f, k)) +
+                                " outside [0, " + std::to_string(nv) + ")");
+      }
+    }
+  }
+  PreprocessResult result;
+  Report& report = result.report;
+  report.emplace_back("input_vertices", nv);
+  report.emplace_back("input_faces", in.NumFaces());
+  std::vector<Face> faces = CleanFaces(in, options.degenerate_tolerance, &report);
+  if (faces.empty()) throw InvalidInputError("preprocess: no non-degenerate face");
+  faces = LargestComponent(in.V, faces, options.keep_largest_component, &report);
+  Orient(in.V, &faces, options.orient, &report);
+
+  // Step 4: keep referenced vertices in input order.
+  std::vector<int> new_id(nv, -1);
+  for (const Face& f : faces) {
+    for (int v : f) new_id[v] = 0;
+  }
+  for (int v = 0; v < nv; ++v) {
+    if (new_id[v] < 0) continue;
+    new_id[v] = static_cast<int>(result.input_ids.size());
+    result.input_ids.push_back(v);
+  }
+  const int kept = static_cast<int>(result.input_ids.size());
+  Surface& out = result.surface;
+  out.V.resize(kept, 3);
+  for (int i = 0; i < kept; ++i) out.V.row(i) = in.V.row(result.input_ids[i]);
+  out.F.resize(static_cast<int>(faces.size()), 3);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    out.F.row(f) << new_id[faces[f][0]], new_id[faces[f][1]], new_id[faces[f][2]];
+  }
+  report.emplace_back("unreferenced_vertices", nv - kept);
+  report.emplace_back("output_vertices", kept);
+  report.emplace_back("output_faces", out.NumFaces());
+
+  // Step 5: area-weighted centroid to the origin, unit total area.
+  const Eigen::VectorXd areas = FaceAreas(out);
+  const double area = areas.sum();
+  Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
+  for (int f = 0; f < out.NumFaces(); ++f) {
+    centre += areas(f) * (out.V.row(out.F(f, 0)) + out.V.row(out.F(f, 1)) + out.V.row(out.F(f, 2))) / 3.0;
+  }
+  centre /= area;
+  result.scale = 1.0;
+  if (options.normalize) {
+    result.scale = 1.0 / std::sqrt(area);
+    out.V = (out.V.rowwise() - centre) * result.scale;
+  } else {
+    centre.setZero();
+  }
+  report.emplace_back("input_area", area);
+  report.emplace_back("scale", result.scale);
+  report.emplace_back("centre_x", centre(0));
+  report.emplace_back("centre_y", centre(1));
+  report.emplace_back("centre_z", centre(2));
+  return result;
+}
+
+namespace {
+
+class StandardPreprocessStage : public PreprocessStage {
+ public:
+  explicit StandardPreprocessStage(const StandardPreprocessOptions& options) : options_(options) {}
+  PreprocessResult Run(const Surface& input) const override {
+    return StandardPreprocess(input, options_);
+  }
+
+ private:
+  StandardPreprocessOptions options_;
+};
+
+}  // namespace
+
+void RegisterStandardPreprocess(Registry& registry) {
+  registry.Add(
+      "preprocess", "standard",
+      "drop degenerate/duplicate faces, keep the largest component, orient consistently "
+      "(outward when closed), drop unreferenced vertices, centre and scale to unit area",
+      [](OptionReader& reader) -> std::unique_ptr<Stage> {
+        StandardPreprocessOptions options;
+        options.orient = reader.GetBool("orient", options.orient);
+        options.keep_largest_component =
+            reader.GetBool("keep_largest_component", options.keep_largest_component);
+        options.normalize = reader.GetBool("normalize", options.normalize);
+        options.degenerate_tolerance =
+            reader.GetDouble("degenerate_tolerance", options.degenerate_tolerance, 0.0, 0.5);
+        return std::make_unique<StandardPreprocessStage>(options);
+      });
+}
+
+}  // namespace symembed

@@ -1,0 +1,50 @@
+// The `standard` preprocessing of an input surface, on (V, F) directly so that meshes OpenMesh
+// cannot represent (non-manifold edges, flipped neighbours) are repaired too.
+//
+// Steps, in order, each counted in the report:
+//   1. drop degenerate faces (a repeated vertex id, or area <= degenerate_tolerance * longest
+//      edge^2) and duplicate faces (same vertex set in either orientation; the first is kept);
+//   2. keep the largest connected component (faces connected through shared vertices; largest
+//      by area);
+//   3. make face orientation consistent (breadth-first over faces across manifold edges: a
+//      neighbour is flipped when it runs the shared edge in the same direction), then choose
+//      each edge-connected patch's orientation: outward (positive signed volume) when the patch
+//      is closed, otherwise the orientation of the majority of its input faces;
+//   4. drop unreferenced vertices (input_ids maps kept vertices to input ids);
+//   5. translate the area-weighted centroid to the origin and scale to unit total area.
+// Output coordinates are (input - centre) * scale; `scale` and the centre are reported so
+// results can be given in input units.
+//
+// Report keys: input_vertices, input_faces, degenerate_faces, duplicate_faces, components,
+// removed_component_faces, flipped_faces, orientation_conflicts (edges still run in the same
+// direction by both faces: a non-orientable patch), non_manifold_edges, boundary_edges,
+// unreferenced_vertices, output_vertices, output_faces, input_area, scale, centre_x, centre_y,
+// centre_z.
+#pragma once
+
+#include <string>
+
+#include "core/mesh.h"
+#include "registry/registry.h"
+#include "registry/types.h"
+
+namespace symembed {
+
+struct StandardPreprocessOptions {
+  bool orient = true;                   // step 3
+  bool keep_largest_component = true;   // step 2
+  bool normalize = true;                // step 5 (centre and unit area)
+  double degenerate_tolerance = 1e-12;  // step 1, relative to the longest edge squared
+
+  bool IsValid(std::string* error) const;
+};
+
+// Throws InvalidInputError for face ids out of range, non-finite coordinates, or when no
+// non-degenerate face is left.
+PreprocessResult StandardPreprocess(const Surface& input,
+                                    const StandardPreprocessOptions& options = {});
+
+// Registers preprocess/standard.
+void RegisterStandardPreprocess(Registry& registry);
+
+}  // namespace symembed
