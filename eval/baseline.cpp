@@ -1,0 +1,149 @@
+#include "eval/baseline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+
+#include "core/errors.h"
+#include "eval/metrics.h"
+
+namespace symembed {
+
+const std::vector<CheckedMetric>& CheckedMetrics() {
+  static const std::vector<CheckedMetric> metrics = [] {
+    std::vector<CheckedMetric> m = {
+        {"failed_pairs", false, 0.0},
+        {"mean_direct", false, 0.002},
+        {"median_direct", false, 0.002},
+        {"mean_flip_tolerant", false, 0.002},
+    };
+    for (const char* group : {"pct_direct", "pct_flip_tolerant"}) {
+      for (const auto& key : ErrorThresholdKeys()) {
+        m.push_back({std::string(group) + "." + key, true, 1.0});
+      }
+    }
+    m.push_back({"auc_direct", true, 0.005});
+    for (const char* flip : {"left_right", "front_back", "up_down", "total"}) {
+      m.push_back({std::string("flipped_pairs.") + flip, false, 0.0});
+    }
+    return m;
+  }();
+  return metrics;
+}
+
+namespace {
+
+std::string KnownKeys() {
+  std::string out;
+  for (const auto& m : CheckedMetrics()) out += (out.empty() ? "" : ", ") + m.key;
+  return out;
+}
+
+bool InGroup(const std::string& key, const std::string& prefix) {
+  return key == prefix || (key.size() > prefix.size() && key.compare(0, prefix.size(), prefix) == 0 &&
+                           key[prefix.size()] == '.');
+}
+
+// The value of a flattened key ("group.sub": only the first dot separates, "0.05" has its own).
+const JsonValue* Lookup(const JsonValue& summary, const std::string& key) {
+  if (summary.Has(key)) return &summary.Get(key);
+  const size_t dot = key.find('.');
+  if (dot == std::string::npos) return nullptr;
+  const JsonValue& group = summary.Get(key.substr(0, dot));
+  const std::string sub = key.substr(dot + 1);
+  return group.IsObject() && group.Has(sub) ? &group.Get(sub) : nullptr;
+}
+
+std::string Format(double x) {
+  if (std::isnan(x)) return "nan";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+}  // namespace
+
+std::map<std::string, double> ParseTolerances(const std::vector<std::string>& specs) {
+  std::map<std::string, double> tolerances;
+  for (const auto& spec : specs) {
+    const size_t eq = spec.find('=');
+    if (eq == std::string::npos) {
+      throw ConfigError("tolerance '" + spec + "' must be KEY=VALUE; keys: " + KnownKeys());
+    }
+    const std::string key = spec.substr(0, eq), value_text = spec.substr(eq + 1);
+    char* end = nullptr;
+    const double value = std::strtod(value_text.c_str(), &end);
+    if (value_text.empty() || *end != '\0' || !(value >= 0) || !std::isfinite(value)) {
+      throw ConfigError("tolerance '" + spec + "': VALUE must be a number >= 0");
+    }
+    bool known = false;
+    for (const auto& m : CheckedMetrics()) known = known || InGroup(m.key, key);
+    if (!known) {
+      throw ConfigError("tolerance '" + spec + "': unknown key '" + key + "'; keys: " +
+                        KnownKeys() + " (or a group: pct_direct, pct_flip_tolerant, " +
+                        "flipped_pairs)");
+    }
+    tolerances[key] = value;
+  }
+  return tolerances;
+}
+
+CheckResult CompareSummaries(const JsonValue& baseline, const JsonValue& current,
+                             const std::map<std::string, double>& tolerances) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CheckResult result;
+  for (const auto& metric : CheckedMetrics()) {
+    MetricComparison c;
+    c.key = metric.key;
+    c.higher_is_better = metric.higher_is_better;
+    c.tolerance = metric.tolerance;
+    // A group override applies first, an exact key override wins.
+    for (const auto& [key, value] : tolerances) {
+      if (key != metric.key && InGroup(metric.key, key)) c.tolerance = value;
+    }
+    if (auto it = tolerances.find(metric.key); it != tolerances.end()) c.tolerance = it->second;
+    const JsonValue* old_value = Lookup(baseline, metric.key);
+    const JsonValue* new_value = Lookup(current, metric.key);
+    c.in_baseline = old_value != nullptr;
+    c.in_current = new_value != nullptr;
+    c.baseline = old_value ? old_value->NumberOr(nan) : nan;
+    c.current = new_value ? new_value->NumberOr(nan) : nan;
+    if (!c.in_baseline || std::isnan(c.baseline)) {
+      c.worse = false;  // nothing to compare with
+    } else if (!c.in_current || std::isnan(c.current)) {
+      c.worse = true;
+    } else {
+      const double change = c.higher_is_better ? c.baseline - c.current : c.current - c.baseline;
+      c.worse = change > c.tolerance;
+    }
+    result.worse = result.worse || c.worse;
+    result.metrics.push_back(c);
+  }
+  return result;
+}
+
+std::string FormatCheck(const CheckResult& result) {
+  size_t width = 0;
+  for (const auto& c : result.metrics) width = std::max(width, c.key.size());
+  std::ostringstream out;
+  for (const auto& c : result.metrics) {
+    out << c.key << std::string(width + 2 - c.key.size(), ' ');
+    out << (c.in_baseline ? Format(c.baseline) : "-") << " -> "
+        << (c.in_current ? Format(c.current) : "missing");
+    out << "  (tolerance " << Format(c.tolerance) << ", "
+        << (c.higher_is_better ? "higher" : "lower") << " is better)  ";
+    if (!c.in_baseline || std::isnan(c.baseline)) {
+      out << "NEW";
+    } else {
+      out << (c.worse ? "WORSE" : "OK");
+    }
+    out << "\n";
+  }
+  out << (result.worse ? "check: WORSE than the baseline\n" : "check: OK\n");
+  return out.str();
+}
+
+}  // namespace symembed

@@ -1,0 +1,71 @@
+// Result files of an evaluation.
+//
+// Per variant directory:
+//   summary.json  VariantSummary (keys below; numbers exact, NaN as null)
+//   pairs.csv     one row per pair, sorted by (source, target); no timing columns
+//   curve.csv     threshold, direct, flip_tolerant (fractions of points with error <= t)
+//   timings.csv   kind (shape|pair|variant), name, stage, seconds
+// Per experiment directory:
+//   comparison.csv  one row per variant, the summary's numbers
+//   curves.png / curves.svg  from scripts/plot-curves (needs /usr/bin/python3 + matplotlib)
+// Everything except timings.csv and the time_* / peak_rss_mb keys of summary.json depends only
+// on the set of per-pair records, so sharded runs merged reproduce a single run byte for byte.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "eval/json.h"
+#include "eval/metrics.h"
+
+namespace symembed {
+
+// summary.json: pairs, failed_pairs, points, mean_direct, median_direct, mean_flip_tolerant,
+// median_flip_tolerant, mean_of_pair_means_direct, mean_of_pair_means_flip_tolerant,
+// pct_direct / pct_flip_tolerant ({"0.05", "0.10", "0.25"}: percent), auc_direct,
+// auc_flip_tolerant, flipped_pairs {left_right, front_back, up_down, total},
+// evaluation_geodesics, evaluation_points ("all" or N), max_error, step, variant, then the
+// timing keys time_total_s, time_per_shape_s, time_per_pair_s, peak_rss_mb.
+JsonValue SummaryToJson(const VariantSummary& summary);
+// Reads the keys above back (curves are not in summary.json and stay empty).
+// Throws InvalidInputError naming `where` for a missing key or wrong type.
+VariantSummary SummaryFromJson(const JsonValue& json, const std::string& where = "summary");
+void WriteSummaryJson(const std::string& path, const VariantSummary& summary);
+VariantSummary ReadSummaryJson(const std::string& path);
+
+// File contents (deterministic; pairs are sorted by (source, target)).
+std::string PairsCsv(std::vector<PairEvaluation> pairs);
+std::string CurveCsv(const VariantSummary& summary);
+std::string TimingsCsv(std::vector<PairEvaluation> pairs, const VariantTimings& timings);
+std::string ComparisonCsv(const std::vector<VariantSummary>& variants);
+
+// Writes summary.json, pairs.csv, curve.csv, timings.csv into dir (created when missing),
+// each atomically. Throws IoError.
+void WriteVariantOutputs(const std::string& dir, const VariantSummary& summary,
+                         const std::vector<PairEvaluation>& pairs,
+                         const VariantTimings& timings);
+
+// Writes comparison.csv into the experiment directory, atomically, then runs
+// scripts/plot-curves on it when available. Returns false and sets *warning when the plot
+// could not be made (never an error: the CSVs are the source of truth).
+bool WriteComparison(const std::string& experiment_dir,
+                     const std::vector<VariantSummary>& variants, std::string* warning);
+
+// Runs `/usr/bin/python3 scripts/plot-curves DIR` (DIR: an experiment directory with
+// VARIANT/curve.csv, or a variant directory with curve.csv). The script is found through
+// $SYMEMBED_ROOT, else by walking up from the executable. Returns false and sets *warning
+// when the script, python3 or matplotlib is missing, or the script fails.
+bool PlotCurves(const std::string& dir, std::string* warning);
+
+// One pair as a one-line JSON record with its error vectors, stage times and flip; parsing
+// it gives back an equal PairEvaluation (every double exact). Throws InvalidInputError.
+std::string SerializePairRecord(const PairEvaluation& pair);
+PairEvaluation ParsePairRecord(const std::string& text, const std::string& where = "record");
+
+// Writes text to path through a temporary file in the same directory and a rename, creating
+// the directory when missing. Throws IoError.
+void WriteFileAtomic(const std::string& path, const std::string& text);
+// Throws IoError.
+std::string ReadFile(const std::string& path);
+
+}  // namespace symembed

@@ -1,0 +1,110 @@
+#include "eval/baseline.h"
+
+#include <gtest/gtest.h>
+
+#include "core/errors.h"
+#include "eval/report.h"
+#include "registry/config.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+VariantSummary BaseSummary() {
+  VariantSummary s;
+  s.variant = "base";
+  s.evaluation_geodesics = "fast_marching";
+  s.pairs = 10;
+  s.mean_direct = 0.05;
+  s.median_direct = 0.04;
+  s.mean_flip_tolerant = 0.045;
+  s.pct_direct = {40.0, 70.0, 99.0};
+  s.pct_flip_tolerant = {45.0, 75.0, 99.5};
+  s.auc_direct = 0.7;
+  s.flipped_left_right = 1;
+  return s;
+}
+
+JsonValue Json(const VariantSummary& s) { return SummaryToJson(s); }
+
+TEST(Check, EqualAndBetterPassWorseFails) {
+  const VariantSummary base = BaseSummary();
+  EXPECT_FALSE(CompareSummaries(Json(base), Json(base)).worse);
+  VariantSummary better = base;
+  better.mean_direct = 0.03;
+  better.pct_direct[0] = 60.0;
+  better.flipped_left_right = 0;
+  better.time_total_s = 1e6;  // timings are not checked
+  EXPECT_FALSE(CompareSummaries(Json(base), Json(better)).worse);
+
+  VariantSummary worse = base;
+  worse.mean_direct = 0.06;  // +0.01 > 0.002
+  const CheckResult r = CompareSummaries(Json(base), Json(worse));
+  EXPECT_TRUE(r.worse);
+  EXPECT_NE(FormatCheck(r).find("mean_direct"), std::string::npos);
+  EXPECT_NE(FormatCheck(r).find("WORSE"), std::string::npos);
+  // A looser tolerance accepts it.
+  EXPECT_FALSE(CompareSummaries(Json(base), Json(worse), {{"mean_direct", 0.02}}).worse);
+
+  VariantSummary fewer = base;
+  fewer.pct_flip_tolerant[1] = 70.0;  // -5 points > 1
+  EXPECT_TRUE(CompareSummaries(Json(base), Json(fewer)).worse);
+  EXPECT_FALSE(CompareSummaries(Json(base), Json(fewer), {{"pct_flip_tolerant", 10}}).worse);
+
+  VariantSummary flipped = base;
+  flipped.flipped_up_down = 1;
+  EXPECT_TRUE(CompareSummaries(Json(base), Json(flipped)).worse);
+
+  VariantSummary within = base;
+  within.mean_direct = 0.0515;  // +0.0015 <= 0.002
+  EXPECT_FALSE(CompareSummaries(Json(base), Json(within)).worse);
+}
+
+TEST(Check, ToleranceSpecs) {
+  const auto t = ParseTolerances({"mean_direct=0.01", "pct_direct.0.05=2", "flipped_pairs=1"});
+  EXPECT_EQ(t.at("mean_direct"), 0.01);
+  EXPECT_EQ(t.at("pct_direct.0.05"), 2.0);
+  EXPECT_THROW(ParseTolerances({"nonsense=1"}), ConfigError);
+  EXPECT_THROW(ParseTolerances({"mean_direct"}), ConfigError);
+  EXPECT_THROW(ParseTolerances({"mean_direct=-1"}), ConfigError);
+}
+
+TEST(Check, CommandExitCodesAndUpdate) {
+  testing::TempDir dir;
+  const std::string baseline = dir.File("baseline.json");
+  const std::string same = dir.File("same.json"), worse = dir.File("worse.json");
+  WriteSummaryJson(baseline, BaseSummary());
+  WriteSummaryJson(same, BaseSummary());
+  VariantSummary w = BaseSummary();
+  w.median_direct = 0.08;
+  WriteSummaryJson(worse, w);
+  const std::string bin = SYMEMBED_BINARY;
+  std::string out;
+  EXPECT_EQ(testing::RunShell(bin + " check " + same + " --baseline " + baseline, &out), 0) << out;
+  EXPECT_NE(out.find("check: OK"), std::string::npos) << out;
+  EXPECT_EQ(testing::RunShell(bin + " check " + worse + " --baseline " + baseline, &out), 1)
+      << out;
+  EXPECT_NE(out.find("median_direct"), std::string::npos) << out;
+  EXPECT_NE(out.find("0.04 -> 0.08"), std::string::npos) << out;
+  EXPECT_EQ(testing::RunShell(bin + " check " + worse + " --baseline " + baseline +
+                                  " --tolerance median_direct=0.1,mean_direct=0.1",
+                              &out),
+            0)
+      << out;
+  EXPECT_EQ(testing::RunShell(bin + " check " + worse + " --baseline " + baseline +
+                                  " --tolerance bogus=1",
+                              &out),
+            2)
+      << out;
+  // --update rewrites the baseline; afterwards the same summary passes.
+  EXPECT_EQ(testing::RunShell(bin + " check " + worse + " --baseline " + baseline + " --update",
+                              &out),
+            0)
+      << out;
+  EXPECT_EQ(testing::ReadText(baseline), testing::ReadText(worse));
+  EXPECT_EQ(testing::RunShell(bin + " check " + worse + " --baseline " + baseline, &out), 0)
+      << out;
+}
+
+}  // namespace
+}  // namespace symembed

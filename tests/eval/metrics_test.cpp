@@ -1,0 +1,170 @@
+#include "eval/metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "eval/json.h"
+#include "eval/report.h"
+#include "registry/config.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+// Sums of a few doubles: exact up to a few ulps.
+constexpr double kTol = 1e-12;
+
+PairEvaluation MakePair(const std::string& s, const std::string& t, std::vector<double> direct,
+                        std::vector<double> sym = {}) {
+  PairEvaluation p;
+  p.source = s;
+  p.target = t;
+  p.ok = true;
+  p.errors_direct = std::move(direct);
+  p.errors_sym = std::move(sym);
+  ComputePairStatistics(p);
+  p.flip = ClassifyFlip(-1, -1, p.has_sym, p.mean_direct, p.mean_sym);
+  return p;
+}
+
+TEST(Metrics, BasicStatistics) {
+  EXPECT_NEAR(Mean({0.1, 0.2, 0.6}), 0.3, kTol);
+  EXPECT_DOUBLE_EQ(Median({0.3, 0.1, 0.2}), 0.2);
+  EXPECT_DOUBLE_EQ(Median({0.4, 0.1, 0.2, 0.3}), 0.25);
+  EXPECT_DOUBLE_EQ(PercentAtMost({0.0, 0.05, 0.06, 0.3}, 0.05), 50.0);
+  EXPECT_TRUE(std::isnan(Mean({})));
+}
+
+TEST(Metrics, CurveAndArea) {
+  const auto t = CurveThresholds(0.25, 0.0025);
+  ASSERT_EQ(t.size(), 101u);
+  EXPECT_DOUBLE_EQ(t.front(), 0.0);
+  EXPECT_DOUBLE_EQ(t.back(), 0.25);
+  // Perfect map: every threshold covers every point, area 1.
+  const auto perfect = CumulativeCurve({0.0, 0.0, 0.0}, t);
+  EXPECT_DOUBLE_EQ(perfect.front(), 1.0);
+  EXPECT_NEAR(CurveArea(t, perfect), 1.0, kTol);
+  // Errors 0 and 1 (beyond the range): curve is 0.5 everywhere, area 0.5.
+  const auto half = CumulativeCurve({0.0, 1.0}, t);
+  EXPECT_DOUBLE_EQ(half[50], 0.5);
+  EXPECT_NEAR(CurveArea(t, half), 0.5, kTol);
+  // Hand-computed on a coarse curve: thresholds {0, 0.1, 0.2}, errors {0.05, 0.15}.
+  const std::vector<double> coarse = {0.0, 0.1, 0.2};
+  const auto c = CumulativeCurve({0.05, 0.15}, coarse);
+  EXPECT_EQ(c, (std::vector<double>{0.0, 0.5, 1.0}));
+  EXPECT_NEAR(CurveArea(coarse, c), (0.025 + 0.075) / 0.2, kTol);
+}
+
+TEST(Metrics, FlipClassFromCandidates) {
+  // Candidates: 0 = I, 1 = Rx, 2 = Ry, 3 = Rz; canonical y = up-down, z = front-back.
+  EXPECT_EQ(ClassifyFlip(1, 0, false, 0, 0), FlipClass::kUpDown);     // Rx negates y and z
+  EXPECT_EQ(ClassifyFlip(0, 2, false, 0, 0), FlipClass::kFrontBack);  // Ry negates x and z
+  EXPECT_EQ(ClassifyFlip(3, 0, false, 0, 0), FlipClass::kUpDown);     // Rz negates x and y
+  EXPECT_EQ(ClassifyFlip(1, 3, false, 0, 0), FlipClass::kFrontBack);  // Rx Rz^T = Ry
+  // Same candidate or unknown: decided by the symmetric ground truth.
+  EXPECT_EQ(ClassifyFlip(2, 2, true, 0.3, 0.1), FlipClass::kLeftRight);
+  EXPECT_EQ(ClassifyFlip(-1, 2, true, 0.1, 0.3), FlipClass::kNone);
+  EXPECT_EQ(ClassifyFlip(-1, -1, false, 0.3, 0.0), FlipClass::kNone);
+}
+
+TEST(Metrics, SummaryPoolsAllPointsAndIgnoresOrder) {
+  EvaluationOptions options;
+  std::vector<PairEvaluation> pairs = {
+      MakePair("b", "c", {0.2}, {0.0}),         // left-right flipped
+      MakePair("a", "b", {0.0, 0.1}, {0.3, 0.3}),
+  };
+  PairEvaluation failed;
+  failed.source = "a";
+  failed.target = "c";
+  failed.message = "bad map";
+  failed.stage_seconds["evaluation"] = 2.0;
+  pairs.push_back(failed);
+  const VariantSummary s = Summarize("base", pairs, options, VariantTimings{});
+  EXPECT_EQ(s.pairs, 3);
+  EXPECT_EQ(s.failed_pairs, 1);
+  EXPECT_EQ(s.total_points, 3);
+  EXPECT_NEAR(s.mean_direct, 0.1, kTol);                   // (0 + 0.1 + 0.2) / 3
+  EXPECT_NEAR(s.mean_flip_tolerant, (0.0 + 0.1 + 0.0) / 3, kTol);
+  EXPECT_NEAR(s.mean_of_pair_means_direct, (0.05 + 0.2) / 2, kTol);
+  EXPECT_NEAR(s.pct_direct[1], 200.0 / 3, kTol);           // 0 and 0.1 are <= 0.10
+  EXPECT_EQ(s.flipped_left_right, 1);
+  EXPECT_EQ(s.FlippedTotal(), 1);
+  EXPECT_NEAR(s.time_per_pair_s, 2.0 / 3, kTol);
+  std::reverse(pairs.begin(), pairs.end());
+  const VariantSummary r = Summarize("base", pairs, options, VariantTimings{});
+  EXPECT_EQ(WriteJson(SummaryToJson(r)), WriteJson(SummaryToJson(s)));
+  EXPECT_EQ(CurveCsv(r), CurveCsv(s));
+  EXPECT_EQ(PairsCsv(pairs), PairsCsv({pairs.rbegin(), pairs.rend()}));
+}
+
+TEST(Metrics, SummaryJsonRoundTrip) {
+  EvaluationOptions options;
+  options.points = 64;
+  VariantTimings timings;
+  timings.total_seconds = 12.5;
+  timings.peak_rss_mb = 321.25;
+  timings.shape_stage_seconds["a"] = {{"embedding", 1.0}, {"geodesics", 0.5}};
+  const VariantSummary s =
+      Summarize("v1", {MakePair("a", "b", {0.01, 0.2, 1.0 / 3}, {0.1, 0.1, 0.1})}, options,
+                timings);
+  testing::TempDir dir;
+  WriteSummaryJson(dir.File("summary.json"), s);
+  const VariantSummary r = ReadSummaryJson(dir.File("summary.json"));
+  // Written back, the round-tripped summary gives the same text (every number exact).
+  EXPECT_EQ(WriteJson(SummaryToJson(r)), WriteJson(SummaryToJson(s)));
+  EXPECT_EQ(r.points_option, 64);
+  EXPECT_EQ(r.mean_direct, s.mean_direct);
+  EXPECT_EQ(r.time_per_shape_s, 1.5);
+  // The keys scripts rely on.
+  const JsonValue j = ParseJson(testing::ReadText(dir.File("summary.json")));
+  for (const char* key :
+       {"pairs", "failed_pairs", "mean_direct", "median_direct", "mean_flip_tolerant",
+        "pct_direct", "pct_flip_tolerant", "auc_direct", "flipped_pairs", "time_total_s",
+        "time_per_shape_s", "time_per_pair_s", "peak_rss_mb", "evaluation_geodesics"}) {
+    EXPECT_TRUE(j.Has(key)) << key;
+  }
+  EXPECT_TRUE(j.Get("pct_direct").Get("0.10").IsNumber());
+  EXPECT_EQ(j.Get("flipped_pairs").Get("total").AsNumber(), 0.0);
+}
+
+TEST(Metrics, PairRecordRoundTripIsExact) {
+  PairEvaluation p = MakePair("cat0", "cat,1 \"x\"", {0.1 + 0.2, 1.0 / 3, 1e-300, 0.0},
+                              {2.0 / 3, 0.5, 1e300, 7.0});
+  p.chosen = 2;
+  p.oracle = 0;
+  p.flip = FlipClass::kFrontBack;
+  p.stage_seconds = {{"evaluation", 0.123456789}, {"flip", 1.0 / 7}};
+  const PairEvaluation r = ParsePairRecord(SerializePairRecord(p));
+  EXPECT_EQ(SerializePairRecord(r), SerializePairRecord(p));
+  EXPECT_EQ(r.errors_direct, p.errors_direct);
+  EXPECT_EQ(r.errors_sym, p.errors_sym);
+  EXPECT_EQ(r.stage_seconds, p.stage_seconds);
+  EXPECT_EQ(r.mean_direct, p.mean_direct);
+  EXPECT_EQ(r.flip, FlipClass::kFrontBack);
+  EXPECT_EQ(r.target, p.target);
+  EXPECT_EQ(SerializePairRecord(p).find('\n'), std::string::npos);
+
+  PairEvaluation failed;
+  failed.source = "a";
+  failed.target = "b";
+  failed.message = "map.map:3: NaN entry";
+  const PairEvaluation rf = ParsePairRecord(SerializePairRecord(failed));
+  EXPECT_FALSE(rf.ok);
+  EXPECT_EQ(rf.message, failed.message);
+}
+
+TEST(Json, ParseErrorsNameLineAndColumn) {
+  try {
+    ParseJson("{\n  \"a\": [1, 2,,]\n}", "s.json");
+    FAIL() << "expected InvalidInputError";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("s.json:2:"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ParseJson("{\"a\": 1} x"), InvalidInputError);
+  EXPECT_EQ(ParseJson("\"\\u00e9\\n\"").AsString(), "\xc3\xa9\n");
+  EXPECT_TRUE(std::isnan(ParseJson("null").NumberOr(std::nan(""))));
+}
+
+}  // namespace
+}  // namespace symembed
