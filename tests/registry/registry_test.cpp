@@ -38,6 +38,7 @@ TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
   const std::set<std::string> expected = {
       "geodesics/dijkstra",
       "geodesics/fast_marching",
+      "geodesics/heat",
       "preprocess/standard",
       "sampling/all",
       "sampling/farthest_point",

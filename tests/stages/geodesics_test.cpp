@@ -9,6 +9,7 @@
 #include "registry/registry.h"
 #include "stages/geodesics/dijkstra.h"
 #include "stages/geodesics/fast_marching.h"
+#include "stages/geodesics/heat.h"
 
 namespace symembed {
 namespace {
@@ -19,17 +20,22 @@ struct SolverCase {
   double grid_max_rel;     // max relative error (vertices at least 0.2 from the source)
   double sphere_mean_rel;  // mean relative error on the level-4 icosphere
   bool converges;          // error decreases under refinement
-  double symmetry_rel;     // max |d(i,j) - d(j,i)| / mean distance
+  double symmetry_mean_rel;  // mean |d(i,j) - d(j,i)| / mean distance
+  double symmetry_max_rel;   // max |d(i,j) - d(j,i)| / mean distance; triangle inequality slack
 };
 
 void PrintTo(const SolverCase& c, std::ostream* os) { *os << c.name; }
 
 // Tolerances per solver. Dijkstra: a shortest path made of axis and diagonal grid steps is at
 // most 1 / cos(22.5 deg) = 1.0824 times the straight line (worst at 22.5 deg), and this bias
-// does not shrink under refinement; on the icosphere it is ~8.5% on average.
+// does not shrink under refinement; on the icosphere it is ~8.5% on average. fast_marching and
+// heat are first order; measured errors are about half the bounds. The heat method is not
+// symmetric by construction (each source has its own smoothed cone tip), and the box's 4:1
+// triangles make that visible (~2% mean asymmetry).
 const SolverCase kCases[] = {
-    {"dijkstra", 0.06, 0.0825, 0.10, false, 1e-12},
-    {"fast_marching", 0.05, 0.10, 0.05, true, 0.05},
+    {"dijkstra", 0.06, 0.0825, 0.10, false, 1e-12, 1e-12},
+    {"fast_marching", 0.02, 0.04, 0.025, true, 0.01, 0.08},
+    {"heat", 0.02, 0.04, 0.02, true, 0.03, 0.10},
 };
 
 std::unique_ptr<GeodesicSolver> MakeSolver(const std::string& name, const Surface& s,
@@ -114,21 +120,27 @@ TEST_P(GeodesicsTest, SymmetricAndTriangleInequality) {
   for (int& s : sources) s = std::uniform_int_distribution<int>(0, box.NumVertices() - 1)(rng);
   const auto solver = MakeSolver(c.name, box);
   const Eigen::MatrixXd D = solver->Distances(sources);
-  double mean = 0.0, max_asym = 0.0;
+  // The box's sharp edges and corners are where first-order solvers err most.
+  double mean = 0.0, mean_asym = 0.0, max_asym = 0.0;
   for (size_t i = 0; i < sources.size(); ++i) {
     for (size_t j = 0; j < sources.size(); ++j) {
+      const double asym = std::abs(D(i, sources[j]) - D(j, sources[i]));
       mean += D(i, sources[j]);
-      max_asym = std::max(max_asym, std::abs(D(i, sources[j]) - D(j, sources[i])));
+      mean_asym += asym;
+      max_asym = std::max(max_asym, asym);
     }
   }
+  std::printf("%s box: asymmetry / mean distance: mean %.4f max %.4f\n", c.name.c_str(),
+              mean_asym / mean, max_asym * sources.size() * sources.size() / mean);
   mean /= sources.size() * sources.size();
-  EXPECT_LT(max_asym / mean, c.symmetry_rel);
+  EXPECT_LE(mean_asym / (mean * sources.size() * sources.size()), c.symmetry_mean_rel);
+  EXPECT_LE(max_asym / mean, c.symmetry_max_rel);
   // d(a, c) <= d(a, b) + d(b, c), with slack for the symmetry error of approximate solvers.
   for (int t = 0; t < 2000; ++t) {
     const int a = std::uniform_int_distribution<int>(0, sources.size() - 1)(rng);
     const int b = std::uniform_int_distribution<int>(0, sources.size() - 1)(rng);
     const int v = std::uniform_int_distribution<int>(0, box.NumVertices() - 1)(rng);
-    EXPECT_LE(D(a, v), D(a, sources[b]) + D(b, v) + c.symmetry_rel * mean + 1e-12);
+    EXPECT_LE(D(a, v), D(a, sources[b]) + D(b, v) + c.symmetry_max_rel * mean + 1e-12);
   }
 }
 
@@ -195,6 +207,47 @@ TEST(FastMarchingGeodesics, SplittingObtuseAnglesRestoresAccuracy) {
               mean_split, mean_plain, max_split, max_plain);
   EXPECT_LT(mean_split, 0.03);
   EXPECT_LT(mean_split, 0.5 * mean_plain);
+}
+
+}  // namespace
+}  // namespace symembed
+
+namespace symembed {
+namespace {
+
+TEST(HeatGeodesics, BoundaryConditionsOnAnOpenCylinder) {
+  // An open cylinder unrolls to a strip: the distance between points on one ring line (z fixed)
+  // is R * angle. Each boundary option stays close; the average is the paper's choice.
+  const double r = 1.0;
+  const Surface cyl = Cylinder(96, 41, r, 4.0);
+  const int source = 20 * 96;  // middle ring, angle 0
+  for (const char* mode : {"average", "neumann", "dirichlet"}) {
+    Registry registry;
+    RegisterBuiltinStages(registry);
+    auto stage = registry.CreateAs<GeodesicsStage>(
+        "geodesics", YAML::Load(std::string("{type: heat, boundary: ") + mode + "}"), "t.yaml",
+        "pipeline.geodesics");
+    const auto solver = stage->Prepare(cyl);
+    EXPECT_TRUE(dynamic_cast<const HeatGeodesicSolver&>(*solver).has_boundary());
+    const Eigen::MatrixXd D = solver->Distances({source});
+    double sum = 0.0;
+    for (int i = 10; i <= 48; ++i) {  // along the ring, angles 37.5 to 180 degrees
+      const double exact = r * 2.0 * M_PI * i / 96;
+      sum += std::abs(D(0, 20 * 96 + i) - exact) / exact;
+    }
+    std::printf("heat boundary %s: mean rel error on the ring %.4f\n", mode, sum / 39);
+    // Measured 1.8% (neumann) to 3.5% (dirichlet): the boundary, 2 away, bends the level sets.
+    EXPECT_LT(sum / 39, 0.045);
+  }
+}
+
+TEST(HeatGeodesics, UnreachableVerticesAreInfinite) {
+  Surface s = Icosphere(2);
+  s.V.conservativeResize(s.NumVertices() + 1, 3);
+  s.V.row(s.NumVertices() - 1) << 5, 5, 5;
+  const Eigen::MatrixXd D = HeatDistances(s, {0});
+  EXPECT_TRUE(std::isinf(D(0, s.NumVertices() - 1)));
+  EXPECT_TRUE(std::isfinite(D.leftCols(s.NumVertices() - 1).maxCoeff()));
 }
 
 }  // namespace

@@ -1,0 +1,242 @@
+#include "stages/geodesics/heat.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/errors.h"
+#include "core/laplacian.h"
+#include "core/parallel.h"
+
+namespace symembed {
+
+bool HeatOptions::IsValid(std::string* error) const {
+  if (!(time_factor > 0.0) || !std::isfinite(time_factor)) {
+    if (error) *error = "time_factor must be finite and > 0";
+    return false;
+  }
+  return common.IsValid(error);
+}
+
+namespace {
+
+// Sources per block: the solves of a block share one pass over the factor's structure per
+// column and one allocation.
+constexpr int kBlock = 16;
+
+std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> Factorize(
+    const Eigen::SparseMatrix<double>& A, const char* what) {
+  auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(A);
+  if (factor->info() != Eigen::Success) {
+    throw SolverError(std::string("heat method: factorisation of the ") + what + " failed");
+  }
+  return factor;
+}
+
+}  // namespace
+
+HeatGeodesicSolver::HeatGeodesicSolver(const Surface& s, const HeatOptions& options)
+    : surface_(s), options_(options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("geodesics/heat: " + error);
+  const int n = s.NumVertices(), nf = s.NumFaces();
+  if (nf == 0) throw InvalidInputError("heat method: surface has no faces");
+  used_vertex_.assign(n, 0);
+  for (int f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (s.F(f, k) < 0 || s.F(f, k) >= n) {
+        throw InvalidInputError("heat method: face " + std::to_string(f) + " has a bad vertex id");
+      }
+      used_vertex_[s.F(f, k)] = 1;
+    }
+  }
+  // Boundary vertices: endpoints of edges with exactly one face.
+  boundary_vertex_.assign(n, 0);
+  {
+    std::vector<std::pair<int, int>> edges;
+    for (int f = 0; f < nf; ++f) {
+      for (int k = 0; k < 3; ++k) edges.push_back(std::minmax(s.F(f, k), s.F(f, (k + 1) % 3)));
+    }
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      if (j - i == 1) {
+        boundary_vertex_[edges[i].first] = boundary_vertex_[edges[i].second] = 1;
+        has_boundary_ = true;
+      }
+      i = j;
+    }
+  }
+  const double h = MeanEdgeLength(s);
+  t_ = options.time_factor * h * h;
+  const Eigen::SparseMatrix<double> K = CotanStiffness(s);
+  const Eigen::SparseMatrix<double> M = MassMatrix(s, MassType::kLumped);
+  // Vertices in no face have empty rows; a unit diagonal keeps the systems non-singular.
+  Eigen::SparseMatrix<double> unused(n, n);
+  {
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (int v = 0; v < n; ++v) {
+      if (!used_vertex_[v]) triplets.emplace_back(v, v, 1.0);
+    }
+    unused.setFromTriplets(triplets.begin(), triplets.end());
+  }
+  const Eigen::SparseMatrix<double> A = M + t_ * K + unused;
+  neumann_ = Factorize(A, "heat system");
+  if (has_boundary_ && options.boundary != HeatBoundary::kNeumann) {
+    // u = 0 on the boundary: boundary rows and columns become identity rows and columns.
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (int col = 0; col < A.outerSize(); ++col) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it) {
+        const bool fixed = boundary_vertex_[it.row()] || boundary_vertex_[it.col()];
+        if (!fixed) triplets.emplace_back(it.row(), it.col(), it.value());
+      }
+    }
+    for (int v = 0; v < n; ++v) {
+      if (boundary_vertex_[v]) triplets.emplace_back(v, v, 1.0);
+    }
+    Eigen::SparseMatrix<double> AD(n, n);
+    AD.setFromTriplets(triplets.begin(), triplets.end());
+    dirichlet_ = Factorize(AD, "Dirichlet heat system");
+  }
+  const double total_area = TotalArea(s);
+  poisson_ = Factorize(K + (1e-8 / total_area) * M + unused, "Poisson system");
+
+  // Face operators. For face (a, b, c) with unit normal N and area A, the gradient of the
+  // linear interpolant is sum_k u_k (N x e_k) / (2A), e_k the edge opposite k run
+  // counter-clockwise; vertex k's divergence weight is (cot(angle at j) e_ki + cot(angle at i)
+  // e_kj) / 2 with e_ki = x_i - x_k, where i, j are the next vertices.
+  for (int k = 0; k < 3; ++k) {
+    grad_[k] = Eigen::MatrixXd::Zero(nf, 3);
+    div_[k] = Eigen::MatrixXd::Zero(nf, 3);
+  }
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Vector3d p[3] = {s.V.row(s.F(f, 0)), s.V.row(s.F(f, 1)), s.V.row(s.F(f, 2))};
+    const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double double_area = cross.norm();
+    if (double_area <= 0.0) continue;  // a degenerate face carries no gradient
+    const Eigen::Vector3d N = cross / double_area;
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      grad_[k].row(f) = (N.cross(p[j] - p[i]) / double_area).transpose();
+      // cot of the angle at vertex m of the face
+      auto cot = [&](int m) {
+        const Eigen::Vector3d u = p[(m + 1) % 3] - p[m], w = p[(m + 2) % 3] - p[m];
+        return u.dot(w) / u.cross(w).norm();
+      };
+      div_[k].row(f) = (0.5 * (cot(j) * (p[i] - p[k]) + cot(i) * (p[j] - p[k]))).transpose();
+    }
+  }
+}
+
+void HeatGeodesicSolver::SolveBlock(const int* sources, int count, Eigen::MatrixXd* out) const {
+  const int n = surface_.NumVertices(), nf = surface_.NumFaces();
+  Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, count);
+  for (int c = 0; c < count; ++c) delta(sources[c], c) = 1.0;
+  const Eigen::MatrixXd u_neumann = neumann_->solve(delta);
+  Eigen::MatrixXd u;
+  if (dirichlet_) {
+    Eigen::MatrixXd delta_d = delta;
+    for (int c = 0; c < count; ++c) {
+      if (boundary_vertex_[sources[c]]) delta_d(sources[c], c) = 0.0;
+    }
+    const Eigen::MatrixXd u_dirichlet = dirichlet_->solve(delta_d);
+    if (options_.boundary == HeatBoundary::kDirichlet) {
+      u = u_dirichlet;
+      // A Dirichlet solution from a boundary source vanishes: use the Neumann one there.
+      for (int c = 0; c < count; ++c) {
+        if (boundary_vertex_[sources[c]]) u.col(c) = u_neumann.col(c);
+      }
+    } else {
+      u = 0.5 * (u_neumann + u_dirichlet);
+    }
+  } else {
+    u = u_neumann;
+  }
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, count);
+  for (int c = 0; c < count; ++c) {
+    for (int f = 0; f < nf; ++f) {
+      const int a = surface_.F(f, 0), b = surface_.F(f, 1), d = surface_.F(f, 2);
+      const Eigen::RowVector3d g =
+          u(a, c) * grad_[0].row(f) + u(b, c) * grad_[1].row(f) + u(d, c) * grad_[2].row(f);
+      const double norm = g.norm();
+      if (!(norm > 0.0)) continue;
+      const Eigen::RowVector3d X = -g / norm;
+      // K phi = -div X (K is minus the paper's Laplacian).
+      rhs(a, c) -= div_[0].row(f).dot(X);
+      rhs(b, c) -= div_[1].row(f).dot(X);
+      rhs(d, c) -= div_[2].row(f).dot(X);
+    }
+  }
+  *out = poisson_->solve(rhs);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < count; ++c) {
+    const double shift = (*out)(sources[c], c);
+    for (int v = 0; v < n; ++v) {
+      double& d = (*out)(v, c);
+      d = (!used_vertex_[v] || u_neumann(v, c) == 0.0) ? kInf : std::max(d - shift, 0.0);
+    }
+  }
+}
+
+Eigen::MatrixXd HeatGeodesicSolver::Distances(const std::vector<int>& sources) const {
+  const int n = surface_.NumVertices(), m = static_cast<int>(sources.size());
+  for (int s : sources) {
+    if (s < 0 || s >= n) {
+      throw InvalidInputError("geodesic source " + std::to_string(s) +
+                              " is not a vertex id in [0, " + std::to_string(n) + ")");
+    }
+  }
+  Eigen::MatrixXd D(m, n);
+  const int blocks = (m + kBlock - 1) / kBlock;
+  ParallelFor(
+      blocks,
+      [&](int b) {
+        const int begin = b * kBlock, count = std::min(kBlock, m - begin);
+        Eigen::MatrixXd block;
+        SolveBlock(sources.data() + begin, count, &block);
+        D.middleRows(begin, count) = block.transpose();
+      },
+      options_.common.threads);
+  return D;
+}
+
+Eigen::MatrixXd HeatDistances(const Surface& surface, const std::vector<int>& sources,
+                              const HeatOptions& options) {
+  return HeatGeodesicSolver(surface, options).Distances(sources);
+}
+
+namespace {
+
+class HeatStage : public GeodesicsStage {
+ public:
+  explicit HeatStage(const HeatOptions& options) : options_(options) {}
+  std::unique_ptr<GeodesicSolver> Prepare(const Surface& surface) const override {
+    return std::make_unique<HeatGeodesicSolver>(surface, options_);
+  }
+
+ private:
+  HeatOptions options_;
+};
+
+}  // namespace
+
+void RegisterHeatGeodesics(Registry& registry) {
+  registry.Add("geodesics", "heat",
+               "heat method (Crane et al. 2013), one sparse factorisation per shape, "
+               "t = time_factor * h^2",
+               [](OptionReader& reader) -> std::unique_ptr<Stage> {
+                 HeatOptions options;
+                 options.common = ReadGeodesicsCommonOptions(reader);
+                 options.time_factor =
+                     reader.GetDouble("time_factor", options.time_factor, 1e-6, 1e6);
+                 options.boundary = reader.GetEnum<HeatBoundary>(
+                     "boundary", options.boundary,
+                     {{"average", HeatBoundary::kAverage},
+                      {"neumann", HeatBoundary::kNeumann},
+                      {"dirichlet", HeatBoundary::kDirichlet}});
+                 return std::make_unique<HeatStage>(options);
+               });
+}
+
+}  // namespace symembed
