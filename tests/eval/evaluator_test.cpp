@@ -7,36 +7,12 @@
 
 #include "core/parallel.h"
 #include "core/primitives.h"
+#include "tests/eval/euclidean_geodesics.h"
 
 namespace symembed {
 namespace {
 
-// Exact geodesics of a flat surface: the Euclidean distance (a test double for the
-// registered solvers, so that expected errors are hand-computable).
-class EuclideanSolver : public GeodesicSolver {
- public:
-  EuclideanSolver(const Surface& s, std::atomic<int>* solves) : V_(s.V), solves_(solves) {}
-  Eigen::MatrixXd Distances(const std::vector<int>& sources) const override {
-    Eigen::MatrixXd D(sources.size(), V_.rows());
-    for (size_t k = 0; k < sources.size(); ++k) {
-      D.row(k) = (V_.rowwise() - V_.row(sources[k])).rowwise().norm().transpose();
-    }
-    *solves_ += static_cast<int>(sources.size());
-    return D;
-  }
-
- private:
-  Eigen::MatrixX3d V_;
-  std::atomic<int>* solves_;
-};
-
-class EuclideanGeodesics : public GeodesicsStage {
- public:
-  std::unique_ptr<GeodesicSolver> Prepare(const Surface& surface) const override {
-    return std::make_unique<EuclideanSolver>(surface, &solves);
-  }
-  mutable std::atomic<int> solves{0};
-};
+using testing::EuclideanGeodesics;
 
 // 5 x 5 grid on [0, 4]^2: vertex id = 5 y + x, area 16, so errors are distances / 4.
 constexpr int kN = 5;

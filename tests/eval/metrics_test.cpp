@@ -154,6 +154,30 @@ TEST(Metrics, PairRecordRoundTripIsExact) {
   EXPECT_EQ(rf.message, failed.message);
 }
 
+TEST(Report, ComparisonAndCurvePlots) {
+  EvaluationOptions options;
+  testing::TempDir dir;
+  std::vector<VariantSummary> variants;
+  for (const char* name : {"base", "worse"}) {
+    const double e = std::string(name) == "base" ? 0.02 : 0.1;
+    std::vector<PairEvaluation> pairs = {MakePair("a", "b", {e, 2 * e, 0.3 * e})};
+    variants.push_back(Summarize(name, pairs, options, VariantTimings{}));
+    WriteVariantOutputs(dir.File(name), variants.back(), pairs, VariantTimings{});
+  }
+  std::string warning;
+  const bool plotted = WriteComparison(dir.path(), variants, &warning);
+  const std::string csv = testing::ReadText(dir.File("comparison.csv"));
+  EXPECT_EQ(csv.substr(0, csv.find(',')), "variant");
+  EXPECT_NE(csv.find("\nworse,1,0,"), std::string::npos) << csv;
+  if (testing::RunShell("/usr/bin/python3 -c 'import matplotlib'") != 0) {
+    EXPECT_FALSE(plotted);
+    GTEST_SKIP() << "no matplotlib for /usr/bin/python3: " << warning;
+  }
+  EXPECT_TRUE(plotted) << warning;
+  EXPECT_FALSE(testing::ReadText(dir.File("curves.png")).empty());
+  EXPECT_NE(testing::ReadText(dir.File("curves.svg")).find("<svg"), std::string::npos);
+}
+
 TEST(Json, ParseErrorsNameLineAndColumn) {
   try {
     ParseJson("{\n  \"a\": [1, 2,,]\n}", "s.json");

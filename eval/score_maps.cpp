@@ -1,0 +1,137 @@
+#include "eval/score_maps.h"
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "core/errors.h"
+#include "core/mesh_io.h"
+#include "core/parallel.h"
+#include "eval/map_io.h"
+
+namespace symembed {
+
+bool ScoreMapsOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& what) {
+    if (error) *error = what;
+    return false;
+  };
+  if (maps_dir.empty()) return fail("maps_dir: must not be empty");
+  if (base != 0 && base != 1) return fail("base: must be 0 or 1");
+  if (threads < 0) return fail("threads: must be >= 0");
+  return true;
+}
+
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// What the pairs need of one shape; `error` set when any step failed.
+struct LoadedShape {
+  const DatasetShape* shape = nullptr;
+  int num_input_vertices = 0;
+  ShapeGroundTruth truth;
+  bool is_target = false;
+  EvalShape eval;  // targets only
+  std::string error;
+  std::map<std::string, double> seconds;
+};
+
+void LoadShape(const Dataset& dataset, const PreprocessStage& preprocess, const MeshLoader& load,
+               LoadedShape& s) {
+  try {
+    auto start = std::chrono::steady_clock::now();
+    const Surface input = load ? load(*s.shape) : LoadSurface(s.shape->mesh_path);
+    s.num_input_vertices = input.NumVertices();
+    s.seconds["load"] = Seconds(start);
+    s.truth = dataset.GroundTruth(*s.shape, s.num_input_vertices);
+    if (s.is_target) {
+      start = std::chrono::steady_clock::now();
+      const PreprocessResult pre = preprocess.Run(input);
+      s.seconds["preprocess"] = Seconds(start);
+      s.eval = MakeEvalShape(pre, input);
+    }
+  } catch (const std::exception& e) {
+    s.error = "shape " + s.shape->name + ": " + e.what();
+  }
+}
+
+}  // namespace
+
+ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preprocess,
+                          const Evaluator& evaluator, const ScoreMapsOptions& options,
+                          const MeshLoader& load) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("eval options: " + error);
+  const auto start = std::chrono::steady_clock::now();
+  const DatasetIndex index = dataset.Load();
+
+  struct Job {
+    std::string source, target, file;
+  };
+  std::vector<Job> jobs;
+  std::map<std::string, LoadedShape> shapes;
+  std::set<std::string> unknown;
+  for (const auto& p : index.pairs) {
+    Job job{options.reverse ? p.target : p.source, options.reverse ? p.source : p.target,
+            options.maps_dir + "/" + MapFileName(p.source, p.target)};
+    for (const std::string* name : {&job.source, &job.target}) {
+      const DatasetShape* shape = index.Find(*name);
+      if (!shape) {
+        unknown.insert(*name);
+        continue;
+      }
+      shapes[*name].shape = shape;
+    }
+    if (index.Find(job.target)) shapes[job.target].is_target = true;
+    jobs.push_back(std::move(job));
+  }
+
+  std::vector<LoadedShape*> to_load;
+  for (auto& [name, s] : shapes) to_load.push_back(&s);
+  ParallelFor(static_cast<int>(to_load.size()),
+              [&](int i) { LoadShape(dataset, preprocess, load, *to_load[i]); }, options.threads);
+
+  ScoreMapsResult result;
+  result.pairs.resize(jobs.size());
+  ParallelFor(static_cast<int>(jobs.size()), [&](int i) {
+    const Job& job = jobs[i];
+    PairEvaluation& out = result.pairs[i];
+    auto fail = [&](const std::string& message) {
+      out = PairEvaluation{};
+      out.source = job.source;
+      out.target = job.target;
+      out.message = message;
+    };
+    for (const std::string* name : {&job.source, &job.target}) {
+      if (unknown.count(*name)) return fail("shape " + *name + " is not in the dataset");
+    }
+    const LoadedShape& source = shapes.at(job.source);
+    const LoadedShape& target = shapes.at(job.target);
+    if (!source.error.empty()) return fail(source.error);
+    if (!target.error.empty()) return fail(target.error);
+    std::vector<int> map;
+    const auto read_start = std::chrono::steady_clock::now();
+    try {
+      map = ReadMapFile(job.file, options.base, source.num_input_vertices,
+                        target.num_input_vertices);
+    } catch (const std::exception& e) {
+      return fail(e.what());
+    }
+    const double read_seconds = Seconds(read_start);
+    out = evaluator.Evaluate(job.source, job.target, target.eval, map,
+                             PairLines(source.truth, target.truth));
+    out.stage_seconds["read_map"] = read_seconds;
+  }, options.threads);
+
+  SortPairs(result.pairs);
+  for (const auto& [name, s] : shapes) result.timings.shape_stage_seconds[name] = s.seconds;
+  result.timings.total_seconds = Seconds(start);
+  result.timings.peak_rss_mb = PeakRssMb();
+  return result;
+}
+
+}  // namespace symembed

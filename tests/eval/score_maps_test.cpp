@@ -1,0 +1,119 @@
+#include "eval/score_maps.h"
+
+#include <gtest/gtest.h>
+
+#include "core/primitives.h"
+#include "eval/map_io.h"
+#include "eval/report.h"
+#include "tests/eval/euclidean_geodesics.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+// 4 x 4 grids on [0, 3]^2 named a, b, c; ground truth: identity, mirrored in x.
+constexpr int kN = 4;
+
+class GridDataset : public Dataset {
+ public:
+  DatasetIndex Load() const override {
+    DatasetIndex index;
+    for (const char* name : {"a", "b", "c"}) index.shapes.push_back({name, "grid", name});
+    index.pairs = {{"a", "b"}, {"a", "c"}, {"b", "c"}, {"a", "zzz"}};
+    return index;
+  }
+  ShapeGroundTruth GroundTruth(const DatasetShape&, int num_vertices) const override {
+    ShapeGroundTruth gt;
+    for (int v = 0; v < num_vertices; ++v) {
+      gt.ids.push_back(v);
+      gt.sym_ids.push_back((v / kN) * kN + (kN - 1 - v % kN));
+    }
+    return gt;
+  }
+};
+
+// Keeps every vertex and coordinate (so errors are hand-computable on the input grid).
+class IdentityPreprocess : public PreprocessStage {
+ public:
+  PreprocessResult Run(const Surface& input) const override {
+    PreprocessResult pre;
+    pre.surface = input;
+    for (int v = 0; v < input.NumVertices(); ++v) pre.input_ids.push_back(v);
+    return pre;
+  }
+};
+
+Surface LoadGrid(const DatasetShape&) { return GridMesh(kN, kN, 3.0, 3.0); }
+
+std::vector<int> Identity() {
+  std::vector<int> map(kN * kN);
+  for (int v = 0; v < kN * kN; ++v) map[v] = v;
+  return map;
+}
+
+TEST(ScoreMaps, MalformedAndMissingMapsFailOnlyTheirPair) {
+  testing::TempDir dir;
+  WriteMapFile(dir.File("a_b.map"), Identity());
+  std::string bad = FormatMap(Identity());
+  bad.replace(bad.find("3\n"), 2, "NaN\n");  // line 3
+  testing::WriteText(dir.File("a_c.map"), bad);
+  // b_c.map is missing.
+  GridDataset dataset;
+  IdentityPreprocess preprocess;
+  testing::EuclideanGeodesics geodesics;
+  Evaluator evaluator(EvaluationOptions{}, geodesics);
+  ScoreMapsOptions options;
+  options.maps_dir = dir.path();
+  options.threads = 2;
+  const ScoreMapsResult r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  ASSERT_EQ(r.pairs.size(), 4u);
+  EXPECT_EQ(r.pairs[0].target, "b");
+  EXPECT_TRUE(r.pairs[0].ok) << r.pairs[0].message;
+  EXPECT_NEAR(r.pairs[0].mean_direct, 0.0, 1e-9);  // exact distances, zero error
+  EXPECT_EQ(r.pairs[0].flip, FlipClass::kNone);
+  EXPECT_FALSE(r.pairs[1].ok);
+  EXPECT_NE(r.pairs[1].message.find("a_c.map:3: NaN"), std::string::npos) << r.pairs[1].message;
+  EXPECT_EQ(r.pairs[2].target, "zzz");
+  EXPECT_NE(r.pairs[2].message.find("zzz is not in the dataset"), std::string::npos);
+  EXPECT_FALSE(r.pairs[3].ok);
+  EXPECT_NE(r.pairs[3].message.find("b_c.map"), std::string::npos) << r.pairs[3].message;
+  EXPECT_EQ(r.timings.shape_stage_seconds.size(), 3u);
+
+  // The outputs record the failures.
+  const VariantSummary s = Summarize("ext", r.pairs, EvaluationOptions{}, r.timings);
+  EXPECT_EQ(s.pairs, 4);
+  EXPECT_EQ(s.failed_pairs, 3);
+  WriteVariantOutputs(dir.File("out"), s, r.pairs, r.timings);
+  const std::string csv = testing::ReadText(dir.File("out/pairs.csv"));
+  EXPECT_NE(csv.find("a,c,failed"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("NaN entry"), std::string::npos) << csv;
+}
+
+TEST(ScoreMaps, ReverseScoresTheFileAsTheOppositePair) {
+  testing::TempDir dir;
+  // a_b.map maps b to a, mirrored: with --reverse it is the pair b -> a, a left-right flip.
+  std::vector<int> mirror(kN * kN);
+  for (int v = 0; v < kN * kN; ++v) mirror[v] = (v / kN) * kN + (kN - 1 - v % kN);
+  WriteMapFile(dir.File("a_b.map"), mirror);
+  GridDataset dataset;
+  IdentityPreprocess preprocess;
+  testing::EuclideanGeodesics geodesics;
+  Evaluator evaluator(EvaluationOptions{}, geodesics);
+  ScoreMapsOptions options;
+  options.maps_dir = dir.path();
+  options.reverse = true;
+  const ScoreMapsResult r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  const PairEvaluation* ba = nullptr;
+  for (const auto& p : r.pairs) {
+    if (p.source == "b" && p.target == "a") ba = &p;
+  }
+  ASSERT_NE(ba, nullptr);
+  ASSERT_TRUE(ba->ok) << ba->message;
+  EXPECT_EQ(ba->flip, FlipClass::kLeftRight);
+  EXPECT_NEAR(ba->mean_flip_tolerant, 0.0, 1e-9);
+  // Mirror error |2x - 3| / 3 over x = 0..3: (3 + 1 + 1 + 3) / 4 / 3.
+  EXPECT_NEAR(ba->mean_direct, 2.0 / 3.0, 1e-6);  // float cache
+}
+
+}  // namespace
+}  // namespace symembed
