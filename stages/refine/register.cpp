@@ -1,8 +1,145 @@
+// The refine stages: thin adapters around ZoomOut and FunctionalMapIcp. Each computes the
+// Laplace-Beltrami basis of a shape once, in PrepareShape, into ShapeData::aux (keys of
+// core/spectral.h, shared with the `hks` flip scorer).
+#include <memory>
+#include <string>
+
+#include "core/spectral.h"
+#include "stages/refine/fmap_icp.h"
+#include "stages/refine/functional_map.h"
+#include "stages/refine/zoomout.h"
 #include "stages/register.h"
 
 namespace symembed {
 
-// No refine implementation is built in yet.
-void RegisterRefineStages(Registry& /*registry*/) {}
+namespace {
+
+// The first k eigenpairs of the shape's basis: from aux when PrepareShape stored enough, else
+// computed here (*computed set) so that a runner that skips PrepareShape still gets a result.
+LaplaceBasis ShapeBasis(const ShapeData& shape, int k, bool* computed) {
+  if (HasLaplaceBasis(shape.aux, k, shape.surface.NumVertices())) {
+    return GetLaplaceBasis(shape.aux, k);
+  }
+  *computed = true;
+  LaplaceBasisOptions options;
+  options.k = k;
+  return ComputeLaplaceBasis(shape.surface, options);
+}
+
+void PrepareBasis(ShapeData& shape, int k) {
+  LaplaceBasisOptions options;
+  options.k = k;
+  EnsureLaplaceBasis(shape.surface, options, &shape.aux);
+}
+
+std::string BasisNote(bool computed) {
+  return computed ? " (basis computed per pair: PrepareShape was not called)" : "";
+}
+
+class NoRefine : public RefineStage {
+ public:
+  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
+    CheckPointMap(initial_map, pair.source.surface.NumVertices(),
+                  pair.target.surface.NumVertices());
+    MatchResult result;
+    result.map = initial_map;
+    result.status.message = "no refinement";
+    return result;
+  }
+};
+
+class ZoomOutRefine : public RefineStage {
+ public:
+  ZoomOutRefine(const ZoomOutOptions& options, int sample_count)
+      : options_(options), sample_count_(sample_count) {}
+
+  void PrepareShape(ShapeData& shape) const override { PrepareBasis(shape, options_.k_end); }
+
+  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
+    bool computed = false;
+    const LaplaceBasis source = ShapeBasis(pair.source, options_.k_end, &computed);
+    const LaplaceBasis target = ShapeBasis(pair.target, options_.k_end, &computed);
+    ZoomOutResult z = ZoomOut(source, target, initial_map, Samples(pair.source, source), options_);
+    z.status.message += BasisNote(computed);
+    return MatchResult{std::move(z.map), std::move(z.status)};
+  }
+
+ private:
+  // sample_count source vertices with area: the prefix of the shape's farthest-point samples
+  // when there are enough of them, else Euclidean farthest points; none (dense) when
+  // sample_count is 0 or not less than the vertex count.
+  std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis) const {
+    const int n = shape.surface.NumVertices();
+    if (sample_count_ == 0 || sample_count_ >= n) return {};
+    std::vector<bool> keep(n);
+    for (int i = 0; i < n; ++i) keep[i] = basis.mass(i) > 0.0;
+    std::vector<int> prefix;
+    for (int id : shape.samples) {
+      if (static_cast<int>(prefix.size()) == sample_count_) break;
+      if (id >= 0 && id < n && keep[id]) prefix.push_back(id);
+    }
+    if (static_cast<int>(prefix.size()) == sample_count_) return prefix;
+    return EuclideanFarthestPoints(shape.surface.V, sample_count_, keep);
+  }
+
+  ZoomOutOptions options_;
+  int sample_count_;
+};
+
+class IcpRefine : public RefineStage {
+ public:
+  explicit IcpRefine(const FunctionalMapIcpOptions& options) : options_(options) {}
+
+  void PrepareShape(ShapeData& shape) const override { PrepareBasis(shape, options_.k); }
+
+  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
+    bool computed = false;
+    const LaplaceBasis source = ShapeBasis(pair.source, options_.k, &computed);
+    const LaplaceBasis target = ShapeBasis(pair.target, options_.k, &computed);
+    FunctionalMapIcpResult r = FunctionalMapIcp(source, target, initial_map, options_);
+    r.status.message += BasisNote(computed);
+    return MatchResult{std::move(r.map), std::move(r.status)};
+  }
+
+ private:
+  FunctionalMapIcpOptions options_;
+};
+
+}  // namespace
+
+void RegisterRefineStages(Registry& registry) {
+  registry.Add("refine", "none", "no refinement: the matching stage's map unchanged",
+               [](OptionReader&) -> std::unique_ptr<Stage> { return std::make_unique<NoRefine>(); });
+  registry.Add(
+      "refine", "zoomout",
+      "ZoomOut spectral upsampling of the map [Melzi et al. 2019], Laplace-Beltrami basis by "
+      "Spectra",
+      [](OptionReader& reader) -> std::unique_ptr<Stage> {
+        ZoomOutOptions options;
+        options.k_start = reader.GetInt("k_start", options.k_start, 1, 1000);
+        options.k_end = reader.GetInt("k_end", options.k_end, 1, 1000);
+        options.step = reader.GetInt("step", options.step, 1, 1000);
+        const int sample_count = reader.GetInt("sample_count", 0, 0);
+        std::string error;
+        if (!options.IsValid(&error)) reader.Fail("", error);
+        if (sample_count > 0 && sample_count < options.k_end) {
+          reader.Fail("sample_count", "must be 0 (every vertex) or >= k_end (" +
+                                          std::to_string(options.k_end) + "), got " +
+                                          std::to_string(sample_count));
+        }
+        return std::make_unique<ZoomOutRefine>(options, sample_count);
+      });
+  registry.Add("refine", "icp",
+               "functional-map ICP at a fixed basis size [Ovsjanikov et al. 2012] (baseline)",
+               [](OptionReader& reader) -> std::unique_ptr<Stage> {
+                 FunctionalMapIcpOptions options;
+                 options.k = reader.GetInt("k", options.k, 1, 1000);
+                 options.max_iterations =
+                     reader.GetInt("max_iterations", options.max_iterations, 1, 10000);
+                 std::string error;
+                 if (!options.IsValid(&error)) reader.Fail("", error);
+                 return std::make_unique<IcpRefine>(options);
+               });
+}
 
 }  // namespace symembed

@@ -40,6 +40,9 @@ TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
       "geodesics/fast_marching",
       "geodesics/heat",
       "preprocess/standard",
+      "refine/icp",
+      "refine/none",
+      "refine/zoomout",
       "sampling/all",
       "sampling/farthest_point",
   };

@@ -1,0 +1,158 @@
+#include "stages/refine/functional_map.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+#include "core/errors.h"
+
+namespace symembed {
+
+namespace {
+
+// Gathers A (rows source_ids of Phi_s), B (rows target_ids of Phi_t) and the weights W, and
+// returns A^T W A and A^T W B.
+void NormalEquations(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& Phi_t,
+                     const std::vector<int>& source_ids, const std::vector<int>& target_ids,
+                     const Eigen::VectorXd& weights, Eigen::MatrixXd* AtWA,
+                     Eigen::MatrixXd* AtWB) {
+  const int m = static_cast<int>(source_ids.size());
+  if (target_ids.size() != source_ids.size()) {
+    throw InvalidInputError("functional map: source and target id lists differ in length");
+  }
+  if (weights.size() != Phi_s.rows()) {
+    throw InvalidInputError("functional map: weights must have one entry per source vertex");
+  }
+  Eigen::MatrixXd A(m, Phi_s.cols()), B(m, Phi_t.cols());
+  for (int r = 0; r < m; ++r) {
+    const int i = source_ids[r], j = target_ids[r];
+    if (i < 0 || i >= Phi_s.rows() || j < 0 || j >= Phi_t.rows()) {
+      std::ostringstream out;
+      out << "functional map: pair " << r << " (" << i << " -> " << j << ") out of range";
+      throw InvalidInputError(out.str());
+    }
+    A.row(r) = Phi_s.row(i);
+    B.row(r) = Phi_t.row(j);
+  }
+  Eigen::VectorXd w(m);
+  for (int r = 0; r < m; ++r) w(r) = weights(source_ids[r]);
+  const Eigen::MatrixXd WA = w.asDiagonal() * A;
+  *AtWA = WA.transpose() * A;
+  *AtWB = WA.transpose() * B;
+}
+
+}  // namespace
+
+Eigen::MatrixXd FitFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& Phi_t,
+                                 const std::vector<int>& source_ids,
+                                 const std::vector<int>& target_ids,
+                                 const Eigen::VectorXd& weights) {
+  Eigen::MatrixXd AtWA, AtWB;
+  NormalEquations(Phi_s, Phi_t, source_ids, target_ids, weights, &AtWA, &AtWB);
+  // For the dense map with mass weights A^T W A = I; for a sample it is near I when the sample
+  // covers the surface. LDL^T with a pivot check detects too small a sample.
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(AtWA);
+  const double max_pivot = ldlt.vectorD().cwiseAbs().maxCoeff();
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-10 * max_pivot)) {
+    std::ostringstream out;
+    out << "functional map: the " << source_ids.size() << " points do not determine a "
+        << Phi_s.cols() << "-dimensional basis (singular normal equations)";
+    throw InvalidInputError(out.str());
+  }
+  return ldlt.solve(AtWB);
+}
+
+Eigen::MatrixXd FitOrthogonalFunctionalMap(const Eigen::MatrixXd& Phi_s,
+                                           const Eigen::MatrixXd& Phi_t,
+                                           const std::vector<int>& source_ids,
+                                           const std::vector<int>& target_ids,
+                                           const Eigen::VectorXd& weights) {
+  SYMEMBED_CHECK(Phi_s.cols() == Phi_t.cols(), "orthogonal functional map needs ks == kt");
+  Eigen::MatrixXd AtWA, AtWB;
+  NormalEquations(Phi_s, Phi_t, source_ids, target_ids, weights, &AtWA, &AtWB);
+  // min ||A C - B||_W over orthogonal C = max trace(C^T A^T W B): C = U V^T.
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(AtWB, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return svd.matrixU() * svd.matrixV().transpose();
+}
+
+std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& C,
+                                           const std::vector<int>& source_ids,
+                                           const SpectralKdTree& target_tree,
+                                           std::vector<double>* sq_dist) {
+  SYMEMBED_CHECK(C.rows() <= Phi_s.cols(), "C has more rows than the source basis has columns");
+  SYMEMBED_CHECK(C.cols() == target_tree.dims(), "C and the target tree differ in dimension");
+  Eigen::MatrixXd rows(source_ids.size(), C.rows());
+  for (size_t r = 0; r < source_ids.size(); ++r) {
+    rows.row(r) = Phi_s.row(source_ids[r]).head(C.rows());
+  }
+  std::vector<int> nearest;
+  target_tree.Query(rows * C, &nearest, sq_dist);
+  return nearest;
+}
+
+std::unique_ptr<SpectralKdTree> TargetSpectralTree(const Eigen::MatrixXd& Phi_t,
+                                                   const Eigen::VectorXd& mass_t, int k) {
+  SYMEMBED_CHECK(k <= Phi_t.cols(), "tree of " << k << " columns from " << Phi_t.cols());
+  std::vector<int> ids;
+  for (int i = 0; i < Phi_t.rows(); ++i) {
+    if (mass_t(i) > 0.0) ids.push_back(i);
+  }
+  if (ids.empty()) throw InvalidInputError("target surface has no vertex with positive area");
+  Eigen::MatrixXd points(ids.size(), k);
+  for (size_t r = 0; r < ids.size(); ++r) points.row(r) = Phi_t.row(ids[r]).head(k);
+  return std::make_unique<SpectralKdTree>(points, std::move(ids));
+}
+
+double OrthogonalityDefect(const Eigen::MatrixXd& C) {
+  const int k = static_cast<int>(C.cols());
+  return (C.transpose() * C - Eigen::MatrixXd::Identity(k, k)).squaredNorm() / k;
+}
+
+std::vector<int> EuclideanFarthestPoints(const Eigen::MatrixX3d& V, int count,
+                                         const std::vector<bool>& keep) {
+  const int n = static_cast<int>(V.rows());
+  SYMEMBED_CHECK(keep.empty() || static_cast<int>(keep.size()) == n, "keep has wrong size");
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  int next = -1;
+  for (int i = 0; i < n && next < 0; ++i) {
+    if (keep.empty() || keep[i]) next = i;
+  }
+  std::vector<int> samples;
+  while (next >= 0 && static_cast<int>(samples.size()) < count) {
+    samples.push_back(next);
+    const Eigen::RowVector3d p = V.row(next);
+    int arg = -1;
+    double best = 0.0;
+    for (int i = 0; i < n; ++i) {
+      if (!keep.empty() && !keep[i]) continue;
+      dist[i] = std::min(dist[i], (V.row(i) - p).squaredNorm());
+      if (dist[i] > best) {
+        best = dist[i];
+        arg = i;
+      }
+    }
+    next = arg;  // -1 once every kept vertex is a sample (all distances 0)
+  }
+  return samples;
+}
+
+void CheckPointMap(const std::vector<int>& map, int num_source, int num_target) {
+  if (static_cast<int>(map.size()) != num_source) {
+    std::ostringstream out;
+    out << "point map has " << map.size() << " entries for " << num_source << " source vertices";
+    throw InvalidInputError(out.str());
+  }
+  for (int i = 0; i < num_source; ++i) {
+    if (map[i] < 0 || map[i] >= num_target) {
+      std::ostringstream out;
+      out << "point map entry " << i << " = " << map[i] << " is not a target vertex (0.."
+          << num_target - 1 << ")";
+      throw InvalidInputError(out.str());
+    }
+  }
+}
+
+}  // namespace symembed

@@ -1,0 +1,71 @@
+// Functional maps between Laplace-Beltrami bases and their conversion to and from
+// point-to-point maps.
+//
+// Convention (pullback, as in [Melzi et al. 2019] ZoomOut: Spectral upsampling for efficient
+// shape correspondence, Sec. 3): a point-to-point map T: S -> T, map[i] = T(i), is the matrix
+// Pi (#Vs x #Vt) with Pi(i, T(i)) = 1, which pulls a target function g back to the source
+// function g o T = Pi g. In reduced bases Phi_s (#Vs x ks) and Phi_t (#Vt x kt) it is the
+// ks x kt matrix
+//     C = Phi_s^+ Pi Phi_t   (maps target coefficients to source coefficients),
+// with Phi_s^+ = Phi_s^T M_s for M_s-orthonormal Phi_s, i.e. the M_s-weighted least-squares
+// solution of Phi_s C ~ Pi Phi_t. Conversely, Pi Phi_t ~ Phi_s C says that row T(i) of Phi_t is
+// row i of Phi_s C, so the point-to-point map of C is
+//     T(i) = argmin_j || Phi_t(j, :) - Phi_s(i, :) C ||,
+// a nearest-neighbour query of the rows of Phi_s C among the rows of Phi_t.
+// For a near-isometry and M-orthonormal bases C is close to orthogonal.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "stages/refine/spectral_knn.h"
+
+namespace symembed {
+
+// Weighted least-squares functional map
+//   C = argmin sum_r w(source_ids[r]) || Phi_s(source_ids[r], :) C - Phi_t(target_ids[r], :) ||^2,
+// i.e. C = (A^T W A)^{-1} A^T W B. Phi_s: #Vs x ks, Phi_t: #Vt x kt, weights: #Vs (the lumped
+// mass for the dense map, ones for a uniform sample). Returns ks x kt. Throws InvalidInputError
+// when the ids are out of range or A^T W A is singular (too few points for ks).
+Eigen::MatrixXd FitFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& Phi_t,
+                                 const std::vector<int>& source_ids,
+                                 const std::vector<int>& target_ids,
+                                 const Eigen::VectorXd& weights);
+
+// The orthogonal C (ks == kt) minimising the same weighted energy: the Procrustes solution
+// C = U V^T of A^T W B = U S V^T [Ovsjanikov et al. 2012] Functional maps: a flexible
+// representation of maps between shapes.
+Eigen::MatrixXd FitOrthogonalFunctionalMap(const Eigen::MatrixXd& Phi_s,
+                                           const Eigen::MatrixXd& Phi_t,
+                                           const std::vector<int>& source_ids,
+                                           const std::vector<int>& target_ids,
+                                           const Eigen::VectorXd& weights);
+
+// The point-to-point map of C for the source vertices source_ids: for each, the target vertex
+// whose row of Phi_t (restricted to the tree's columns) is nearest to its row of Phi_s C.
+// target_tree: built on the first C.cols() columns of Phi_t. sq_dist (optional): squared
+// spectral distances of the matches.
+std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& C,
+                                           const std::vector<int>& source_ids,
+                                           const SpectralKdTree& target_tree,
+                                           std::vector<double>* sq_dist = nullptr);
+
+// A kd-tree on the first k columns of Phi_t over the vertices with positive mass (vertices
+// without area are never a match).
+std::unique_ptr<SpectralKdTree> TargetSpectralTree(const Eigen::MatrixXd& Phi_t, const Eigen::VectorXd& mass_t,
+                                  int k);
+
+// ||C^T C - I||_F^2 / k for a k x k functional map: the per-scale term of the ZoomOut energy,
+// 0 for an area-preserving (orthogonal) map.
+double OrthogonalityDefect(const Eigen::MatrixXd& C);
+
+// Euclidean farthest point sampling of `count` rows of V among those with keep[i] (all when keep is
+// empty), started at the first kept vertex. Returns ids in sampling order.
+std::vector<int> EuclideanFarthestPoints(const Eigen::MatrixX3d& V, int count,
+                                         const std::vector<bool>& keep = {});
+
+// Throws InvalidInputError unless map has num_source entries, each in [0, num_target).
+void CheckPointMap(const std::vector<int>& map, int num_source, int num_target);
+
+}  // namespace symembed

@@ -1,0 +1,46 @@
+// ZoomOut: refinement of a point-to-point map by spectral upsampling.
+//
+// [Melzi et al. 2019] ZoomOut: Spectral upsampling for efficient shape correspondence. Starting
+// from a point-to-point map T: S -> T, alternate (i) the functional map C_k of T in the first k
+// Laplace-Beltrami eigenfunctions (least squares, functional_map.h) and (ii) T from C_k by
+// nearest neighbours in the k-dimensional spectral embedding, growing k from k_start to k_end by
+// step. Given a sample of source vertices, the iterations run on the sample only (the paper's
+// fast variant) and only the last nearest-neighbour query maps every source vertex.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/spectral.h"
+#include "registry/types.h"
+
+namespace symembed {
+
+struct ZoomOutOptions {
+  int k_start = 20;      // basis size of the first functional map (>= 1)
+  int k_end = 120;       // basis size of the last one (>= k_start; both bases need k_end pairs)
+  int step = 5;          // increment of k per iteration (>= 1); k_end is always the last size
+
+  bool IsValid(std::string* error) const;
+};
+
+struct ZoomOutResult {
+  std::vector<int> map;                 // #Vs: target vertex of each source vertex
+  std::vector<int> k;                   // per iteration: basis size
+  std::vector<double> orthogonality;    // per iteration: ||C_k^T C_k - I||_F^2 / k
+  std::vector<double> spectral_residual;  // per iteration: mean squared NN spectral distance
+  int changed = 0;                      // source vertices whose target changed
+  StageStatus status;
+};
+
+// source, target: bases with at least k_end eigenpairs (first k_end used). initial_map: #Vs
+// entries in [0, #Vt). samples: source vertex ids to iterate on (empty: every vertex, with the
+// lumped mass as least-squares weights; else uniform weights, and enough well-spread vertices to
+// determine k_end coefficients, in practice a few times k_end). Throws ConfigError for invalid
+// options, InvalidInputError for inconsistent inputs.
+ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
+                      const std::vector<int>& initial_map, const std::vector<int>& samples,
+                      const ZoomOutOptions& options);
+
+}  // namespace symembed
