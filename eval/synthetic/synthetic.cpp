@@ -1,0 +1,219 @@
+#include "eval/synthetic/synthetic.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.h"
+#include "core/parallel.h"
+#include "eval/synthetic/posing.h"
+#include "eval/synthetic/random.h"
+
+namespace symembed {
+
+namespace fs = std::filesystem;
+
+bool SynthOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& what) {
+    if (error) *error = what;
+    return false;
+  };
+  if (kinds.empty()) return fail("kinds: at least one figure kind is needed");
+  for (size_t i = 0; i < kinds.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      if (kinds[i] == kinds[j]) return fail("kinds: '" + FigureKindName(kinds[i]) + "' twice");
+    }
+  }
+  if (poses < 1) return fail("poses: must be >= 1");
+  if (vertices < 100) return fail("vertices: must be >= 100");
+  if (seed < 0) return fail("seed: must be >= 0");
+  if (remesh < 0) return fail("remesh: must be >= 0 (0 = off)");
+  if (remesh > 0 && remesh < 50) return fail("remesh: a target below 50 vertices is degenerate");
+  if (!(nonisometric >= 0.0 && nonisometric < 0.5)) return fail("nonisometric: must be in [0, 0.5)");
+  if (!(noise >= 0.0 && noise <= 1.0)) return fail("noise: must be in [0, 1]");
+  if (!(partial >= 0.0 && partial <= 1.0)) return fail("partial: must be in [0, 1]");
+  if (pairs < 0) return fail("pairs: must be >= 0 (0 = all pairs)");
+  return true;
+}
+
+std::string SynthOptionsText(const SynthOptions& o) {
+  std::ostringstream out;
+  out << "kinds: [";
+  for (size_t i = 0; i < o.kinds.size(); ++i) out << (i ? ", " : "") << FigureKindName(o.kinds[i]);
+  char buffer[64];
+  out << "]\nposes: " << o.poses << "\nvertices: " << o.vertices << "\nseed: " << o.seed
+      << "\nremesh: " << o.remesh;
+  std::snprintf(buffer, sizeof buffer, "%.17g", o.nonisometric);
+  out << "\nnonisometric: " << buffer;
+  std::snprintf(buffer, sizeof buffer, "%.17g", o.noise);
+  out << "\nnoise: " << buffer;
+  std::snprintf(buffer, sizeof buffer, "%.17g", o.partial);
+  out << "\npartial: " << buffer << "\npairs: " << o.pairs << "\n";
+  return out.str();
+}
+
+namespace {
+
+// Fisher-Yates shuffle with the platform-independent generator.
+template <typename T>
+void Shuffle(std::vector<T>& items, SynthRandom& random) {
+  for (int i = static_cast<int>(items.size()) - 1; i > 0; --i) {
+    std::swap(items[i], items[random.Index(i + 1)]);
+  }
+}
+
+}  // namespace
+
+SynthClass GenerateClass(FigureKind kind, const SynthOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("synthetic options: " + error);
+  const uint64_t seed = static_cast<uint64_t>(options.seed);
+  const uint64_t k = static_cast<uint64_t>(kind);
+  SynthClass out;
+  out.name = FigureKindName(kind);
+  out.rest = MakeRestFigure(kind, options.vertices);
+  const RestFigure& rest = out.rest;
+  const int n = options.poses;
+
+  // Which poses lose which part.
+  std::vector<int> cut_bone(n, -1);
+  const int num_cut = static_cast<int>(std::floor(options.partial * n + 0.5));
+  if (num_cut > 0) {
+    SynthRandom random(DeriveSeed(seed, "partial", k));
+    std::vector<int> order(n);
+    for (int i = 0; i < n; ++i) order[i] = i;
+    Shuffle(order, random);
+    for (int i = 0; i < num_cut; ++i) {
+      const auto& parts = rest.figure.cuttable;
+      cut_bone[order[i]] = parts[random.Index(static_cast<int>(parts.size()))];
+    }
+  }
+
+  out.shapes.resize(n);
+  ParallelFor(n, [&](int p) {
+    SynthShape& shape = out.shapes[p];
+    shape.name = out.name + std::to_string(p);
+    const Pose pose = RandomPose(rest.figure.bones, DeriveSeed(seed, "angles", k, p),
+                                 options.nonisometric, DeriveSeed(seed, "scales", k, p));
+    shape.shape.surface = Surface{SkinVertices(rest, pose), rest.surface.F};
+    shape.shape.rest_ids.resize(rest.surface.V.rows());
+    for (int i = 0; i < rest.surface.NumVertices(); ++i) shape.shape.rest_ids[i] = i;
+    std::vector<std::string> notes;
+    if (cut_bone[p] >= 0) {
+      shape.shape = CutPart(shape.shape, rest.weights, rest.figure.bones, cut_bone[p]);
+      notes.push_back("cut " + rest.figure.bones[cut_bone[p]].name);
+    }
+    if (options.remesh > 0 && options.remesh < shape.shape.surface.NumVertices()) {
+      shape.shape = Remesh(shape.shape, options.remesh, DeriveSeed(seed, "remesh", k, p));
+      notes.push_back("remeshed to " + std::to_string(shape.shape.surface.NumVertices()) +
+                      " vertices");
+    }
+    if (options.noise > 0.0) {
+      AddNormalNoise(&shape.shape.surface, options.noise, DeriveSeed(seed, "noise", k, p));
+      notes.push_back("noise");
+    }
+    for (size_t i = 0; i < notes.size(); ++i) shape.note += (i ? ", " : "") + notes[i];
+  });
+
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) out.pairs.push_back({i, j});
+  }
+  if (options.pairs > 0 && options.pairs < static_cast<int>(out.pairs.size())) {
+    SynthRandom random(DeriveSeed(seed, "pairs", k));
+    Shuffle(out.pairs, random);
+    out.pairs.resize(options.pairs);
+    std::sort(out.pairs.begin(), out.pairs.end());
+  }
+  return out;
+}
+
+namespace {
+
+void WriteFile(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw IoError("cannot write " + path.string());
+}
+
+std::string OffText(const Surface& s) {
+  std::string text = "OFF\n" + std::to_string(s.NumVertices()) + " " +
+                     std::to_string(s.NumFaces()) + " 0\n";
+  text.reserve(text.size() + 40 * s.NumVertices() + 20 * s.NumFaces());
+  char line[128];
+  for (int v = 0; v < s.NumVertices(); ++v) {
+    std::snprintf(line, sizeof line, "%.10g %.10g %.10g\n", s.V(v, 0), s.V(v, 1), s.V(v, 2));
+    text += line;
+  }
+  for (int f = 0; f < s.NumFaces(); ++f) {
+    std::snprintf(line, sizeof line, "3 %d %d %d\n", s.F(f, 0), s.F(f, 1), s.F(f, 2));
+    text += line;
+  }
+  return text;
+}
+
+// Line i: 1-based id in the shape of rest vertex lines[i], or 0 when absent.
+std::string VtsText(const std::vector<int>& rest_ids, const std::vector<int>& lines, int num_rest) {
+  std::vector<int> id_of(num_rest, 0);
+  for (size_t v = 0; v < rest_ids.size(); ++v) id_of[rest_ids[v]] = static_cast<int>(v) + 1;
+  std::string text;
+  text.reserve(6 * lines.size());
+  for (int r : lines) text += std::to_string(id_of[r]) + "\n";
+  return text;
+}
+
+}  // namespace
+
+void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("synthetic options: " + error);
+  const fs::path root(dir);
+  std::error_code ec;
+  fs::create_directories(root / "shapes", ec);
+  fs::create_directories(root / "corres", ec);
+  if (!fs::is_directory(root / "shapes") || !fs::is_directory(root / "corres")) {
+    throw IoError("cannot create " + (root / "shapes").string() + " and " +
+                  (root / "corres").string());
+  }
+  std::string pairs_text, shapes_text;
+  for (FigureKind kind : options.kinds) {
+    const SynthClass c = GenerateClass(kind, options);
+    const int num_rest = c.rest.surface.NumVertices();
+    shapes_text += "## " + c.name + "\n\nRest shape: " + std::to_string(num_rest) +
+                   " vertices (" + std::to_string(c.rest.levels) + " Catmull-Clark levels, " +
+                   std::to_string(c.rest.rings_per_segment) + " rings per segment), " +
+                   std::to_string(c.rest.figure.bones.size()) +
+                   " bones.\n\n| shape | vertices | what |\n| --- | --- | --- |\n";
+    std::vector<int> direct(num_rest);
+    for (int i = 0; i < num_rest; ++i) direct[i] = i;
+    for (const SynthShape& s : c.shapes) {
+      WriteFile(root / "shapes" / (s.name + ".off"), OffText(s.shape.surface));
+      WriteFile(root / "corres" / (s.name + ".vts"), VtsText(s.shape.rest_ids, direct, num_rest));
+      WriteFile(root / "corres" / (s.name + ".sym.vts"),
+                VtsText(s.shape.rest_ids, c.rest.mirror, num_rest));
+      shapes_text += "| " + s.name + " | " + std::to_string(s.shape.surface.NumVertices()) +
+                     " | " + (s.note.empty() ? "posed" : "posed, " + s.note) + " |\n";
+    }
+    for (const auto& [a, b] : c.pairs) {
+      pairs_text += c.shapes[a].name + "\t" + c.shapes[b].name + "\n";
+    }
+    shapes_text += "\n";
+  }
+  WriteFile(root / "test_pairs.txt", pairs_text);
+  std::ostringstream readme;
+  readme << "# Synthetic ground-truth dataset (symembed synth)\n\n"
+         << "Generator options (the same options give byte-identical files):\n\n```yaml\n"
+         << SynthOptionsText(options) << "```\n\n"
+         << "Layout (pairs_vts): `shapes/NAME.off`; `corres/NAME.vts`: line i is the 1-based "
+            "id in NAME of rest vertex i, 0 when NAME does not have it (remeshed away or cut "
+            "off); `corres/NAME.sym.vts`: the same for the mirror image of rest vertex i; "
+            "`test_pairs.txt`: tab-separated pairs within a class. The class of a shape is its "
+            "name without the trailing digits.\n\n"
+         << shapes_text;
+  WriteFile(root / "README.md", readme.str());
+}
+
+}  // namespace symembed

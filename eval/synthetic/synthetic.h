@@ -1,0 +1,64 @@
+// The synthetic ground-truth benchmark: posed, optionally remeshed / scaled / noisy / partial
+// copies of a bilaterally symmetric articulated figure, written in the pairs_vts layout.
+//
+// Every shape's vertices are rest vertices (or a subset of them), so the ground truth is
+// exact: ground-truth line i of every shape of a class is rest vertex i, and the mirrored
+// ground truth of line i is rest vertex mirror[i]. Written layout (DIR):
+//   shapes/NAME.off      NAME = kind + pose index (humanoid0, humanoid1, ...; class = kind)
+//   corres/NAME.vts      one line per rest vertex i: the 1-based id of rest vertex i in NAME,
+//                        or 0 when NAME does not have it (remeshed away or cut off)
+//   corres/NAME.sym.vts  the same for rest vertex mirror[i]
+//   test_pairs.txt       "A<TAB>B" per line: all unordered pairs within a class in pose order,
+//                        or a seeded subset of `pairs` per class (kept in that order)
+//   README.md            the generator options and seed, and this description
+// The same options give byte-identical files (numbers come from std::mt19937 through
+// platform-independent conversions; the trigonometry is the C library's).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "eval/synthetic/rest_shape.h"
+#include "eval/synthetic/variations.h"
+
+namespace symembed {
+
+struct SynthOptions {
+  std::vector<FigureKind> kinds = {FigureKind::kHumanoid};  // one class per kind
+  int poses = 8;             // shapes per class, >= 1
+  int vertices = 5000;       // approximate rest vertex count (see ChooseResolution), >= 100
+  int seed = 1;              // >= 0
+  int remesh = 0;            // > 0: decimate every pose independently to this many vertices
+  double nonisometric = 0.0; // > 0: per-pose bone length/thickness factors in [1-R, 1+R], < 0.5
+  double noise = 0.0;        // > 0: normal noise amplitude as a fraction of the mean edge length
+  double partial = 0.0;      // in [0, 1]: fraction of poses with a hand, foot or head cut away
+  int pairs = 0;             // > 0: pairs per class in test_pairs.txt; 0: all unordered pairs
+
+  bool IsValid(std::string* error) const;
+};
+
+struct SynthShape {
+  std::string name;
+  TrackedSurface shape;  // shape.rest_ids: rest vertex id of every vertex
+  std::string note;      // what was done to it ("cut hand_l", ...), for the README
+};
+
+struct SynthClass {
+  std::string name;  // the kind's name
+  RestFigure rest;
+  std::vector<SynthShape> shapes;
+  std::vector<std::pair<int, int>> pairs;  // indices into shapes
+};
+
+// Generates one class (poses in parallel; the result does not depend on the thread count).
+// Throws ConfigError when options are invalid.
+SynthClass GenerateClass(FigureKind kind, const SynthOptions& options);
+
+// The generator options as canonical "key: value" lines (README, cache keys).
+std::string SynthOptionsText(const SynthOptions& options);
+
+// Writes the dataset for every kind of options.kinds into dir (created; files overwritten).
+// Throws IoError when a file cannot be written.
+void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options);
+
+}  // namespace symembed

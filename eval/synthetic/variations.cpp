@@ -1,0 +1,133 @@
+#include "eval/synthetic/variations.h"
+
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+
+#include "core/errors.h"
+#include "eval/synthetic/posing.h"
+#include "eval/synthetic/random.h"
+
+namespace symembed {
+
+namespace {
+
+// Collapse priority: squared edge length times a per-vertex factor of the removed vertex.
+template <class MeshT>
+class ModJitteredLengthT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+ public:
+  DECIMATING_MODULE(ModJitteredLengthT, MeshT, JitteredLength);
+
+  explicit ModJitteredLengthT(MeshT& mesh) : Base(mesh, false) {}
+
+  void set_factors(const std::vector<double>* factors) { factors_ = factors; }
+
+  float collapse_priority(const CollapseInfo& ci) override {
+    return static_cast<float>((ci.p0 - ci.p1).sqrnorm() * (*factors_)[ci.v0.idx()]);
+  }
+
+ private:
+  const std::vector<double>* factors_ = nullptr;
+};
+
+// Drops faces listed as false in keep_face and vertices no kept face uses; renumbers.
+TrackedSurface KeepFaces(const TrackedSurface& shape, const std::vector<bool>& keep_face) {
+  const Surface& s = shape.surface;
+  std::vector<int> new_id(s.V.rows(), -1);
+  int nf = 0;
+  for (int f = 0; f < s.F.rows(); ++f) {
+    if (!keep_face[f]) continue;
+    ++nf;
+    for (int k = 0; k < 3; ++k) new_id[s.F(f, k)] = 0;
+  }
+  TrackedSurface out;
+  int nv = 0;
+  for (int v = 0; v < s.V.rows(); ++v) {
+    if (new_id[v] < 0) continue;
+    new_id[v] = nv++;
+    out.rest_ids.push_back(shape.rest_ids[v]);
+  }
+  out.surface.V.resize(nv, 3);
+  for (int v = 0; v < s.V.rows(); ++v) {
+    if (new_id[v] >= 0) out.surface.V.row(new_id[v]) = s.V.row(v);
+  }
+  out.surface.F.resize(nf, 3);
+  for (int f = 0, g = 0; f < s.F.rows(); ++f) {
+    if (!keep_face[f]) continue;
+    for (int k = 0; k < 3; ++k) out.surface.F(g, k) = new_id[s.F(f, k)];
+    ++g;
+  }
+  return out;
+}
+
+}  // namespace
+
+TrackedSurface CutPart(const TrackedSurface& shape, const Eigen::MatrixXd& weights,
+                       const std::vector<Bone>& bones, int bone) {
+  const int nb = static_cast<int>(bones.size());
+  std::vector<bool> in_part(nb, false);
+  for (int b = 0; b < nb; ++b) {
+    // Parents precede children, so one pass marks the whole subtree.
+    in_part[b] = b == bone || (bones[b].parent >= 0 && in_part[bones[b].parent]);
+  }
+  const Surface& s = shape.surface;
+  std::vector<bool> removed(s.V.rows(), false);
+  for (int v = 0; v < s.V.rows(); ++v) {
+    double w = 0.0;
+    for (int b = 0; b < nb; ++b) {
+      if (in_part[b]) w += weights(shape.rest_ids[v], b);
+    }
+    removed[v] = w > 0.5;
+  }
+  std::vector<bool> keep(s.F.rows(), true);
+  for (int f = 0; f < s.F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (removed[s.F(f, k)]) keep[f] = false;
+    }
+  }
+  return KeepFaces(shape, keep);
+}
+
+TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t seed) {
+  SYMEMBED_CHECK(target_vertices >= 4, "remesh target must be >= 4 vertices");
+  int skipped = 0;
+  TriMesh mesh = FromSurface(shape.surface, &skipped);
+  SYMEMBED_CHECK(skipped == 0, "remesh input is not a manifold mesh");
+  OpenMesh::VPropHandleT<int> rest_id;
+  mesh.add_property(rest_id);
+  for (auto v : mesh.vertices()) mesh.property(rest_id, v) = shape.rest_ids[v.idx()];
+  mesh.update_face_normals();
+
+  std::vector<double> factors(mesh.n_vertices());
+  SynthRandom random(seed);
+  for (double& f : factors) f = random.Uniform(0.5, 1.5);
+
+  using Decimater = OpenMesh::Decimater::DecimaterT<TriMesh>;
+  Decimater decimater(mesh);
+  typename ModJitteredLengthT<TriMesh>::Handle length;
+  typename OpenMesh::Decimater::ModNormalFlippingT<TriMesh>::Handle flipping;
+  decimater.add(length);
+  decimater.add(flipping);
+  decimater.module(length).set_factors(&factors);
+  decimater.module(flipping).set_max_normal_deviation(45.0);
+  SYMEMBED_CHECK(decimater.initialize(), "decimater did not initialize");
+  decimater.decimate_to(static_cast<size_t>(target_vertices));
+  mesh.garbage_collection();
+
+  TrackedSurface out;
+  out.surface = ToSurface(mesh);
+  out.rest_ids.resize(mesh.n_vertices());
+  for (auto v : mesh.vertices()) out.rest_ids[v.idx()] = mesh.property(rest_id, v);
+  return out;
+}
+
+void AddNormalNoise(Surface* surface, double amplitude, uint32_t seed) {
+  const Eigen::MatrixX3d N = VertexNormals(*surface);
+  const double scale = amplitude * MeanEdgeLength(*surface);
+  SynthRandom random(seed);
+  for (int v = 0; v < surface->V.rows(); ++v) {
+    surface->V.row(v) += scale * random.Uniform(-1.0, 1.0) * N.row(v);
+  }
+}
+
+}  // namespace symembed
