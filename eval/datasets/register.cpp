@@ -1,8 +1,33 @@
 #include "eval/datasets/register.h"
 
+#include "eval/datasets/kim2011.h"
+#include "eval/datasets/pairs_vts.h"
+#include "eval/datasets/same_connectivity.h"
+#include "eval/datasets/synthetic_dataset.h"
+
 namespace symembed {
 
-// No dataset loader is built in yet.
-void RegisterDatasetLoaders(Registry& /*registry*/) {}
+void RegisterDatasetLoaders(Registry& registry) {
+  registry.Add("dataset", "pairs_vts",
+               "shapes/*.off|obj|ply + corres/NAME.vts (.sym.vts) + test_pairs.txt (TOSCA/FAUST "
+               "remeshed, synthetic output)",
+               [](OptionReader& o) {
+                 return std::make_unique<PairsVtsDataset>(ReadPairsVtsOptions(o));
+               });
+  registry.Add("dataset", "same_connectivity",
+               "root/<class>/*.off|obj|ply sharing vertex ids (SCAPE, TOSCA originals); "
+               "identity ground truth, optional sym.txt",
+               [](OptionReader& o) {
+                 return std::make_unique<SameConnectivityDataset>(ReadSameConnectivityOptions(o));
+               });
+  registry.Add("dataset", "kim2011",
+               "Kim et al. 2011 layout: Data/<SET>/Meshes, named landmarks, symmetric landmark "
+               "pairs",
+               [](OptionReader& o) { return std::make_unique<Kim2011Dataset>(ReadKim2011Options(o)); });
+  registry.Add("dataset", "synthetic",
+               "generated symmetric articulated figures with exact ground truth (cached, read "
+               "as pairs_vts)",
+               [](OptionReader& o) { return CreateSyntheticDataset(o); });
+}
 
 }  // namespace symembed

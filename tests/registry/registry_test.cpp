@@ -36,6 +36,10 @@ TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
   }
   // Every built-in stage and loader; update together with RegisterBuiltinStages.
   const std::set<std::string> expected = {
+      "dataset/kim2011",
+      "dataset/pairs_vts",
+      "dataset/same_connectivity",
+      "dataset/synthetic",
       "geodesics/dijkstra",
       "geodesics/fast_marching",
       "geodesics/heat",
