@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "core/errors.h"
-#include "core/laplacian.h"
 #include "core/parallel.h"
 
 namespace symembed {
@@ -70,8 +69,18 @@ HeatGeodesicSolver::HeatGeodesicSolver(const Surface& s, const HeatOptions& opti
   }
   const double h = MeanEdgeLength(s);
   t_ = options.time_factor * h * h;
-  const Eigen::SparseMatrix<double> K = CotanStiffness(s);
-  const Eigen::SparseMatrix<double> M = MassMatrix(s, MassType::kLumped);
+  const IntrinsicTriangulation tri =
+      options.intrinsic_delaunay ? IntrinsicDelaunay(s) : IntrinsicFromSurface(s);
+  flips_ = tri.flips;
+  faces_ = tri.F;
+  const Eigen::SparseMatrix<double> K = IntrinsicCotanStiffness(tri, n);
+  const Eigen::VectorXd vertex_areas = IntrinsicVertexAreas(tri, n);
+  Eigen::SparseMatrix<double> M(n, n);
+  {
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (int v = 0; v < n; ++v) triplets.emplace_back(v, v, vertex_areas(v));
+    M.setFromTriplets(triplets.begin(), triplets.end());
+  }
   // Vertices in no face have empty rows; a unit diagonal keeps the systems non-singular.
   Eigen::SparseMatrix<double> unused(n, n);
   {
@@ -99,38 +108,36 @@ HeatGeodesicSolver::HeatGeodesicSolver(const Surface& s, const HeatOptions& opti
     AD.setFromTriplets(triplets.begin(), triplets.end());
     dirichlet_ = Factorize(AD, "Dirichlet heat system");
   }
-  const double total_area = TotalArea(s);
+  const double total_area = vertex_areas.sum();
   poisson_ = Factorize(K + (1e-8 / total_area) * M + unused, "Poisson system");
 
-  // Face operators. For face (a, b, c) with unit normal N and area A, the gradient of the
-  // linear interpolant is sum_k u_k (N x e_k) / (2A), e_k the edge opposite k run
-  // counter-clockwise; vertex k's divergence weight is (cot(angle at j) e_ki + cot(angle at i)
-  // e_kj) / 2 with e_ki = x_i - x_k, where i, j are the next vertices.
+  // Face operators, in each face's 2D layout (p_0 at the origin, p_1 on +x). The gradient of
+  // the linear interpolant is sum_k u_k rot90(p_j - p_i) / (2A) with (k, i, j) counter-clockwise;
+  // vertex k's divergence weight is (cot(angle at j) (p_i - p_k) + cot(angle at i)
+  // (p_j - p_k)) / 2 [Crane et al. 2013, Sec. 3.2].
   for (int k = 0; k < 3; ++k) {
-    grad_[k] = Eigen::MatrixXd::Zero(nf, 3);
-    div_[k] = Eigen::MatrixXd::Zero(nf, 3);
+    grad_[k] = Eigen::MatrixX2d::Zero(nf, 2);
+    div_[k] = Eigen::MatrixX2d::Zero(nf, 2);
   }
   for (int f = 0; f < nf; ++f) {
-    const Eigen::Vector3d p[3] = {s.V.row(s.F(f, 0)), s.V.row(s.F(f, 1)), s.V.row(s.F(f, 2))};
-    const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
-    const double double_area = cross.norm();
-    if (double_area <= 0.0) continue;  // a degenerate face carries no gradient
-    const Eigen::Vector3d N = cross / double_area;
+    const Eigen::Matrix<double, 3, 2> p = IntrinsicLayout(tri, f);
+    const double double_area = p(1, 0) * p(2, 1);  // base times height
+    if (!(double_area > 0.0)) continue;  // a degenerate face carries no gradient
+    auto cot = [&](int m) {
+      const Eigen::Vector2d u = p.row((m + 1) % 3) - p.row(m), w = p.row((m + 2) % 3) - p.row(m);
+      return u.dot(w) / (u.x() * w.y() - u.y() * w.x());
+    };
     for (int k = 0; k < 3; ++k) {
       const int i = (k + 1) % 3, j = (k + 2) % 3;
-      grad_[k].row(f) = (N.cross(p[j] - p[i]) / double_area).transpose();
-      // cot of the angle at vertex m of the face
-      auto cot = [&](int m) {
-        const Eigen::Vector3d u = p[(m + 1) % 3] - p[m], w = p[(m + 2) % 3] - p[m];
-        return u.dot(w) / u.cross(w).norm();
-      };
-      div_[k].row(f) = (0.5 * (cot(j) * (p[i] - p[k]) + cot(i) * (p[j] - p[k]))).transpose();
+      const Eigen::RowVector2d e = p.row(j) - p.row(i);
+      grad_[k].row(f) << -e.y() / double_area, e.x() / double_area;
+      div_[k].row(f) = 0.5 * (cot(j) * (p.row(i) - p.row(k)) + cot(i) * (p.row(j) - p.row(k)));
     }
   }
 }
 
 void HeatGeodesicSolver::SolveBlock(const int* sources, int count, Eigen::MatrixXd* out) const {
-  const int n = surface_.NumVertices(), nf = surface_.NumFaces();
+  const int n = surface_.NumVertices(), nf = static_cast<int>(faces_.rows());
   Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, count);
   for (int c = 0; c < count; ++c) delta(sources[c], c) = 1.0;
   const Eigen::MatrixXd u_neumann = neumann_->solve(delta);
@@ -156,12 +163,12 @@ void HeatGeodesicSolver::SolveBlock(const int* sources, int count, Eigen::Matrix
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, count);
   for (int c = 0; c < count; ++c) {
     for (int f = 0; f < nf; ++f) {
-      const int a = surface_.F(f, 0), b = surface_.F(f, 1), d = surface_.F(f, 2);
-      const Eigen::RowVector3d g =
+      const int a = faces_(f, 0), b = faces_(f, 1), d = faces_(f, 2);
+      const Eigen::RowVector2d g =
           u(a, c) * grad_[0].row(f) + u(b, c) * grad_[1].row(f) + u(d, c) * grad_[2].row(f);
       const double norm = g.norm();
       if (!(norm > 0.0)) continue;
-      const Eigen::RowVector3d X = -g / norm;
+      const Eigen::RowVector2d X = -g / norm;
       // K phi = -div X (K is minus the paper's Laplacian).
       rhs(a, c) -= div_[0].row(f).dot(X);
       rhs(b, c) -= div_[1].row(f).dot(X);
@@ -235,6 +242,8 @@ void RegisterHeatGeodesics(Registry& registry) {
                      {{"average", HeatBoundary::kAverage},
                       {"neumann", HeatBoundary::kNeumann},
                       {"dirichlet", HeatBoundary::kDirichlet}});
+                 options.intrinsic_delaunay =
+                     reader.GetBool("intrinsic_delaunay", options.intrinsic_delaunay);
                  return std::make_unique<HeatStage>(options);
                });
 }

@@ -8,6 +8,11 @@
 //   2. X = -grad u / |grad u| per face;
 //   3. K phi = -div X (the integrated divergence of the paper), solved up to a constant;
 //   4. phi shifted so that phi(s) = 0 (small negative values near s are clamped to 0).
+// All operators are built on the intrinsic Delaunay triangulation of the surface
+// (core/intrinsic_delaunay.h) unless intrinsic_delaunay is false: on meshes with many obtuse
+// triangles (TOSCA's remeshed shapes have ~60%) the extrinsic cotan Laplacian has negative
+// weights, the heat solution oscillates in sign and the distances are off by tens of percent
+// [Sharp, Soliman & Crane 2019] Navigating intrinsic triangulations.
 // With a boundary, step 1 is solved with Neumann (natural) and with Dirichlet (u = 0 on the
 // boundary) conditions and the two solutions are averaged, as the paper recommends; `boundary`
 // selects one of them instead. K + eps M (eps = 1e-8 / total area) replaces the singular K in
@@ -27,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "core/intrinsic_delaunay.h"
 #include "core/mesh.h"
 #include "registry/registry.h"
 #include "stages/geodesics/geodesics_common.h"
@@ -39,6 +45,7 @@ struct HeatOptions {
   GeodesicsCommonOptions common;               // threads; precision is accepted, see above
   double time_factor = 1.0;                    // t = time_factor * (mean edge length)^2
   HeatBoundary boundary = HeatBoundary::kAverage;  // only matters on surfaces with a boundary
+  bool intrinsic_delaunay = true;              // operators on the intrinsic Delaunay mesh
 
   bool IsValid(std::string* error) const;
 };
@@ -52,6 +59,7 @@ class HeatGeodesicSolver : public GeodesicSolver {
 
   double time() const { return t_; }
   bool has_boundary() const { return has_boundary_; }
+  int flips() const { return flips_; }  // intrinsic edge flips performed
 
  private:
   // Distances of a block of sources, written to out (n x block, column-major).
@@ -62,13 +70,15 @@ class HeatGeodesicSolver : public GeodesicSolver {
   HeatOptions options_;
   double t_ = 0.0;
   bool has_boundary_ = false;
+  int flips_ = 0;
+  Eigen::MatrixX3i faces_;  // faces of the (intrinsic) triangulation the operators live on
   // neumann_ is always built (it also tells which vertices the heat reaches); dirichlet_ only
   // when the surface has a boundary and the boundary option uses it.
   std::unique_ptr<Factor> neumann_, dirichlet_, poisson_;
   std::vector<char> boundary_vertex_, used_vertex_;
-  // Per face: gradient basis vectors (grad u = sum_k u_k G_k) and divergence weights (the
-  // contribution of a face vector X to vertex k's integrated divergence is W_k . X).
-  Eigen::MatrixXd grad_[3], div_[3];  // each #F x 3
+  // Per face, in its own 2D layout: gradient basis vectors (grad u = sum_k u_k G_k) and
+  // divergence weights (a face vector X adds W_k . X to vertex k's integrated divergence).
+  Eigen::MatrixX2d grad_[3], div_[3];  // each #F x 2
 };
 
 // Free-function form: #sources x #V distances.
