@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/mesh_io.h"
 #include "core/parallel.h"
 #include "eval/synthetic/posing.h"
 #include "eval/synthetic/random.h"
@@ -139,22 +140,6 @@ void WriteFile(const fs::path& path, const std::string& text) {
   if (!out) throw IoError("cannot write " + path.string());
 }
 
-std::string OffText(const Surface& s) {
-  std::string text = "OFF\n" + std::to_string(s.NumVertices()) + " " +
-                     std::to_string(s.NumFaces()) + " 0\n";
-  text.reserve(text.size() + 40 * s.NumVertices() + 20 * s.NumFaces());
-  char line[128];
-  for (int v = 0; v < s.NumVertices(); ++v) {
-    std::snprintf(line, sizeof line, "%.10g %.10g %.10g\n", s.V(v, 0), s.V(v, 1), s.V(v, 2));
-    text += line;
-  }
-  for (int f = 0; f < s.NumFaces(); ++f) {
-    std::snprintf(line, sizeof line, "3 %d %d %d\n", s.F(f, 0), s.F(f, 1), s.F(f, 2));
-    text += line;
-  }
-  return text;
-}
-
 // Line i: 1-based id in the shape of rest vertex lines[i], or 0 when absent.
 std::string VtsText(const std::vector<int>& rest_ids, const std::vector<int>& lines, int num_rest) {
   std::vector<int> id_of(num_rest, 0);
@@ -190,7 +175,7 @@ void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) 
     std::vector<int> direct(num_rest);
     for (int i = 0; i < num_rest; ++i) direct[i] = i;
     for (const SynthShape& s : c.shapes) {
-      WriteFile(root / "shapes" / (s.name + ".off"), OffText(s.shape.surface));
+      SaveMesh((root / "shapes" / (s.name + ".off")).string(), s.shape.surface);
       WriteFile(root / "corres" / (s.name + ".vts"), VtsText(s.shape.rest_ids, direct, num_rest));
       WriteFile(root / "corres" / (s.name + ".sym.vts"),
                 VtsText(s.shape.rest_ids, c.rest.mirror, num_rest));

@@ -11,8 +11,10 @@
 //   test_pairs.txt       "A<TAB>B" per line: all unordered pairs within a class in pose order,
 //                        or a seeded subset of `pairs` per class (kept in that order)
 //   README.md            the generator options and seed, and this description
-// The same options give byte-identical files (numbers come from std::mt19937 through
-// platform-independent conversions; the trigonometry is the C library's).
+// The same options give byte-identical files: random numbers come from std::mt19937 through
+// platform-independent conversions (random.h), meshes are written by SaveMesh (shortest
+// round-trip decimal form, so the written positions are exactly the generated doubles); only
+// the trigonometry (the C library's sin/cos) could differ between platforms.
 #pragma once
 
 #include <string>

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <queue>
 #include <set>
 
 #include "core/errors.h"
+#include "core/validation.h"
 #include "eval/datasets/pairs_vts.h"
 #include "eval/synthetic/posing.h"
 #include "eval/synthetic/random.h"
@@ -21,72 +21,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Topology {
-  int boundary_edges = 0;
-  int nonmanifold_edges = 0;   // an undirected edge with more than two faces
-  int misoriented_edges = 0;   // a directed edge used by two faces
-  int components = 0;
-  int unreferenced = 0;
-  int boundary_loops = 0;
-  int euler = 0;
-};
-
-Topology Analyse(const Surface& s) {
-  Topology t;
-  std::map<std::pair<int, int>, int> directed;
-  std::map<std::pair<int, int>, int> undirected;
-  std::vector<std::vector<int>> adj(s.NumVertices());
-  for (int f = 0; f < s.NumFaces(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
-      if (++directed[{a, b}] == 2) ++t.misoriented_edges;
-      ++undirected[{std::min(a, b), std::max(a, b)}];
-      adj[a].push_back(b);
-      adj[b].push_back(a);
-    }
-  }
-  std::map<int, int> boundary_next;  // boundary halfedge a -> b (b -> a has no face)
-  for (const auto& [e, n] : undirected) {
-    if (n == 1) {
-      ++t.boundary_edges;
-      const bool forward = directed.count(e) > 0;
-      boundary_next[forward ? e.second : e.first] = forward ? e.first : e.second;
-    }
-    if (n > 2) ++t.nonmanifold_edges;
-  }
-  std::set<int> seen;
-  for (const auto& [a, b] : boundary_next) {
-    if (seen.count(a)) continue;
-    ++t.boundary_loops;
-    for (int v = a; !seen.count(v) && boundary_next.count(v); v = boundary_next[v]) seen.insert(v);
-  }
-  std::vector<int> comp(s.NumVertices(), -1);
-  for (int v = 0; v < s.NumVertices(); ++v) {
-    if (adj[v].empty()) ++t.unreferenced;
-    if (comp[v] >= 0 || adj[v].empty()) continue;
-    std::vector<int> stack = {v};
-    comp[v] = t.components;
-    while (!stack.empty()) {
-      const int u = stack.back();
-      stack.pop_back();
-      for (int w : adj[u]) {
-        if (comp[w] < 0) comp[w] = t.components, stack.push_back(w);
-      }
-    }
-    ++t.components;
-  }
-  t.euler = s.NumVertices() - static_cast<int>(undirected.size()) + s.NumFaces();
-  return t;
-}
-
 void ExpectClosedGenusZero(const Surface& s, const std::string& what) {
-  const Topology t = Analyse(s);
-  EXPECT_EQ(t.boundary_edges, 0) << what;
-  EXPECT_EQ(t.nonmanifold_edges, 0) << what;
-  EXPECT_EQ(t.misoriented_edges, 0) << what;
-  EXPECT_EQ(t.components, 1) << what;
-  EXPECT_EQ(t.unreferenced, 0) << what;
-  EXPECT_EQ(t.euler, 2) << what;  // closed, connected, genus 0
+  const MeshReport report = ValidateMesh(s, what);
+  EXPECT_TRUE(report.clean()) << report.ToString();
+  EXPECT_TRUE(report.closed_manifold) << report.ToString();
+  EXPECT_EQ(report.components, 1) << report.ToString();
+  EXPECT_EQ(report.genus, 0) << report.ToString();
 }
 
 double SignedVolume(const Surface& s) {
@@ -312,12 +252,14 @@ TEST_P(SyntheticKinds, PartialShapesLoseOnePartAndKeepExactGroundTruth) {
     }
     ++num_cut;
     EXPECT_EQ(cut.shapes[p].note.rfind("cut ", 0), 0u) << cut.shapes[p].note;
-    const Topology t = Analyse(c.surface);
-    EXPECT_EQ(t.boundary_loops, 1) << cut.shapes[p].name;
-    EXPECT_EQ(t.nonmanifold_edges, 0);
-    EXPECT_EQ(t.misoriented_edges, 0);
-    EXPECT_EQ(t.components, 1);
-    EXPECT_EQ(t.euler, 1);  // a disc
+    const MeshReport t = ValidateMesh(c.surface, cut.shapes[p].name);
+    EXPECT_EQ(t.boundary_loops, 1) << t.ToString();
+    EXPECT_EQ(t.non_manifold_edges, 0) << t.ToString();
+    EXPECT_EQ(t.non_manifold_vertices, 0) << t.ToString();
+    EXPECT_EQ(t.inconsistent_edges, 0) << t.ToString();
+    EXPECT_EQ(t.degenerate_faces, 0) << t.ToString();
+    EXPECT_EQ(t.components, 1) << t.ToString();
+    EXPECT_EQ(t.euler_characteristic, 1) << t.ToString();  // a disc
     // A hand, foot or head: a few percent of the surface, not more than a fifth.
     EXPECT_LT(f.NumVertices() - c.surface.NumVertices(), f.NumVertices() / 5);
     for (int v = 0; v < c.surface.NumVertices(); ++v) {

@@ -1,0 +1,360 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <functional>
+
+#include "core/errors.h"
+#include "eval/datasets/dataset_files.h"
+#include "eval/datasets/kim2011.h"
+#include "eval/datasets/pairs_vts.h"
+#include "eval/datasets/same_connectivity.h"
+#include "eval/datasets/synthetic_dataset.h"
+#include "registry/registry.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::TempDir;
+using testing::WriteText;
+
+// A tetrahedron with `extra` isolated vertices appended (vertex count 4 + extra).
+std::string Tetrahedron(int extra = 0) {
+  std::string off = "OFF\n" + std::to_string(4 + extra) + " 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  for (int i = 0; i < extra; ++i) off += "2 2 2\n";
+  return off + "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+}
+
+// Expects `fn` to throw E whose message contains every fragment.
+template <typename E>
+void ExpectError(const std::function<void()>& fn, const std::vector<std::string>& fragments) {
+  try {
+    fn();
+    ADD_FAILURE() << "no exception; expected one containing '" << fragments[0] << "'";
+  } catch (const E& e) {
+    const std::string msg = e.what();
+    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << msg;
+  }
+}
+
+std::unique_ptr<Dataset> Create(const std::string& yaml) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  return registry.CreateAs<Dataset>("dataset", YAML::Load(yaml), "test.yaml", "dataset");
+}
+
+// --- pairs_vts -------------------------------------------------------------------------------
+
+// cat0, cat1 (4 vertices), dog0, dog1 (5 vertices), TOSCA-like quirks: non-bijective ground
+// truth, a trailing blank line in test_pairs.txt, .sym.vts only for the cats.
+void WritePairsVtsTree(const std::string& root) {
+  WriteText(root + "/shapes/cat0.off", Tetrahedron());
+  WriteText(root + "/shapes/cat1.off", Tetrahedron());
+  WriteText(root + "/shapes/dog0.off", Tetrahedron(1));
+  WriteText(root + "/shapes/dog1.off", Tetrahedron(1));
+  WriteText(root + "/corres/cat0.vts", "1\n2\n3\n");
+  WriteText(root + "/corres/cat1.vts", "2\n2\n4\n");  // vertex 2 twice: not a bijection
+  WriteText(root + "/corres/cat0.sym.vts", "1\n3\n2\n");
+  WriteText(root + "/corres/cat1.sym.vts", "2\n4\n2\n");
+  WriteText(root + "/corres/dog0.vts", "5\n1\n");
+  WriteText(root + "/corres/dog1.vts", "0\n1\n");  // 0: the shape does not have line 1
+  WriteText(root + "/corres/cat_sampleID.vts", "1\n");  // ignored
+  WriteText(root + "/test_pairs.txt", "cat0\tcat1\ndog0\tdog1\ndog1\tdog0\n\n");
+}
+
+TEST(PairsVts, ReadsShapesPairsAndOneBasedGroundTruth) {
+  TempDir dir;
+  WritePairsVtsTree(dir.path());
+  auto dataset = Create("{type: pairs_vts, root: " + dir.path() + "}");
+  const DatasetIndex index = dataset->Load();
+  ASSERT_EQ(index.shapes.size(), 4u);
+  ASSERT_EQ(index.pairs.size(), 3u);
+  EXPECT_EQ(index.pairs[2].source, "dog1");
+  const DatasetShape* cat1 = index.Find("cat1");
+  ASSERT_NE(cat1, nullptr);
+  EXPECT_EQ(cat1->class_name, "cat");
+  EXPECT_EQ(cat1->mesh_path, dir.path() + "/shapes/cat1.off");
+  const ShapeGroundTruth gt = dataset->GroundTruth(*cat1, 4);
+  EXPECT_EQ(gt.ids, (std::vector<int>{1, 1, 3}));
+  EXPECT_EQ(gt.sym_ids, (std::vector<int>{1, 3, 1}));
+  const ShapeGroundTruth dog1 = dataset->GroundTruth(*index.Find("dog1"), 5);
+  EXPECT_EQ(dog1.ids, (std::vector<int>{-1, 0}));
+  EXPECT_TRUE(dog1.sym_ids.empty());
+  const PairGroundTruth pair = PairLines(dataset->GroundTruth(*index.Find("dog0"), 5), dog1);
+  EXPECT_EQ(pair.source_ids, (std::vector<int>{0}));
+  EXPECT_EQ(pair.target_ids, (std::vector<int>{0}));
+}
+
+TEST(PairsVts, RestrictionsSelectClassesPairsAndPairsFile) {
+  TempDir dir;
+  WritePairsVtsTree(dir.path());
+  auto dogs = Create("{type: pairs_vts, root: " + dir.path() + ", classes: [dog], max_pairs: 1}");
+  const DatasetIndex index = dogs->Load();
+  ASSERT_EQ(index.pairs.size(), 1u);
+  EXPECT_EQ(index.pairs[0].source, "dog0");
+  EXPECT_EQ(index.shapes.size(), 2u);
+  WriteText(dir.File("mine.txt"), "cat1 cat0\n");
+  const DatasetIndex own =
+      Create("{type: pairs_vts, root: " + dir.path() + ", pairs_file: mine.txt}")->Load();
+  ASSERT_EQ(own.pairs.size(), 1u);
+  EXPECT_EQ(own.pairs[0].source, "cat1");
+  // Without test_pairs.txt: all unordered pairs within each class.
+  fs::remove(dir.File("test_pairs.txt"));
+  EXPECT_EQ(Create("{type: pairs_vts, root: " + dir.path() + "}")->Load().pairs.size(), 2u);
+  ExpectError<InvalidInputError>(
+      [&] { Create("{type: pairs_vts, root: " + dir.path() + ", classes: [horse]}")->Load(); },
+      {"no shape of class 'horse'", "cat, dog"});
+  ExpectError<ConfigError>([&] { Create("{type: pairs_vts}"); }, {"missing required key 'root'"});
+  ExpectError<ConfigError>([&] { Create("{type: pairs_vts, root: x, max_pair: 3}"); },
+                           {"unknown key 'max_pair'"});
+}
+
+TEST(PairsVts, RejectsMalformedInputNamingFileAndLine) {
+  TempDir dir;
+  const std::string root = dir.path();
+  WritePairsVtsTree(root);
+  PairsVtsDataset dataset(PairsVtsOptions{root, {}});
+  const DatasetShape cat1{"cat1", "cat", root + "/shapes/cat1.off"};
+
+  WriteText(root + "/test_pairs.txt", "cat0\tcat1\ncat0\tcat7\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"test_pairs.txt:2: unknown shape 'cat7'", "shapes/cat7.off"});
+  WriteText(root + "/test_pairs.txt", "cat0\tcat1\ncat0 cat1 dog0\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); }, {"test_pairs.txt:2: expected two"});
+  WriteText(root + "/test_pairs.txt", "cat0\tcat1\n");
+
+  // Ground truth of a different length than its partner's.
+  WriteText(root + "/corres/cat1.vts", "2\n2\n4\n1\n");
+  WriteText(root + "/corres/cat1.sym.vts", "2\n4\n2\n1\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"corres/cat1.vts: 4 lines", "partner", "corres/cat0.vts has 3",
+                                  "test_pairs.txt:1"});
+  // .sym.vts of a different length than its .vts.
+  WriteText(root + "/corres/cat1.vts", "2\n2\n4\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"cat1.sym.vts: 4 lines", "cat1.vts has 3"});
+  WriteText(root + "/corres/cat1.sym.vts", "2\n4\n2\n");
+  EXPECT_NO_THROW(dataset.Load());
+
+  // Ids out of range, not numbers, blank lines inside.
+  WriteText(root + "/corres/cat1.vts", "2\n2\n9\n");
+  ExpectError<InvalidInputError>([&] { dataset.GroundTruth(cat1, 4); },
+                                 {"corres/cat1.vts:3: vertex id 9 out of range [1, 4]"});
+  WriteText(root + "/corres/cat1.vts", "2\n-1\n3\n");
+  ExpectError<InvalidInputError>([&] { dataset.GroundTruth(cat1, 4); },
+                                 {"cat1.vts:2: vertex id -1 out of range"});
+  WriteText(root + "/corres/cat1.vts", "2\nx\n3\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"cat1.vts:2: expected one integer vertex id, got 'x'"});
+  WriteText(root + "/corres/cat1.vts", "2\n\n3\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); }, {"cat1.vts:2: blank line"});
+
+  // Missing ground truth, missing mesh.
+  fs::remove(root + "/corres/cat1.vts");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"missing ground truth", "corres/cat1.vts", "test_pairs.txt:1"});
+  WriteText(root + "/corres/cat1.vts", "2\n2\n4\n");
+  fs::remove(root + "/shapes/cat0.off");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"test_pairs.txt:1: unknown shape 'cat0'"});
+  ExpectError<IoError>([&] { PairsVtsDataset(PairsVtsOptions{root + "/nope", {}}).Load(); },
+                       {"not a directory", "nope"});
+}
+
+// --- same_connectivity -----------------------------------------------------------------------
+
+TEST(SameConnectivity, IdentityGroundTruthSymmetryFileAndPairs) {
+  TempDir dir;
+  const std::string root = dir.path();
+  WriteText(root + "/scape/mesh000.off", Tetrahedron());
+  WriteText(root + "/scape/mesh001.off", Tetrahedron());
+  WriteText(root + "/scape/mesh002.off", Tetrahedron());
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n4\n");
+  WriteText(root + "/cat/cat0.off", Tetrahedron(1));
+  WriteText(root + "/cat/cat1.off", Tetrahedron(1));
+  WriteText(root + "/cat/pairs.txt", "cat1\tcat0\n");
+  auto dataset = Create("{type: same_connectivity, root: " + root + "}");
+  const DatasetIndex index = dataset->Load();
+  ASSERT_EQ(index.pairs.size(), 4u);  // cat: listed; scape: all 3 unordered pairs
+  EXPECT_EQ(index.pairs[0].source, "cat1");
+  EXPECT_EQ(index.Find("mesh001")->class_name, "scape");
+  const ShapeGroundTruth gt = dataset->GroundTruth(*index.Find("mesh001"), 4);
+  EXPECT_EQ(gt.ids, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(gt.sym_ids, (std::vector<int>{1, 0, 2, 3}));
+  EXPECT_TRUE(dataset->GroundTruth(*index.Find("cat0"), 5).sym_ids.empty());
+  const DatasetIndex restricted =
+      Create("{type: same_connectivity, root: " + root + ", classes: [scape], max_pairs: 2}")
+          ->Load();
+  EXPECT_EQ(restricted.pairs.size(), 2u);
+}
+
+TEST(SameConnectivity, RejectsMalformedInputNamingFileAndLine) {
+  TempDir dir;
+  const std::string root = dir.path();
+  WriteText(root + "/scape/mesh000.off", Tetrahedron());
+  WriteText(root + "/scape/mesh001.off", Tetrahedron());
+  SameConnectivityDataset dataset(SameConnectivityOptions{root, {}});
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"scape/sym.txt: 3 lines", "have 4 vertices"});
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n5\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"scape/sym.txt:4: vertex id 5 out of range [1, 4]"});
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n4\n");
+  ExpectError<InvalidInputError>(
+      [&] { dataset.GroundTruth({"mesh000", "scape", root + "/scape/mesh000.off"}, 5); },
+      {"sym.txt: 4 lines", "mesh000.off has 5 vertices"});
+  WriteText(root + "/scape/pairs.txt", "mesh000 mesh001\nmesh000 mesh009\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"scape/pairs.txt:2: unknown shape 'mesh009'"});
+  fs::remove(root + "/scape/pairs.txt");
+  WriteText(root + "/scape/mesh002.off", Tetrahedron(2));
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"mesh002.off: 6 vertices", "mesh000.off has 4"});
+  fs::remove(root + "/scape/mesh002.off");
+  WriteText(root + "/other/mesh001.off", Tetrahedron());
+  ExpectError<InvalidInputError>([&] { dataset.Load(); }, {"shape name 'mesh001' is used twice"});
+  fs::remove_all(root + "/other");
+  WriteText(root + "/all_pairs.txt", "mesh000\tmesh001\nmesh001\tmeshX\n");
+  SameConnectivityDataset listed(SameConnectivityOptions{root, {{}, 0, "all_pairs.txt"}});
+  ExpectError<InvalidInputError>([&] { listed.Load(); },
+                                 {"all_pairs.txt:2: unknown shape 'meshX'"});
+}
+
+// --- kim2011 ---------------------------------------------------------------------------------
+
+// Data/SCAPE with three meshes; mesh002 lacks the nose; left/right hands are mirror pairs.
+void WriteKimTree(const std::string& root) {
+  const std::string set = root + "/Data/SCAPE";
+  for (const char* name : {"mesh000", "mesh001", "mesh002"}) {
+    WriteText(set + "/Meshes/" + name + ".off", Tetrahedron(2));
+  }
+  WriteText(set + "/Landmarks/mesh000.vts", "# id name\n0 left_hand\n1 right_hand\n2 nose\n");
+  WriteText(set + "/Landmarks/mesh001.vts", "3 nose\n4 right_hand\n5 left_hand\n");
+  WriteText(set + "/Landmarks/mesh002.vts", "1 left_hand\n\n0 right_hand\n");
+  WriteText(set + "/symmetric_landmarks.txt", "left_hand right_hand\n");
+  WriteText(set + "/pairs.txt", "mesh000 mesh001\nmesh001 mesh002\n");
+  WriteText(root + "/Data/TOSCA/Meshes/cat0.off", Tetrahedron());
+  WriteText(root + "/Data/TOSCA/Meshes/cat1.off", Tetrahedron());
+  WriteText(root + "/Data/TOSCA/Landmarks/cat0.vts", "0 tail\n");
+  WriteText(root + "/Data/TOSCA/Landmarks/cat1.vts", "3 tail\n");
+}
+
+TEST(Kim2011, ReadsNamedLandmarksAndMirrorPairs) {
+  TempDir dir;
+  WriteKimTree(dir.path());
+  auto dataset = Create("{type: kim2011, root: " + dir.path() + "}");
+  const DatasetIndex index = dataset->Load();
+  ASSERT_EQ(index.shapes.size(), 5u);
+  ASSERT_EQ(index.pairs.size(), 3u);  // SCAPE: listed 2; TOSCA: all pairs (1)
+  EXPECT_EQ(index.Find("mesh001")->class_name, "SCAPE");
+  EXPECT_EQ(index.Find("cat0")->mesh_path, dir.path() + "/Data/TOSCA/Meshes/cat0.off");
+  // Lines: left_hand, nose, right_hand (sorted names of the set).
+  const ShapeGroundTruth m1 = dataset->GroundTruth(*index.Find("mesh001"), 6);
+  EXPECT_EQ(m1.ids, (std::vector<int>{5, 3, 4}));
+  EXPECT_EQ(m1.sym_ids, (std::vector<int>{4, 3, 5}));
+  const ShapeGroundTruth m2 = dataset->GroundTruth(*index.Find("mesh002"), 6);
+  EXPECT_EQ(m2.ids, (std::vector<int>{1, -1, 0}));
+  EXPECT_EQ(m2.sym_ids, (std::vector<int>{0, -1, 1}));
+  const ShapeGroundTruth cat = dataset->GroundTruth(*index.Find("cat1"), 4);
+  EXPECT_EQ(cat.ids, (std::vector<int>{3}));
+  EXPECT_TRUE(cat.sym_ids.empty());  // TOSCA set has no symmetric_landmarks.txt
+  // 1-based ids and set restriction.
+  auto one_based =
+      Create("{type: kim2011, root: " + dir.path() + ", id_base: 1, classes: [TOSCA]}");
+  const DatasetIndex tosca = one_based->Load();
+  ASSERT_EQ(tosca.shapes.size(), 2u);
+  ExpectError<InvalidInputError>([&] { one_based->GroundTruth(*tosca.Find("cat0"), 4); },
+                                 {"cat0.vts:1: vertex id 0 out of range [1, 4]"});
+}
+
+TEST(Kim2011, RejectsMalformedInputNamingFileAndLine) {
+  TempDir dir;
+  const std::string root = dir.path();
+  WriteKimTree(root);
+  Kim2011Dataset dataset(Kim2011Options{root, 0, {}});
+  const std::string set = root + "/Data/SCAPE";
+  const DatasetShape mesh001{"mesh001", "SCAPE", set + "/Meshes/mesh001.off"};
+  ExpectError<InvalidInputError>([&] { dataset.GroundTruth(mesh001, 5); },
+                                 {"Landmarks/mesh001.vts:3: vertex id 5 out of range [0, 4]"});
+  WriteText(set + "/Landmarks/mesh001.vts", "3 nose\n4 right_hand\n5 nose\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"mesh001.vts:3: landmark 'nose' already given on line 1"});
+  WriteText(set + "/Landmarks/mesh001.vts", "3 nose\nright_hand 4\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"mesh001.vts:2: expected '<vertex id> <landmark name>'"});
+  WriteText(set + "/Landmarks/mesh001.vts", "3 nose\n4 right_hand\n5 left_hand\n");
+  WriteText(set + "/symmetric_landmarks.txt", "left_hand right_hand\nleft_eye right_eye\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"symmetric_landmarks.txt:2: unknown landmark 'left_eye'"});
+  WriteText(set + "/symmetric_landmarks.txt", "left_hand right_hand\nnose left_hand\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"symmetric_landmarks.txt:2: landmark 'left_hand' already paired"});
+  WriteText(set + "/symmetric_landmarks.txt", "left_hand right_hand\n");
+  WriteText(set + "/pairs.txt", "mesh000 mesh001\nmesh001 mesh003\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"SCAPE/pairs.txt:2: unknown shape 'mesh003'"});
+  WriteText(set + "/pairs.txt", "mesh000 mesh001\n");
+  fs::remove(set + "/Landmarks/mesh002.vts");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"missing landmark file", "Landmarks/mesh002.vts"});
+  WriteText(set + "/Landmarks/mesh002.vts", "1 left_hand\n");
+  WriteText(set + "/Landmarks/mesh009.vts", "1 left_hand\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); },
+                                 {"landmark file", "mesh009.vts has no mesh"});
+  fs::remove(set + "/Landmarks/mesh009.vts");
+  EXPECT_NO_THROW(dataset.Load());
+  ExpectError<IoError>([&] { Kim2011Dataset(Kim2011Options{root + "/x", 0, {}}).Load(); },
+                       {"not a directory"});
+}
+
+// --- synthetic -------------------------------------------------------------------------------
+
+TEST(SyntheticDataset, GeneratesIntoTheCacheOnceAndReadsIt) {
+  TempDir dir;
+  const std::string yaml = "{type: synthetic, kinds: [humanoid, quadruped], poses: 3, vertices: 800, "
+                           "partial: 0.34, cache: " + dir.File("cache") + "}";
+  auto dataset = Create(yaml);
+  const DatasetIndex index = dataset->Load();
+  ASSERT_EQ(index.shapes.size(), 6u);
+  ASSERT_EQ(index.pairs.size(), 6u);
+  EXPECT_EQ(index.Find("quadruped2")->class_name, "quadruped");
+  const std::string readme = dir.File("cache/README.md");
+  const auto written = fs::last_write_time(readme);
+  const DatasetShape& s = *index.Find("humanoid1");
+  const int n = CountMeshVertices(s.mesh_path);
+  const ShapeGroundTruth gt = dataset->GroundTruth(s, n);
+  EXPECT_FALSE(gt.ids.empty());
+  EXPECT_EQ(gt.sym_ids.size(), gt.ids.size());
+  // A second dataset with the same cache reads it without generating again.
+  auto again = Create(yaml);
+  EXPECT_EQ(again->Load().pairs.size(), 6u);
+  EXPECT_EQ(fs::last_write_time(readme), written);
+  // Restrictions apply to the generated data.
+  auto restricted = Create("{type: synthetic, kinds: [humanoid, quadruped], poses: 3, "
+                           "vertices: 800, partial: 0.34, classes: [quadruped], max_pairs: 2, "
+                           "cache: " + dir.File("cache") + "}");
+  EXPECT_EQ(restricted->Load().pairs.size(), 2u);
+}
+
+TEST(SyntheticDataset, DefaultCacheIsKeyedByTheGeneratorOptions) {
+  auto a = Create("{type: synthetic, poses: 3}");
+  auto b = Create("{type: synthetic, poses: 3, seed: 2}");
+  auto c = Create("{type: synthetic, poses: 3, max_pairs: 1}");
+  const auto* sa = dynamic_cast<SyntheticDataset*>(a.get());
+  const auto* sb = dynamic_cast<SyntheticDataset*>(b.get());
+  const auto* sc = dynamic_cast<SyntheticDataset*>(c.get());
+  ASSERT_TRUE(sa && sb && sc);
+  EXPECT_EQ(sa->cache().rfind("results/.cache/synthetic/", 0), 0u) << sa->cache();
+  EXPECT_NE(sa->cache(), sb->cache());
+  EXPECT_EQ(sa->cache(), sc->cache());  // restrictions do not change what is generated
+  ExpectError<ConfigError>([&] { Create("{type: synthetic, kinds: [horse]}"); },
+                           {"dataset.kinds", "invalid kind 'horse'"});
+  ExpectError<ConfigError>([&] { Create("{type: synthetic, noise: 2}"); },
+                           {"dataset.noise", "out of range"});
+  ExpectError<ConfigError>([&] { Create("{type: synthetic, pose: 3}"); }, {"unknown key 'pose'"});
+}
+
+}  // namespace
+}  // namespace symembed
