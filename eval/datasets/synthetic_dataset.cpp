@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bump when the generator's output changes for the same options, so stale caches are not used.
-constexpr const char* kGeneratorVersion = "synthetic-generator-1";
+constexpr const char* kGeneratorVersion = "synthetic-generator-2";
 
 }  // namespace
 

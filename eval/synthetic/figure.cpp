@@ -13,9 +13,12 @@ namespace {
 
 // A cross-section ring of a limb: distance from the torso face along the limb, half sizes
 // along the two world axes perpendicular to the limb (in increasing axis order), and the bone
-// blend b: weight 1 - frac(b) on limb bone floor(b), frac(b) on the next; bone -1 is the torso.
+// blend b: weight 1 - frac(b) on limb bone floor(b), frac(b) on the next; bone -1 is the torso;
+// and a forward (+z) shift of the ring's centre (faces and feet point forwards, so that the
+// figure is not front-back symmetric).
 struct RingSpec {
   double d, h1, h2, blend;
+  double forward = 0.0;
 };
 
 // A limb bone: its joint's distance from the torso face, rotation ranges in degrees.
@@ -43,7 +46,7 @@ FigureSpec HumanoidSpec() {
   FigureSpec s;
   s.lines[0] = {-0.18, -0.06, 0.06, 0.18};
   s.lines[1] = {0.85, 1.05, 1.27, 1.45};
-  s.lines[2] = {-0.11, -0.05, 0.05, 0.11};
+  s.lines[2] = {-0.10, -0.05, 0.05, 0.12};  // the chest bulges forwards
   // Head on the top face; neck yaw/pitch/roll and a smaller head motion.
   s.limbs.push_back({false, 1, +1, {1, 3, 1},
                      {{"neck", 0.0, {-15, 20}, {-35, 35}, {-15, 15}},
@@ -51,9 +54,9 @@ FigureSpec HumanoidSpec() {
                      {{0.03, 0.05, 0.045, -0.5},
                       {0.08, 0.045, 0.045, 0.0},
                       {0.12, 0.06, 0.07, 0.5},
-                      {0.20, 0.09, 0.10, 1.0},
-                      {0.30, 0.085, 0.095, 1.0},
-                      {0.36, 0.05, 0.06, 1.0}},
+                      {0.20, 0.09, 0.10, 1.0, 0.015},
+                      {0.30, 0.085, 0.095, 1.0, 0.02},
+                      {0.36, 0.05, 0.06, 1.0, 0.01}},
                      1});
   // Left arm in T-pose along +x from the upper cell of the lateral face. Rz < 0 lowers it,
   // Ry < 0 swings it forward; the elbow flexes forward (Ry < 0).
@@ -80,8 +83,8 @@ FigureSpec HumanoidSpec() {
                       {0.42, 0.045, 0.05, 0.5},
                       {0.62, 0.04, 0.045, 1.0},
                       {0.78, 0.035, 0.035, 1.5},
-                      {0.84, 0.04, 0.06, 2.0},
-                      {0.88, 0.035, 0.05, 2.0}},
+                      {0.84, 0.04, 0.07, 2.0, 0.04},
+                      {0.88, 0.035, 0.06, 2.0, 0.06}},
                      2});
   return s;
 }
@@ -260,14 +263,15 @@ class Builder {
 
     auto limb_bone = [&](int i) { return i < 0 ? 0 : bone_ids[i]; };
     RingSpec prev = {0.0, 0.5 * std::abs(points_[face[0]][e1] - points_[face[2]][e1]),
-                     0.5 * std::abs(points_[face[0]][e2] - points_[face[2]][e2]), -1.0};
+                     0.5 * std::abs(points_[face[0]][e2] - points_[face[2]][e2]), -1.0, 0.0};
     std::array<int, 4> loop = face;
     for (const RingSpec& target : limb.rings) {
       for (int step = 1; step <= rps_; ++step) {
         const double t = static_cast<double>(step) / rps_;
         const RingSpec r = {prev.d + t * (target.d - prev.d), prev.h1 + t * (target.h1 - prev.h1),
                             prev.h2 + t * (target.h2 - prev.h2),
-                            prev.blend + t * (target.blend - prev.blend)};
+                            prev.blend + t * (target.blend - prev.blend),
+                            prev.forward + t * (target.forward - prev.forward)};
         const int lo = static_cast<int>(std::floor(r.blend));
         const double frac = r.blend - lo;
         std::vector<std::pair<int, double>> w = {{limb_bone(lo), 1.0 - frac}};
@@ -275,6 +279,7 @@ class Builder {
         std::array<int, 4> ring;
         for (int k = 0; k < 4; ++k) {
           Eigen::Vector3d p = center + r.d * n;
+          p.z() += r.forward;
           p[e1] += s1[k] * r.h1;
           p[e2] += s2[k] * r.h2;
           ring[k] = AddPoint(p, w);
