@@ -188,29 +188,85 @@ FastMarchingGeodesicSolver::FastMarchingGeodesicSolver(const Surface& s,
       q11 = g00 / det;
     }
     const double lp = st.pv.norm(), lr = st.rv.norm();
-    updates_[fill[st.p]++] = {st.c, st.r, q00, q01, q11, lp, lr};
-    updates_[fill[st.r]++] = {st.c, st.p, q11, q01, q00, lr, lp};
+    const float f00 = static_cast<float>(q00), f01 = static_cast<float>(q01),
+                f11 = static_cast<float>(q11);
+    updates_[fill[st.p]++] = {st.c, st.r, f00, f01, f11, static_cast<float>(lp),
+                              static_cast<float>(lr)};
+    updates_[fill[st.r]++] = {st.c, st.p, f11, f01, f00, static_cast<float>(lr),
+                              static_cast<float>(lp)};
   }
 }
 
+// Per-thread state of one sweep: an indexed binary min-heap on T with decrease-key (each
+// vertex is in the heap at most once, so the heap stays as small as the narrow band) and the
+// accepted flags.
 template <typename Scalar>
-void FastMarchingGeodesicSolver::Solve(int source, Scalar* T, std::vector<char>* accepted_ptr,
-                                       std::vector<std::pair<Scalar, int>>* heap) const {
+struct FastMarchingGeodesicSolver::Workspace {
+  std::vector<int> heap;      // vertex ids, heap-ordered by T
+  std::vector<int> position;  // #V: index in heap, -1 when not in the heap
+  std::vector<char> accepted;
+  const Scalar* T = nullptr;
+
+  void Reset(int n, const Scalar* values) {
+    heap.clear();
+    position.assign(n, -1);
+    accepted.assign(n, 0);
+    T = values;
+  }
+  void SiftUp(int i) {
+    const int v = heap[i];
+    while (i > 0) {
+      const int parent = (i - 1) / 2;
+      if (T[heap[parent]] <= T[v]) break;
+      heap[i] = heap[parent];
+      position[heap[i]] = i;
+      i = parent;
+    }
+    heap[i] = v;
+    position[v] = i;
+  }
+  // Inserts v or, when it is already in the heap, restores order after T[v] decreased.
+  void PushOrDecrease(int v) {
+    if (position[v] < 0) {
+      heap.push_back(v);
+      position[v] = static_cast<int>(heap.size()) - 1;
+    }
+    SiftUp(position[v]);
+  }
+  int PopMin() {
+    const int top = heap[0];
+    position[top] = -1;
+    const int last = heap.back();
+    heap.pop_back();
+    const int n = static_cast<int>(heap.size());
+    if (n > 0) {
+      int i = 0;
+      while (true) {
+        int child = 2 * i + 1;
+        if (child >= n) break;
+        if (child + 1 < n && T[heap[child + 1]] < T[heap[child]]) ++child;
+        if (T[last] <= T[heap[child]]) break;
+        heap[i] = heap[child];
+        position[heap[i]] = i;
+        i = child;
+      }
+      heap[i] = last;
+      position[last] = i;
+    }
+    return top;
+  }
+};
+
+template <typename Scalar>
+void FastMarchingGeodesicSolver::Solve(int source, Scalar* T, Workspace<Scalar>* ws) const {
   const int n = num_vertices_;
-  std::vector<char>& accepted = *accepted_ptr;
   std::fill(T, T + n, std::numeric_limits<Scalar>::infinity());
-  accepted.assign(n, 0);
-  heap->clear();
-  auto greater = [](const std::pair<Scalar, int>& a, const std::pair<Scalar, int>& b) {
-    return a.first > b.first;
-  };
+  ws->Reset(n, T);
+  std::vector<char>& accepted = ws->accepted;
   T[source] = 0;
-  heap->emplace_back(Scalar(0), source);
-  while (!heap->empty()) {
-    std::pop_heap(heap->begin(), heap->end(), greater);
-    const auto [d, v] = heap->back();
-    heap->pop_back();
-    if (accepted[v] || d > T[v]) continue;  // stale heap entry
+  ws->PushOrDecrease(source);
+  while (!ws->heap.empty()) {
+    const int v = ws->PopMin();
     accepted[v] = 1;
     const double tv = T[v];
     for (int k = offsets_[v]; k < offsets_[v + 1]; ++k) {
@@ -221,16 +277,16 @@ void FastMarchingGeodesicSolver::Solve(int source, Scalar* T, std::vector<char>*
         const double to = T[u.other];
         best = std::min(best, to + u.len_o);
         // Larger root of a p^2 - 2 b p + c = 0 (see the header).
-        const double a = u.q_vv + 2.0 * u.q_vo + u.q_oo;
+        const double qvv = u.q_vv, qvo = u.q_vo, qoo = u.q_oo;
+        const double a = qvv + 2.0 * qvo + qoo;
         if (a > 0.0) {
-          const double b = (u.q_vv + u.q_vo) * tv + (u.q_vo + u.q_oo) * to;
-          const double c = u.q_vv * tv * tv + 2.0 * u.q_vo * tv * to + u.q_oo * to * to - 1.0;
+          const double b = (qvv + qvo) * tv + (qvo + qoo) * to;
+          const double c = qvv * tv * tv + 2.0 * qvo * tv * to + qoo * to * to - 1.0;
           const double disc = b * b - a * c;
           if (disc >= 0.0) {
             const double p = (b + std::sqrt(disc)) / a;
             // Causality: the gradient direction lies in the cone of the two edges.
-            if (u.q_vv * (p - tv) + u.q_vo * (p - to) >= 0.0 &&
-                u.q_vo * (p - tv) + u.q_oo * (p - to) >= 0.0) {
+            if (qvv * (p - tv) + qvo * (p - to) >= 0.0 && qvo * (p - tv) + qoo * (p - to) >= 0.0) {
               best = std::min(best, p);
             }
           }
@@ -238,8 +294,7 @@ void FastMarchingGeodesicSolver::Solve(int source, Scalar* T, std::vector<char>*
       }
       if (best < T[u.target]) {
         T[u.target] = static_cast<Scalar>(best);
-        heap->emplace_back(static_cast<Scalar>(best), u.target);
-        std::push_heap(heap->begin(), heap->end(), greater);
+        ws->PushOrDecrease(u.target);
       }
     }
   }
@@ -250,17 +305,15 @@ Eigen::MatrixXd FastMarchingGeodesicSolver::Distances(const std::vector<int>& so
   if (options_.common.precision == GeodesicPrecision::kFloat) {
     return ParallelRows(sources, n, options_.common.threads, [&](int i, double* out) {
       thread_local std::vector<float> T;
-      thread_local std::vector<char> accepted;
-      thread_local std::vector<std::pair<float, int>> heap;
+      thread_local Workspace<float> ws;
       T.resize(n);
-      Solve<float>(sources[i], T.data(), &accepted, &heap);
+      Solve<float>(sources[i], T.data(), &ws);
       for (int v = 0; v < n; ++v) out[v] = T[v];
     });
   }
   return ParallelRows(sources, n, options_.common.threads, [&](int i, double* out) {
-    thread_local std::vector<char> accepted;
-    thread_local std::vector<std::pair<double, int>> heap;
-    Solve<double>(sources[i], out, &accepted, &heap);
+    thread_local Workspace<double> ws;
+    Solve<double>(sources[i], out, &ws);
   });
 }
 

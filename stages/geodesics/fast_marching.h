@@ -49,18 +49,22 @@ class FastMarchingGeodesicSolver : public GeodesicSolver {
   int obtuse_corners() const { return obtuse_corners_; }  // corners with angle > 90 deg
   int split_corners() const { return split_corners_; }    // of those, split by unfolding
 
-  // One update of `target` triggered by accepting `v`, using `other` if it is accepted.
+  // One update of `target` triggered by accepting `v`, using `other` if it is accepted. The
+  // coefficients are stored in single precision (28 bytes per update instead of 48: the sweep
+  // is bound by memory traffic through this array) and used in double; their relative error
+  // of 6e-8 is far below the method's O(h) error.
   struct Update {
     int target;
     int other;
-    double q_vv, q_vo, q_oo;  // inverse Gram matrix of (v - target, other - target)
-    double len_v, len_o;      // |v - target|, |other - target|
+    float q_vv, q_vo, q_oo;  // inverse Gram matrix of (v - target, other - target)
+    float len_v, len_o;      // |v - target|, |other - target|
   };
 
  private:
   template <typename Scalar>
-  void Solve(int source, Scalar* T, std::vector<char>* accepted,
-             std::vector<std::pair<Scalar, int>>* heap) const;
+  struct Workspace;
+  template <typename Scalar>
+  void Solve(int source, Scalar* T, Workspace<Scalar>* ws) const;
 
   int num_vertices_ = 0;
   std::vector<int> offsets_;       // #V + 1: updates triggered by vertex v

@@ -6,6 +6,8 @@
 //   BM_GeodesicsScaling/<solver>/<n> Prepare + 100 sources at 5k, 20k, 50k (Complexity)
 //   BM_Sampling/<n>                  farthest point sampling, 1,000 samples
 //   BM_Curvature/<n>                 ComputeCurvature with default options
+//   BM_GeodesicsTosca/<solver>       Prepare + 1,000 farthest-point sources on TOSCA cat0
+//                                    (5,000 vertices, preprocessed), when the data is present
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -13,7 +15,11 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+
 #include "core/curvature.h"
+#include "core/mesh_io.h"
+#include "stages/preprocess/standard.h"
 #include "registry/registry.h"
 #include "stages/sampling/farthest_point.h"
 #include "tests/test_util.h"
@@ -55,6 +61,19 @@ void BM_Geodesics(benchmark::State& state, const Registry* registry, std::string
   state.counters["vertices"] = s.NumVertices();
   state.counters["sources"] = num_sources;
   state.SetComplexityN(s.NumVertices());
+}
+
+void BM_GeodesicsTosca(benchmark::State& state, const Registry* registry, std::string name,
+                       const Surface* s) {
+  const auto stage = MakeStage(*registry, name);
+  const std::vector<int> sources = FarthestPointSampling(*s, {1000, 1}).samples;
+  for (auto _ : state) {
+    const auto solver = stage->Prepare(*s);
+    Eigen::MatrixXd D = solver->Distances(sources);
+    benchmark::DoNotOptimize(D.data());
+  }
+  state.counters["vertices"] = s->NumVertices();
+  state.counters["sources"] = static_cast<double>(sources.size());
 }
 
 void BM_GeodesicsPrepare(benchmark::State& state, const Registry* registry, std::string name) {
@@ -110,6 +129,16 @@ int main(int argc, char** argv) {
                                  &registry, name, 100)
         ->Arg(symembed::kSmall)->Arg(symembed::kMedium)->Arg(symembed::kLarge)
         ->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity();
+  }
+  const std::string tosca = symembed::testing::DataRoot() + "/tosca_iso_5k/shapes/cat0.off";
+  static symembed::Surface cat;
+  if (!symembed::testing::DataRoot().empty() && std::filesystem::exists(tosca)) {
+    cat = symembed::StandardPreprocess(symembed::LoadSurface(tosca)).surface;
+    for (const std::string& name : registry.Names("geodesics")) {
+      benchmark::RegisterBenchmark(("BM_GeodesicsTosca/" + name).c_str(),
+                                   symembed::BM_GeodesicsTosca, &registry, name, &cat)
+          ->Unit(benchmark::kMillisecond)->UseRealTime();
+    }
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
