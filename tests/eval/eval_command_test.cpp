@@ -1,0 +1,76 @@
+// `symembed eval` end to end on a small pairs_vts dataset written by the test.
+#include <gtest/gtest.h>
+
+#include "core/mesh_io.h"
+#include "core/primitives.h"
+#include "eval/json.h"
+#include "eval/map_io.h"
+#include "registry/registry.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+constexpr int kN = 6;  // 6 x 6 grids
+
+int Mirror(int v) { return (v / kN) * kN + (kN - 1 - v % kN); }
+
+// shapes a, b, c (same grid), identity ground truth, mirror as symmetric ground truth.
+void WriteDataset(const std::string& root) {
+  std::string vts, sym;
+  for (int v = 0; v < kN * kN; ++v) {
+    vts += std::to_string(v + 1) + "\n";
+    sym += std::to_string(Mirror(v) + 1) + "\n";
+  }
+  for (const char* name : {"a", "b", "c"}) {
+    SaveMesh(root + "/shapes/" + name + ".off", GridMesh(kN, kN, 2.0, 2.0));
+    testing::WriteText(root + "/corres/" + name + ".vts", vts);
+    testing::WriteText(root + "/corres/" + name + ".sym.vts", sym);
+  }
+  testing::WriteText(root + "/test_pairs.txt", "a\tb\na\tc\nb\tc\n\n");
+}
+
+TEST(EvalCommand, ScoresMapsRecordsMalformedOnesAndWritesOutputs) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  if (!registry.Has("dataset", "pairs_vts") || !registry.Has("geodesics", "dijkstra")) {
+    GTEST_SKIP() << "needs the pairs_vts loader and the dijkstra stage";
+  }
+  testing::TempDir dir;
+  WriteDataset(dir.File("data"));
+  std::vector<int> identity(kN * kN), mirror(kN * kN);
+  for (int v = 0; v < kN * kN; ++v) {
+    identity[v] = v;
+    mirror[v] = Mirror(v);
+  }
+  WriteMapFile(dir.File("maps/a_b.map"), identity);
+  testing::WriteText(dir.File("maps/a_c.map"), "1\n2\n3\n");  // wrong length
+  WriteMapFile(dir.File("maps/b_c.map"), mirror);
+  std::string out;
+  const int code = testing::RunShell(std::string(SYMEMBED_BINARY) + " eval --dataset " +
+                                         dir.File("data") + " --maps " + dir.File("maps") +
+                                         " --base 1 --name grid --geodesics dijkstra --out " +
+                                         dir.File("out"),
+                                     &out);
+  EXPECT_EQ(code, 1) << out;  // one pair failed: reported, not fatal
+  EXPECT_NE(out.find("a -> c"), std::string::npos) << out;
+  const std::string pairs = testing::ReadText(dir.File("out/pairs.csv"));
+  EXPECT_NE(pairs.find("a,b,ok,36,0,0,0,100,100,100,"), std::string::npos) << pairs;
+  EXPECT_NE(pairs.find("a,c,failed"), std::string::npos) << pairs;
+  EXPECT_NE(pairs.find("3 entries, expected 36"), std::string::npos) << pairs;
+  EXPECT_NE(pairs.find(",left_right,"), std::string::npos) << pairs;
+  const JsonValue summary = ParseJson(testing::ReadText(dir.File("out/summary.json")));
+  EXPECT_EQ(summary.Get("pairs").AsNumber(), 3);
+  EXPECT_EQ(summary.Get("failed_pairs").AsNumber(), 1);
+  EXPECT_EQ(summary.Get("flipped_pairs").Get("left_right").AsNumber(), 1);
+  EXPECT_EQ(summary.Get("evaluation_geodesics").AsString(), "dijkstra");
+  EXPECT_EQ(summary.Get("mean_flip_tolerant").AsNumber(), 0.0);
+  EXPECT_FALSE(testing::ReadText(dir.File("out/curve.csv")).empty());
+  EXPECT_FALSE(testing::ReadText(dir.File("out/timings.csv")).empty());
+
+  // Usage errors exit 2.
+  EXPECT_EQ(testing::RunShell(std::string(SYMEMBED_BINARY) + " eval --maps x", &out), 2) << out;
+}
+
+}  // namespace
+}  // namespace symembed
