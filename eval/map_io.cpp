@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -85,6 +86,9 @@ std::string FormatMap(const std::vector<int>& map_zero_based) {
 }
 
 void WriteMapFile(const std::string& path, const std::vector<int>& map_zero_based) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   std::ofstream out(path, std::ios::binary);
   out << FormatMap(map_zero_based);
   if (!out) throw IoError(path + ": cannot write map file");

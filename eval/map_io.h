@@ -23,7 +23,8 @@ std::vector<int> ReadMapFile(const std::string& path, int base, int expected_len
 // The text of a map written 1-based, one id per line ("\n"-terminated).
 std::string FormatMap(const std::vector<int>& map_zero_based);
 
-// Writes FormatMap(map) to path (not atomically; the caller renames when it needs that).
+// Writes FormatMap(map) to path, creating its folder (not atomically; the caller renames when
+// it needs that).
 // Throws IoError.
 void WriteMapFile(const std::string& path, const std::vector<int>& map_zero_based);
 

@@ -1,6 +1,8 @@
 // `symembed eval` end to end on a small pairs_vts dataset written by the test.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "core/mesh_io.h"
 #include "core/primitives.h"
 #include "eval/json.h"
@@ -22,6 +24,7 @@ void WriteDataset(const std::string& root) {
     vts += std::to_string(v + 1) + "\n";
     sym += std::to_string(Mirror(v) + 1) + "\n";
   }
+  std::filesystem::create_directories(root + "/shapes");
   for (const char* name : {"a", "b", "c"}) {
     SaveMesh(root + "/shapes/" + name + ".off", GridMesh(kN, kN, 2.0, 2.0));
     testing::WriteText(root + "/corres/" + name + ".vts", vts);
