@@ -122,6 +122,15 @@ CheckResult CompareSummaries(const JsonValue& baseline, const JsonValue& current
     result.worse = result.worse || c.worse;
     result.metrics.push_back(c);
   }
+  // Numbers measured differently are not comparable; say so without failing.
+  for (const char* key : {"evaluation_geodesics", "evaluation_points", "max_error", "step"}) {
+    const std::string old_text = WriteJson(baseline.Get(key), 0);
+    const std::string new_text = WriteJson(current.Get(key), 0);
+    if (baseline.Has(key) && current.Has(key) && old_text != new_text) {
+      result.notes.push_back(std::string("note: ") + key + " differs: " + old_text + " -> " +
+                             new_text);
+    }
+  }
   return result;
 }
 
@@ -142,6 +151,7 @@ std::string FormatCheck(const CheckResult& result) {
     }
     out << "\n";
   }
+  for (const auto& note : result.notes) out << note << "\n";
   out << (result.worse ? "check: WORSE than the baseline\n" : "check: OK\n");
   return out.str();
 }

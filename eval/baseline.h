@@ -39,14 +39,16 @@ struct MetricComparison {
 
 struct CheckResult {
   std::vector<MetricComparison> metrics;
-  bool worse = false;  // any metric worse
+  bool worse = false;               // any metric worse
+  std::vector<std::string> notes;   // evaluation settings that differ (not failures)
 };
 
 // Compares two parsed summaries; tolerances override the defaults (keys as ParseTolerances).
 CheckResult CompareSummaries(const JsonValue& baseline, const JsonValue& current,
                              const std::map<std::string, double>& tolerances = {});
 
-// One line per metric: "key  old -> new  (tolerance t)  OK|WORSE|NEW", then a verdict line.
+// One line per metric: "key  old -> new  (tolerance t)  OK|WORSE|NEW", the notes, then a
+// verdict line.
 std::string FormatCheck(const CheckResult& result);
 
 }  // namespace symembed

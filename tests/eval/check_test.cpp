@@ -55,6 +55,13 @@ TEST(Check, EqualAndBetterPassWorseFails) {
   flipped.flipped_up_down = 1;
   EXPECT_TRUE(CompareSummaries(Json(base), Json(flipped)).worse);
 
+  VariantSummary other_points = base;
+  other_points.points_option = 1024;
+  const CheckResult noted = CompareSummaries(Json(base), Json(other_points));
+  EXPECT_FALSE(noted.worse);
+  ASSERT_EQ(noted.notes.size(), 1u);
+  EXPECT_NE(noted.notes[0].find("evaluation_points"), std::string::npos);
+
   VariantSummary within = base;
   within.mean_direct = 0.0515;  // +0.0015 <= 0.002
   EXPECT_FALSE(CompareSummaries(Json(base), Json(within)).worse);
