@@ -1,0 +1,125 @@
+#include "registry/pair_pipeline.h"
+
+#include <chrono>
+#include <limits>
+
+namespace symembed {
+namespace {
+
+double Since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Rows of Y rotated by R (y' = R y for every row y).
+Eigen::MatrixX3d Rotated(const Eigen::MatrixX3d& Y, const Eigen::Matrix3d& R) {
+  return Y * R.transpose();
+}
+
+void CheckMap(const MatchResult& result, int source_vertices, int target_vertices,
+              const char* stage) {
+  if (static_cast<int>(result.map.size()) != source_vertices) {
+    throw SolverError(std::string(stage) + " returned a map of " +
+                      std::to_string(result.map.size()) + " entries for " +
+                      std::to_string(source_vertices) + " source vertices");
+  }
+  for (int t : result.map) {
+    if (t < 0 || t >= target_vertices) {
+      throw SolverError(std::string(stage) + " returned target vertex " + std::to_string(t) +
+                        " outside [0, " + std::to_string(target_vertices) + ")");
+    }
+  }
+}
+
+}  // namespace
+
+PairGroundTruth ToPreprocessedIds(const PairGroundTruth& ground_truth, const ShapeOutcome& source,
+                                  const ShapeOutcome& target) {
+  PairGroundTruth out;
+  const bool sym = ground_truth.target_sym_ids.size() == ground_truth.target_ids.size();
+  auto kept = [](const std::vector<int>& of_input, int v) {
+    return v >= 0 && v < static_cast<int>(of_input.size()) ? of_input[v] : -1;
+  };
+  for (size_t i = 0; i < ground_truth.source_ids.size(); ++i) {
+    const int s = kept(source.kept_of_input, ground_truth.source_ids[i]);
+    const int t = kept(target.kept_of_input, ground_truth.target_ids[i]);
+    const int t_sym = sym ? kept(target.kept_of_input, ground_truth.target_sym_ids[i]) : 0;
+    if (s < 0 || t < 0 || t_sym < 0) continue;
+    out.source_ids.push_back(s);
+    out.target_ids.push_back(t);
+    if (sym) out.target_sym_ids.push_back(t_sym);
+  }
+  return out;
+}
+
+PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
+                        const Pipeline& pipeline, const PairGroundTruth* ground_truth,
+                        const MeanErrorFunction& mean_error, StageCounters* counters) {
+  PairOutcome out;
+  const ShapeData& a = *source.data;
+  const ShapeData& b = *target.data;
+  const int nb = b.surface.NumVertices();
+
+  PairGroundTruth truth_pre;
+  if (ground_truth) truth_pre = ToPreprocessedIds(*ground_truth, source, target);
+  const PairInput input{a, b, ground_truth ? &truth_pre : nullptr};
+
+  auto start = std::chrono::steady_clock::now();
+  out.flip = pipeline.flip->Run(input);
+  out.times.push_back({"flip", Since(start), false});
+  counters->Executed("flip");
+  if (out.flip.chosen < 0 || out.flip.chosen > 3) {
+    throw SolverError("flip scorer chose candidate " + std::to_string(out.flip.chosen) +
+                      " outside [0, 3]");
+  }
+  const auto rotations = CandidateRotations();
+
+  start = std::chrono::steady_clock::now();
+  MatchResult matched = pipeline.matching->Run(a.Y, Rotated(b.Y, rotations[out.flip.chosen]));
+  out.times.push_back({"matching", Since(start), false});
+  counters->Executed("matching");
+  CheckMap(matched, a.surface.NumVertices(), nb, "matching");
+  out.matching_status = matched.status;
+
+  start = std::chrono::steady_clock::now();
+  MatchResult refined = pipeline.refine->Run(input, matched.map);
+  out.times.push_back({"refine", Since(start), false});
+  counters->Executed("refine");
+  CheckMap(refined, a.surface.NumVertices(), nb, "refine");
+  out.refine_status = refined.status;
+
+  out.map.resize(source.nearest_kept.size());
+  for (size_t v = 0; v < out.map.size(); ++v) {
+    out.map[v] = b.input_ids[refined.map[source.nearest_kept[v]]];
+  }
+
+  if (ground_truth && !ground_truth->source_ids.empty() && mean_error) {
+    start = std::chrono::steady_clock::now();
+    Eigen::MatrixX3d points(ground_truth->source_ids.size(), 3);
+    for (size_t i = 0; i < ground_truth->source_ids.size(); ++i) {
+      const int v = ground_truth->source_ids[i];
+      if (v < 0 || v >= static_cast<int>(source.nearest_kept.size())) {
+        throw InvalidInputError("ground truth names source vertex " + std::to_string(v) +
+                                " of a mesh with " +
+                                std::to_string(source.nearest_kept.size()) + " vertices");
+      }
+      points.row(i) = a.Y.row(source.nearest_kept[v]);
+    }
+    double best = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 4; ++c) {
+      MatchResult m = pipeline.matching->Run(points, Rotated(b.Y, rotations[c]));
+      CheckMap(m, static_cast<int>(points.rows()), nb, "matching");
+      std::vector<int> predicted(m.map.size());
+      for (size_t i = 0; i < m.map.size(); ++i) predicted[i] = b.input_ids[m.map[i]];
+      out.oracle_errors[c] = mean_error(predicted);
+      if (out.oracle_errors[c] < best) {
+        best = out.oracle_errors[c];
+        out.oracle = c;
+      }
+    }
+    out.times.push_back({"oracle", Since(start), false});
+    counters->Executed("oracle");
+  }
+  return out;
+}
+
+}  // namespace symembed

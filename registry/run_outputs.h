@@ -1,0 +1,45 @@
+// Small text files the runner writes beside the evaluator's outputs, and reads back on
+// --resume and in `symembed merge`:
+//   failures.csv       kind,source,target,message   (kind: shape | pair; target empty for a
+//                      shape); sorted, no duplicates, so shards merged equal a single run
+//   shapes/NAME.rec    per shape: "time<TAB>stage<TAB>seconds<TAB>cached" and
+//                      "report<TAB>name<TAB>value" lines
+//   variants.txt       in the experiment folder: the config's variant names, in order
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "registry/shape_pipeline.h"
+
+namespace symembed {
+
+struct Failure {
+  std::string kind;     // "shape" or "pair"
+  std::string source;   // the shape, or the pair's source
+  std::string target;   // the pair's target; empty for a shape
+  std::string message;
+  bool operator<(const Failure& other) const;
+  bool operator==(const Failure& other) const;
+};
+
+// Sorted and de-duplicated CSV (RFC 4180 quoting) with a header line.
+std::string FailuresCsv(std::vector<Failure> failures);
+// Throws InvalidInputError naming `where` and the line.
+std::vector<Failure> ParseFailuresCsv(const std::string& text, const std::string& where);
+
+struct ShapeRecord {
+  std::string name;
+  std::vector<StageTime> times;
+  Report report;
+};
+
+std::string FormatShapeRecord(const ShapeRecord& record);
+// Throws InvalidInputError naming `where` and the line.
+ShapeRecord ParseShapeRecord(const std::string& name, const std::string& text,
+                             const std::string& where);
+
+// "A_B": the file stem of a pair's record and map.
+std::string PairStem(const std::string& source, const std::string& target);
+
+}  // namespace symembed

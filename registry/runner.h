@@ -1,0 +1,113 @@
+// The experiment runner (`symembed run`): every variant of a config (or one), per-shape work
+// then per-pair work on a thread pool, per-shape stage outputs cached on disk
+// (registry/shape_pipeline.h), every finished pair written at once so that a killed run resumes.
+//
+// Outputs under out_dir (results/<experiment>):
+//   variants.txt                    the config's variant names in order
+//   <variant>/config.yaml           ResolvedConfigYaml
+//   <variant>/maps/A_B.map          1-based target input id per source input vertex (atomic)
+//   <variant>/pairs/A_B.rec         the evaluation's record of the pair (atomic, after the map)
+//   <variant>/shapes/NAME.rec       per-shape stage times and report (registry/run_outputs.h)
+//   <variant>/failures.csv          every failed shape and pair with its message
+//   + what RunEvaluation::WriteVariant / WriteExperiment write (summary, curves, comparison).
+// Pairs are processed in (source, target) order; shard i of N takes the pairs whose index in
+// that order is i modulo N. Whatever is in the variant folder depends only on the set of pair
+// records and failures, so shards merged (MergeRuns) and resumed runs equal a single run.
+//
+// The evaluation lives above this library (eval/), so it is reached through RunEvaluation.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "registry/config.h"
+#include "registry/pair_pipeline.h"
+#include "registry/run_outputs.h"
+#include "registry/shape_pipeline.h"
+
+namespace symembed {
+
+// What the evaluation sees of one pair.
+struct PairContext {
+  const DatasetShape& source_info;
+  const DatasetShape& target_info;
+  const ShapeOutcome& source;
+  const ShapeOutcome& target;
+  const PairGroundTruth& ground_truth;  // input ids (PairLines); empty without ground truth
+};
+
+// The evaluation of one variant's pairs. Thread-safe.
+class VariantEvaluation {
+ public:
+  virtual ~VariantEvaluation() = default;
+  // Mean direct error of predicted target input ids, one per line of pair.ground_truth
+  // (chooses the oracle candidate). May throw; the pair then fails.
+  virtual double MeanError(const PairContext& pair, const std::vector<int>& predicted) const = 0;
+  // The record text of a finished pair (written to pairs/A_B.rec). When the evaluation failed,
+  // sets *failure to the message; the pair is then a failure and no record is written.
+  virtual std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
+                               std::string* failure) const = 0;
+};
+
+struct VariantResults {
+  std::string variant;
+  std::string dir;                      // the variant folder (holds config.yaml)
+  std::vector<DatasetPair> pairs;       // the run's pairs, in (source, target) order
+  std::vector<std::string> records;     // per pair: record text, empty when it failed
+  std::vector<Failure> failures;        // sorted
+  std::vector<ShapeRecord> shapes;      // shapes of the pairs that have a record, by name
+  double wall_seconds = 0.0;
+  std::vector<std::string> merged_from;  // MergeRuns: the shards' variant folders; else empty
+};
+
+class RunEvaluation {
+ public:
+  virtual ~RunEvaluation() = default;
+  virtual std::unique_ptr<VariantEvaluation> ForVariant(const Pipeline& pipeline) = 0;
+  // The pair a record text describes (MergeRuns reads records back). Throws InvalidInputError.
+  virtual DatasetPair PairOfRecord(const std::string& record, const std::string& where) const = 0;
+  // Writes the variant's summary files from its records (also used by MergeRuns).
+  virtual void WriteVariant(const VariantResults& results) = 0;
+  // Writes the cross-variant files of the experiment folder (variants in config order; the
+  // ones without outputs in the folder are skipped).
+  virtual void WriteExperiment(const std::string& dir, const std::vector<std::string>& variants) = 0;
+};
+
+struct RunOptions {
+  std::string out_dir;        // results/<experiment>
+  std::string cache_dir;      // per-shape cache; empty: none
+  std::string variant;        // run only this one (empty: all)
+  int jobs = 0;               // worker threads (0: all cores)
+  bool resume = false;        // keep the pairs that already have a record
+  int shard_index = 0;        // this run's shard, in [0, shard_count)
+  int shard_count = 1;
+  bool quiet = false;
+  MeshLoader load_mesh;       // reads a mesh file (core/mesh_io.h LoadSurface)
+};
+
+struct RunStats {
+  std::map<std::string, int> executed;   // stage -> computations (cache misses included)
+  std::map<std::string, int> cache_hits; // stage -> disk cache hits
+  int shapes_computed = 0;
+  int pairs_total = 0;                   // pairs of the run (shard), all variants
+  int pairs_skipped = 0;                 // already had a record (--resume)
+  int pairs_done = 0;                    // computed now
+  std::vector<Failure> failures;         // this run's, all variants
+  bool ok() const { return failures.empty(); }
+};
+
+// Runs the experiment. Per-shape and per-pair failures are recorded and the run goes on; a
+// config, dataset index or output folder problem throws (ConfigError, InvalidInputError,
+// IoError).
+RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
+                       const RunOptions& options, RunEvaluation& evaluation);
+
+// Joins the output folders of sharded runs (each an out_dir of RunExperiment) into out_dir:
+// copies every variant's config.yaml (which must agree), maps, pair and shape records, merges
+// failures, then writes the summaries as a single run would. Throws InvalidInputError/IoError.
+// Returns the merged failures.
+std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
+                               const std::string& out_dir, RunEvaluation& evaluation);
+
+}  // namespace symembed

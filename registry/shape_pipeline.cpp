@@ -1,0 +1,243 @@
+#include "registry/shape_pipeline.h"
+
+#include <chrono>
+#include <filesystem>
+#include <limits>
+
+#include "registry/hash.h"
+
+namespace symembed {
+namespace {
+
+// The overloads of registry/serialize.h, visible beside the local ones below.
+using ::symembed::Read;
+using ::symembed::Write;
+
+// Part of every key: bump when a stage's cached layout or the key scheme changes.
+constexpr char kCacheScheme[] = "symembed-shape-cache-1";
+
+// A cached stage output together with the seconds it took to compute.
+template <typename T>
+struct Timed {
+  T value;
+  double seconds = 0.0;
+};
+
+struct Distances {
+  Eigen::MatrixXd D;  // #S x #V, float precision
+};
+
+void Write(ArchiveWriter& out, const Distances& d) { out.FloatMatrix(d.D); }
+void Read(ArchiveReader& in, Distances* d) { d->D = in.FloatMatrix(); }
+
+using AuxMap = std::map<std::string, Eigen::MatrixXd>;
+
+template <typename T>
+void Write(ArchiveWriter& out, const Timed<T>& t) {
+  Write(out, t.value);
+  out.F64(t.seconds);
+}
+
+template <typename T>
+void Read(ArchiveReader& in, Timed<T>* t) {
+  Read(in, &t->value);
+  t->seconds = in.F64();
+}
+
+double Since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+uint64_t StageKey(uint64_t previous, const std::string& kind, const Stage& stage) {
+  return Hasher(previous).AddString(kind).AddString(OptionsText(stage)).Digest();
+}
+
+// Loads entry `key` of `kind`, or computes it with `compute` and stores it.
+template <typename T, typename Compute>
+T Cached(const ShapeContext& context, const std::string& kind, uint64_t key, Compute compute,
+         std::vector<StageTime>* times) {
+  Timed<T> entry;
+  if (context.cache->Load(kind, key, &entry)) {
+    context.counters->Hit(kind);
+    times->push_back({kind, entry.seconds, true});
+    return std::move(entry.value);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  entry.value = compute();
+  entry.seconds = Since(start);
+  context.counters->Executed(kind);
+  context.cache->Store(kind, key, entry);
+  times->push_back({kind, entry.seconds, false});
+  return std::move(entry.value);
+}
+
+// The canonical frame of a symmetrized embedding (plane normal = x already).
+Eigen::MatrixX3d CanonicalEmbedding(const Eigen::MatrixX3d& Y) { return Y; }
+
+}  // namespace
+
+void StageCounters::Executed(const std::string& stage) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++executed_[stage];
+}
+
+void StageCounters::Hit(const std::string& stage) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++hits_[stage];
+}
+
+std::map<std::string, int> StageCounters::executed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return executed_;
+}
+
+std::map<std::string, int> StageCounters::hits() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return hits_;
+}
+
+std::string OptionsText(const Stage& stage) {
+  YAML::Emitter emitter;
+  emitter.SetDoublePrecision(17);
+  emitter << stage.resolved_options();
+  return emitter.c_str();
+}
+
+void InputToKept(const Eigen::MatrixX3d& input_V, const std::vector<int>& input_ids,
+                 std::vector<int>* kept_of_input, std::vector<int>* nearest_kept) {
+  const int n = static_cast<int>(input_V.rows());
+  kept_of_input->assign(n, -1);
+  for (int k = 0; k < static_cast<int>(input_ids.size()); ++k) {
+    const int v = input_ids[k];
+    if (v < 0 || v >= n) {
+      throw InvalidInputError("preprocessing returned input id " + std::to_string(v) +
+                              " outside [0, " + std::to_string(n) + ")");
+    }
+    (*kept_of_input)[v] = k;
+  }
+  *nearest_kept = *kept_of_input;
+  if (input_ids.empty()) return;
+  // Removed vertices are few (small components, degenerate faces): brute force is enough.
+  for (int v = 0; v < n; ++v) {
+    if ((*kept_of_input)[v] >= 0) continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < static_cast<int>(input_ids.size()); ++k) {
+      const double d = (input_V.row(input_ids[k]) - input_V.row(v)).squaredNorm();
+      if (d < best) {
+        best = d;
+        (*nearest_kept)[v] = k;
+      }
+    }
+  }
+}
+
+ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
+                          const ShapeContext& context) {
+  ShapeOutcome out;
+  out.name = shape.name;
+  auto start = std::chrono::steady_clock::now();
+  out.input = context.load_mesh(shape.mesh_path);
+  out.times.push_back({"load", Since(start), false});
+  out.ground_truth = pipeline.dataset->GroundTruth(shape, out.input.NumVertices());
+
+  const std::string extension = std::filesystem::path(shape.mesh_path).extension().string();
+  const uint64_t mesh_key = Hasher()
+                                .AddString(kCacheScheme)
+                                .AddString(extension)
+                                .AddU64(HashFile(shape.mesh_path))
+                                .Digest();
+  const uint64_t pre_key = StageKey(mesh_key, "preprocess", *pipeline.preprocess);
+  const uint64_t samp_key = StageKey(pre_key, "sampling", *pipeline.sampling);
+  const uint64_t geo_key = StageKey(samp_key, "geodesics", *pipeline.geodesics);
+  const uint64_t emb_key = StageKey(geo_key, "embedding", *pipeline.embedding);
+  const uint64_t sym_key = StageKey(emb_key, "symmetry", *pipeline.symmetry);
+  const uint64_t symz_key = StageKey(sym_key, "symmetrize", *pipeline.symmetrize);
+
+  auto data = std::make_shared<ShapeData>();
+  data->name = shape.name;
+  const PreprocessResult pre = Cached<PreprocessResult>(
+      context, "preprocess", pre_key, [&] { return pipeline.preprocess->Run(out.input); },
+      &out.times);
+  data->surface = pre.surface;
+  data->input_ids = pre.input_ids;
+  data->scale = pre.scale;
+  out.report = pre.report;
+  InputToKept(out.input.V, data->input_ids, &out.kept_of_input, &out.nearest_kept);
+
+  const SamplingResult sampling = Cached<SamplingResult>(
+      context, "sampling", samp_key, [&] { return pipeline.sampling->Run(data->surface); },
+      &out.times);
+  data->samples = sampling.samples;
+
+  // D is loaded or computed only when a stage that reads it has to run.
+  std::unique_ptr<Distances> distances;
+  auto D = [&]() -> const Eigen::MatrixXd& {
+    if (!distances) {
+      distances = std::make_unique<Distances>(Cached<Distances>(
+          context, "geodesics", geo_key,
+          [&] {
+            auto solver = pipeline.geodesics->Prepare(data->surface);
+            Distances d{solver->Distances(data->samples)};
+            d.D = d.D.cast<float>().cast<double>();
+            return d;
+          },
+          &out.times));
+    }
+    return distances->D;
+  };
+
+  data->embedding = Cached<EmbeddingResult>(
+      context, "embedding", emb_key,
+      [&] { return pipeline.embedding->Run(EmbeddingInput{data->surface, data->samples, D()}); },
+      &out.times);
+  data->symmetry = Cached<SymmetryResult>(
+      context, "symmetry", sym_key,
+      [&] {
+        return pipeline.symmetry->Run(
+            SymmetryInput{data->surface, data->samples, D(), data->embedding});
+      },
+      &out.times);
+  const SymmetrizeResult symmetrized = Cached<SymmetrizeResult>(
+      context, "symmetrize", symz_key,
+      [&] {
+        return pipeline.symmetrize->Run(
+            SymmetryInput{data->surface, data->samples, D(), data->embedding}, data->symmetry);
+      },
+      &out.times);
+  distances.reset();
+
+  start = std::chrono::steady_clock::now();
+  data->Y = CanonicalEmbedding(symmetrized.Y);
+  out.times.push_back({"canonical_frame", Since(start), false});
+
+  out.report.push_back({"samples", static_cast<double>(data->samples.size())});
+  out.report.push_back({"coverage_radius", sampling.coverage_radius});
+  out.report.push_back({"normalized_stress", data->embedding.normalized_stress});
+  out.report.push_back({"reflection", static_cast<double>(data->embedding.reflection)});
+  out.report.push_back({"symmetry_score", data->symmetry.score});
+  out.report.push_back({"asymmetry_before", symmetrized.asymmetry_before});
+  out.report.push_back({"asymmetry_after", symmetrized.asymmetry_after});
+
+  const std::pair<const char*, const PairStage*> pair_stages[] = {
+      {"flip", pipeline.flip.get()},
+      {"matching", pipeline.matching.get()},
+      {"refine", pipeline.refine.get()}};
+  for (const auto& [kind, stage] : pair_stages) {
+    const std::string name = std::string("prepare_") + kind;
+    const uint64_t key = StageKey(symz_key, name, *stage);
+    AuxMap aux = Cached<AuxMap>(
+        context, name, key,
+        [&, stage = stage] {
+          ShapeData copy = *data;
+          copy.aux.clear();
+          stage->PrepareShape(copy);
+          return copy.aux;
+        },
+        &out.times);
+    for (auto& [entry, M] : aux) data->aux[entry] = std::move(M);
+  }
+  out.data = std::move(data);
+  return out;
+}
+
+}  // namespace symembed

@@ -1,0 +1,87 @@
+// Per-shape work of one variant (DESIGN.md, "Data flow"): load -> preprocess -> sampling ->
+// geodesics -> embedding -> symmetry -> symmetrize -> canonical frame -> ShapeData, then each
+// per-pair stage's PrepareShape (flip, matching, refine) adding ShapeData::aux entries.
+//
+// Every stage output is cached on disk under a chained key: H(mesh bytes, file extension), then
+// for each stage H(previous key, kind, resolved options as YAML text). A variant that changes
+// only a later stage therefore finds every earlier output in the cache. Each per-pair stage's
+// aux entries are keyed by the symmetrize key and that stage's options alone, and PrepareShape
+// sees the shape without other stages' aux entries, so a changed flip scorer keeps the refine
+// stage's eigenbasis.
+//
+// Geodesic distances (#S x #V) are cached as 32-bit floats (half the disk: ~20 MB per 5k-vertex
+// shape with 1,000 samples) and rounded to float precision also when computed, so a cold and a
+// warm run give identical results. D is only read or computed when the embedding, symmetry or
+// symmetrize output is missing, and it is released when the shape is done.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "registry/cache.h"
+#include "registry/config.h"
+#include "registry/dataset.h"
+#include "registry/types.h"
+
+namespace symembed {
+
+// Thread-safe counts of stage executions (cache misses) and cache hits, by stage name
+// ("preprocess", ..., "geodesics", "prepare_flip", "flip", "matching", "refine", "oracle").
+class StageCounters {
+ public:
+  void Executed(const std::string& stage);
+  void Hit(const std::string& stage);
+  std::map<std::string, int> executed() const;
+  std::map<std::string, int> hits() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, int> executed_, hits_;
+};
+
+using MeshLoader = std::function<Surface(const std::string& path)>;
+
+// Seconds per stage, in pipeline order. For a cache hit it is the time of the computation that
+// filled the entry (so timings do not depend on the cache); `cached` says which were hits.
+struct StageTime {
+  std::string stage;
+  double seconds = 0.0;
+  bool cached = false;
+};
+
+struct ShapeOutcome {
+  std::string name;
+  Surface input;                      // as loaded, input vertex ids
+  std::shared_ptr<ShapeData> data;    // after the per-pair stages' PrepareShape
+  std::vector<int> kept_of_input;     // #V_input: preprocessed id of each input vertex, -1: removed
+  std::vector<int> nearest_kept;      // #V_input: preprocessed id of the nearest kept vertex
+  ShapeGroundTruth ground_truth;      // input ids (empty when the dataset has none)
+  std::vector<StageTime> times;
+  Report report;                      // preprocess report, then stage measures
+};
+
+struct ShapeContext {
+  const DiskCache* cache = nullptr;
+  StageCounters* counters = nullptr;
+  MeshLoader load_mesh;
+};
+
+// Runs or loads every per-shape stage of `pipeline` for one dataset shape. Throws what the
+// loader or a stage throws (InvalidInputError, SolverError, ...): the caller records it.
+ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
+                          const ShapeContext& context);
+
+// Maps every input vertex to a preprocessed vertex: itself when kept, else the kept vertex
+// nearest in input coordinates. input_ids: #V_kept input id of each kept vertex.
+void InputToKept(const Eigen::MatrixX3d& input_V, const std::vector<int>& input_ids,
+                 std::vector<int>* kept_of_input, std::vector<int>* nearest_kept);
+
+// The YAML text of a stage's resolved options (hashed into cache keys).
+std::string OptionsText(const Stage& stage);
+
+}  // namespace symembed

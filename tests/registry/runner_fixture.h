@@ -1,0 +1,346 @@
+// Test stages, a test dataset and a test evaluation for the runner tests: cheap stages on tiny
+// grid meshes written to a temporary folder, each counting its calls, so that tests can check
+// what the runner recomputes. Header-only (tests/ compiles only *_test.cpp and test_util.cpp).
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include "core/primitives.h"
+#include "registry/registry.h"
+#include "registry/runner.h"
+#include "tests/test_util.h"
+
+namespace symembed::testing::runner {
+
+// Calls of each test stage (by kind), process-wide.
+class CallCounter {
+ public:
+  static CallCounter& Get() {
+    static CallCounter counter;
+    return counter;
+  }
+  void Add(const std::string& kind) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++calls_[kind];
+  }
+  std::map<std::string, int> Take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::map<std::string, int> out;
+    out.swap(calls_);
+    return out;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, int> calls_;
+};
+
+inline void Count(const std::string& kind) { CallCounter::Get().Add(kind); }
+
+// A minimal OFF writer/reader for the test meshes.
+inline std::string OffText(const Surface& s) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "OFF\n" << s.NumVertices() << " " << s.NumFaces() << " 0\n";
+  for (int i = 0; i < s.NumVertices(); ++i) out << s.V(i, 0) << " " << s.V(i, 1) << " " << s.V(i, 2) << "\n";
+  for (int f = 0; f < s.NumFaces(); ++f) out << "3 " << s.F(f, 0) << " " << s.F(f, 1) << " " << s.F(f, 2) << "\n";
+  return out.str();
+}
+
+inline Surface ReadOff(const std::string& path) {
+  std::ifstream in(path);
+  std::string magic;
+  int nv = 0, nf = 0, ne = 0;
+  if (!(in >> magic >> nv >> nf >> ne) || magic != "OFF" || nv <= 0 || nf <= 0) {
+    throw InvalidInputError(path + ": not an OFF mesh");
+  }
+  Surface s;
+  s.V.resize(nv, 3);
+  s.F.resize(nf, 3);
+  for (int i = 0; i < nv; ++i) in >> s.V(i, 0) >> s.V(i, 1) >> s.V(i, 2);
+  for (int f = 0; f < nf; ++f) {
+    int k;
+    in >> k >> s.F(f, 0) >> s.F(f, 1) >> s.F(f, 2);
+  }
+  if (!in) throw InvalidInputError(path + ": truncated OFF mesh");
+  return s;
+}
+
+// Dataset `testset`: root/shapes/*.off (sorted), root/pairs.txt ("A B" lines), identity ground
+// truth (all shapes share connectivity) with the mirror x -> 1 - x as symmetric ground truth.
+class TestDataset : public Dataset {
+ public:
+  explicit TestDataset(std::string root) : root_(std::move(root)) {}
+  DatasetIndex Load() const override {
+    DatasetIndex index;
+    std::vector<std::string> files;
+    for (const auto& e : std::filesystem::directory_iterator(root_ + "/shapes")) {
+      files.push_back(e.path().string());
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) {
+      index.shapes.push_back({std::filesystem::path(f).stem().string(), "grid", f});
+    }
+    std::ifstream in(root_ + "/pairs.txt");
+    for (std::string a, b; in >> a >> b;) index.pairs.push_back({a, b});
+    return index;
+  }
+  ShapeGroundTruth GroundTruth(const DatasetShape&, int num_vertices) const override {
+    ShapeGroundTruth gt;
+    for (int i = 0; i < num_vertices; ++i) gt.ids.push_back(i);
+    return gt;
+  }
+
+ private:
+  std::string root_;
+};
+
+class TestPreprocess : public PreprocessStage {
+ public:
+  PreprocessResult Run(const Surface& input) const override {
+    Count("preprocess");
+    PreprocessResult r;
+    r.surface = input;
+    for (int i = 0; i < input.NumVertices(); ++i) r.input_ids.push_back(i);
+    r.report = {{"changed", 0.0}};
+    return r;
+  }
+};
+
+class TestSampling : public SamplingStage {
+ public:
+  explicit TestSampling(int count) : count_(count) {}
+  SamplingResult Run(const Surface& s) const override {
+    Count("sampling");
+    SamplingResult r;
+    for (int i = 0; i < std::min(count_, s.NumVertices()); ++i) r.samples.push_back(i);
+    return r;
+  }
+
+ private:
+  int count_;
+};
+
+class EuclideanSolver : public GeodesicSolver {
+ public:
+  explicit EuclideanSolver(const Surface& s) : V_(s.V) {}
+  Eigen::MatrixXd Distances(const std::vector<int>& sources) const override {
+    Count("geodesics");
+    Eigen::MatrixXd D(sources.size(), V_.rows());
+    for (size_t i = 0; i < sources.size(); ++i) {
+      for (int v = 0; v < V_.rows(); ++v) D(i, v) = (V_.row(sources[i]) - V_.row(v)).norm();
+    }
+    return D;
+  }
+
+ private:
+  Eigen::MatrixX3d V_;
+};
+
+class TestGeodesics : public GeodesicsStage {
+ public:
+  std::unique_ptr<GeodesicSolver> Prepare(const Surface& s) const override {
+    return std::make_unique<EuclideanSolver>(s);
+  }
+};
+
+// Y = scale * V (uses D only to check it is there).
+class TestEmbedding : public EmbeddingStage {
+ public:
+  explicit TestEmbedding(double scale) : scale_(scale) {}
+  EmbeddingResult Run(const EmbeddingInput& in) const override {
+    Count("embedding");
+    SYMEMBED_CHECK(in.D.rows() == static_cast<int>(in.samples.size()), "D rows");
+    EmbeddingResult r;
+    r.Y = scale_ * in.surface.V;
+    return r;
+  }
+
+ private:
+  double scale_;
+};
+
+class TestSymmetry : public SymmetryStage {
+ public:
+  SymmetryResult Run(const SymmetryInput& in) const override {
+    Count("symmetry");
+    SymmetryResult r;
+    for (size_t i = 0; i < in.samples.size(); ++i) r.sigma.push_back(static_cast<int>(i));
+    r.confidence = Eigen::VectorXd::Ones(in.samples.size());
+    return r;
+  }
+};
+
+class TestSymmetrize : public SymmetrizeStage {
+ public:
+  SymmetrizeResult Run(const SymmetryInput& in, const SymmetryResult&) const override {
+    Count("symmetrize");
+    SymmetrizeResult r;
+    r.Y = in.embedding.Y;
+    return r;
+  }
+};
+
+// Chooses a fixed candidate; PrepareShape adds a per-vertex feature.
+class TestFlip : public FlipStage {
+ public:
+  explicit TestFlip(int choose) : choose_(choose) {}
+  void PrepareShape(ShapeData& shape) const override {
+    Count("prepare_flip");
+    shape.aux["test_feature"] = shape.Y.col(0);
+  }
+  FlipResult Run(const PairInput& pair) const override {
+    Count("flip");
+    SYMEMBED_CHECK(pair.source.aux.count("test_feature"), "missing aux");
+    FlipResult r;
+    r.chosen = choose_;
+    return r;
+  }
+
+ private:
+  int choose_;
+};
+
+class TestMatching : public MatchingStage {
+ public:
+  MatchResult Run(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt) const override {
+    Count("matching");
+    MatchResult r;
+    for (int i = 0; i < Ys.rows(); ++i) {
+      Eigen::Index best;
+      (Yt.rowwise() - Ys.row(i)).rowwise().squaredNorm().minCoeff(&best);
+      r.map.push_back(static_cast<int>(best));
+    }
+    return r;
+  }
+};
+
+class TestRefine : public RefineStage {
+ public:
+  MatchResult Run(const PairInput&, const std::vector<int>& map) const override {
+    Count("refine");
+    MatchResult r;
+    r.map = map;
+    return r;
+  }
+};
+
+template <typename T, typename... Args>
+Registry::Factory Simple(Args... args) {
+  return [=](OptionReader&) { return std::unique_ptr<Stage>(new T(args...)); };
+}
+
+inline Registry TestRegistry() {
+  Registry r;
+  r.Add("dataset", "testset", "test grids", [](OptionReader& o) {
+    return std::make_unique<TestDataset>(o.GetRequiredString("root"));
+  });
+  r.Add("preprocess", "test", "identity", Simple<TestPreprocess>());
+  r.Add("sampling", "test", "first N", [](OptionReader& o) {
+    return std::make_unique<TestSampling>(o.GetInt("count", 10, 1));
+  });
+  r.Add("geodesics", "test", "euclidean", Simple<TestGeodesics>());
+  r.Add("embedding", "test", "scaled input", [](OptionReader& o) {
+    return std::make_unique<TestEmbedding>(o.GetDouble("scale", 1.0));
+  });
+  r.Add("symmetry", "test", "identity", Simple<TestSymmetry>());
+  r.Add("symmetrize", "test", "identity", Simple<TestSymmetrize>());
+  r.Add("flip", "test", "fixed", [](OptionReader& o) {
+    return std::make_unique<TestFlip>(o.GetInt("choose", 0, 0, 3));
+  });
+  r.Add("matching", "test", "brute-force NN", Simple<TestMatching>());
+  r.Add("refine", "test", "identity", Simple<TestRefine>());
+  return r;
+}
+
+// Writes `count` bent 5 x 4 grids and all ordered pairs to root; returns the config text.
+inline std::string WriteTestDataset(const std::string& root, int count,
+                                    const std::string& variants = "") {
+  for (int k = 0; k < count; ++k) {
+    Surface s = GridMesh(5, 4);
+    for (int i = 0; i < s.NumVertices(); ++i) s.V(i, 2) = 0.1 * k * s.V(i, 0) * s.V(i, 0);
+    WriteText(root + "/shapes/s" + std::to_string(k) + ".off", OffText(s));
+  }
+  std::string pairs;
+  for (int a = 0; a < count; ++a) {
+    for (int b = 0; b < count; ++b) {
+      if (a != b) pairs += "s" + std::to_string(a) + " s" + std::to_string(b) + "\n";
+    }
+  }
+  WriteText(root + "/pairs.txt", pairs);
+  return "name: test\n"
+         "dataset: {format: testset, root: " + root + "}\n"
+         "pipeline:\n"
+         "  preprocess: {type: test}\n  sampling: {type: test, count: 6}\n"
+         "  geodesics: {type: test}\n  embedding: {type: test}\n  symmetry: {type: test}\n"
+         "  symmetrize: {type: test}\n  flip: {type: test}\n  matching: {type: test}\n"
+         "  refine: {type: test}\n"
+         "evaluation: {geodesics: test}\n" + variants;
+}
+
+// Record: "source target chosen oracle mean" with mean the Euclidean error on the target
+// input mesh; WriteVariant writes summary.txt, WriteExperiment comparison.txt.
+class TestEvaluation : public RunEvaluation {
+ public:
+  class Variant : public VariantEvaluation {
+   public:
+    double MeanError(const PairContext& pair, const std::vector<int>& predicted) const override {
+      double sum = 0;
+      for (size_t i = 0; i < predicted.size(); ++i) {
+        sum += (pair.target.input.V.row(predicted[i]) -
+                pair.target.input.V.row(pair.ground_truth.target_ids[i])).norm();
+      }
+      return predicted.empty() ? 0.0 : sum / predicted.size();
+    }
+    std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
+                         std::string* failure) const override {
+      std::vector<int> predicted;
+      for (int s : pair.ground_truth.source_ids) predicted.push_back(outcome.map[s]);
+      std::ostringstream out;
+      out.precision(17);
+      out << pair.source_info.name << " " << pair.target_info.name << " " << outcome.flip.chosen
+          << " " << outcome.oracle << " " << MeanError(pair, predicted) << "\n";
+      if (pair.source_info.name == fail_source) *failure = "evaluation refused " + fail_source;
+      return out.str();
+    }
+    std::string fail_source;
+  };
+
+  std::unique_ptr<VariantEvaluation> ForVariant(const Pipeline&) override {
+    auto v = std::make_unique<Variant>();
+    v->fail_source = fail_source;
+    return v;
+  }
+  DatasetPair PairOfRecord(const std::string& record, const std::string&) const override {
+    std::istringstream in(record);
+    DatasetPair p;
+    in >> p.source >> p.target;
+    return p;
+  }
+  void WriteVariant(const VariantResults& results) override {
+    std::string text;
+    for (size_t i = 0; i < results.pairs.size(); ++i) {
+      text += results.pairs[i].source + "->" + results.pairs[i].target + ": " +
+              (results.records[i].empty() ? "failed\n" : results.records[i]);
+    }
+    text += "failures " + std::to_string(results.failures.size()) + "\n";
+    text += "shapes " + std::to_string(results.shapes.size()) + "\n";
+    WriteText(results.dir + "/summary.txt", text);
+  }
+  void WriteExperiment(const std::string& dir, const std::vector<std::string>& variants) override {
+    std::string text;
+    for (const auto& v : variants) {
+      if (std::filesystem::exists(dir + "/" + v + "/summary.txt")) text += v + "\n";
+    }
+    WriteText(dir + "/comparison.txt", text);
+  }
+  std::string fail_source;
+};
+
+}  // namespace symembed::testing::runner

@@ -1,0 +1,267 @@
+#include "registry/runner.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "registry/config.h"
+#include "tests/registry/runner_fixture.h"
+
+namespace symembed {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ReadText;
+using testing::TempDir;
+using testing::WriteText;
+using testing::runner::CallCounter;
+using testing::runner::ReadOff;
+using testing::runner::TestEvaluation;
+using testing::runner::TestRegistry;
+using testing::runner::WriteTestDataset;
+
+struct RunResult {
+  RunStats stats;
+  std::map<std::string, int> calls;  // test stage calls during the run
+};
+
+RunResult RunConfig(const std::string& config_text, const std::string& out, const std::string& cache,
+              RunOptions options = {}, TestEvaluation* evaluation = nullptr) {
+  const Registry registry = TestRegistry();
+  const ExperimentConfig config = ParseExperimentConfig(config_text, "test.yaml", registry);
+  options.out_dir = out;
+  options.cache_dir = cache;
+  options.quiet = true;
+  options.jobs = 2;
+  options.load_mesh = ReadOff;
+  TestEvaluation default_evaluation;
+  CallCounter::Get().Take();
+  RunResult run;
+  run.stats = RunExperiment(config, registry, options,
+                            evaluation ? *evaluation : default_evaluation);
+  run.calls = CallCounter::Get().Take();
+  return run;
+}
+
+// Every file below dir (relative path -> bytes), without the shape records (they hold times)
+// and without leftover temporary files.
+std::map<std::string, std::string> Snapshot(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const std::string rel = fs::relative(e.path(), dir).string();
+    if (rel.find("/shapes/") != std::string::npos || rel.find(".tmp.") != std::string::npos) {
+      continue;
+    }
+    files[rel] = ReadText(e.path().string());
+  }
+  return files;
+}
+
+int Get(const std::map<std::string, int>& m, const std::string& key) {
+  auto it = m.find(key);
+  return it == m.end() ? 0 : it->second;
+}
+
+TEST(Runner, WritesMapsRecordsAndSummaries) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  EXPECT_TRUE(run.stats.ok());
+  EXPECT_EQ(run.stats.pairs_total, 6);
+  EXPECT_EQ(run.stats.pairs_done, 6);
+  const std::string variant = tmp.File("out/base");
+  EXPECT_TRUE(fs::exists(variant + "/config.yaml"));
+  EXPECT_EQ(ReadText(variant + "/failures.csv"), "kind,source,target,message\n");
+  // Identical connectivity and identity matching: the map is the identity, 1-based.
+  const std::string map = ReadText(variant + "/maps/s0_s1.map");
+  EXPECT_EQ(map.substr(0, 6), "1\n2\n3\n");
+  EXPECT_EQ(std::count(map.begin(), map.end(), '\n'), 20);
+  // The oracle of a bent grid is the identity rotation.
+  EXPECT_EQ(ReadText(variant + "/pairs/s0_s1.rec").substr(0, 10), "s0 s1 0 0 ");
+  EXPECT_EQ(ReadText(tmp.File("out/comparison.txt")), "base\n");
+  EXPECT_EQ(ReadText(tmp.File("out/variants.txt")), "base\n");
+}
+
+TEST(Runner, SecondIdenticalRunRecomputesNothingPerShape) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  const RunResult first = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  for (const char* kind : {"preprocess", "sampling", "geodesics", "embedding", "symmetry",
+                           "symmetrize", "prepare_flip"}) {
+    EXPECT_EQ(Get(first.calls, kind), 3) << kind;
+    EXPECT_EQ(Get(first.stats.executed, kind), 3) << kind;
+  }
+  const auto before = Snapshot(tmp.File("out"));
+  const RunResult second = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  for (const char* kind : {"preprocess", "sampling", "geodesics", "embedding", "symmetry",
+                           "symmetrize", "prepare_flip", "prepare_matching", "prepare_refine"}) {
+    EXPECT_EQ(Get(second.calls, kind), 0) << kind;
+    EXPECT_EQ(Get(second.stats.executed, kind), 0) << kind;
+  }
+  // D is not even read: embedding, symmetry and symmetrize all come from the cache.
+  EXPECT_EQ(Get(second.stats.cache_hits, "geodesics"), 0);
+  EXPECT_EQ(Get(second.stats.cache_hits, "symmetrize"), 3);
+  EXPECT_EQ(Snapshot(tmp.File("out")), before);
+  // With --resume as well, nothing at all runs.
+  RunOptions resume;
+  resume.resume = true;
+  const RunResult third = RunConfig(config, tmp.File("out"), tmp.File("cache"), resume);
+  EXPECT_TRUE(third.calls.empty());
+  EXPECT_EQ(third.stats.pairs_skipped, 6);
+  EXPECT_EQ(Snapshot(tmp.File("out")), before);
+}
+
+TEST(Runner, VariantChangingALaterStageRecomputesNothingBeforeIt) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(
+      tmp.File("data"), 3,
+      "variants:\n"
+      "  - {name: scaled, set: {pipeline.embedding.scale: 2.0}}\n"
+      "  - {name: flip1, set: {pipeline.flip.choose: 1}}\n");
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  EXPECT_TRUE(run.stats.ok());
+  // preprocess, sampling and geodesics once per shape for all three variants.
+  EXPECT_EQ(Get(run.calls, "preprocess"), 3);
+  EXPECT_EQ(Get(run.calls, "sampling"), 3);
+  EXPECT_EQ(Get(run.calls, "geodesics"), 3);
+  // base and scaled differ from the embedding on; flip1 shares all of base's per-shape chain.
+  EXPECT_EQ(Get(run.calls, "embedding"), 6);
+  EXPECT_EQ(Get(run.calls, "symmetry"), 6);
+  EXPECT_EQ(Get(run.calls, "symmetrize"), 6);
+  // Aux entries of the flip scorer: base, scaled (new embedding), flip1 (new options).
+  EXPECT_EQ(Get(run.calls, "prepare_flip"), 9);
+  EXPECT_EQ(Get(run.stats.executed, "prepare_refine"), 6);
+  EXPECT_EQ(Get(run.stats.cache_hits, "geodesics"), 3);  // scaled reads base's D
+  EXPECT_EQ(ReadText(tmp.File("out/comparison.txt")), "base\nscaled\nflip1\n");
+  // flip1 chose candidate 1 (Rx(pi)); the oracle knows better.
+  EXPECT_EQ(ReadText(tmp.File("out/flip1/pairs/s0_s1.rec")).substr(0, 10), "s0 s1 1 0 ");
+}
+
+TEST(Runner, ResumeAfterAnInterruptionGivesTheSameOutputs) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  RunConfig(config, tmp.File("full"), tmp.File("cache"));
+  const auto full = Snapshot(tmp.File("full"));
+  RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  // What a kill leaves: some records missing, a map without its record, a temporary file,
+  // no summaries.
+  for (const char* stem : {"s0_s2", "s2_s0", "s2_s1"}) {
+    fs::remove(tmp.File("out/base/pairs/") + stem + ".rec");
+  }
+  fs::remove(tmp.File("out/base/maps/s2_s1.map"));
+  fs::remove(tmp.File("out/base/summary.txt"));
+  fs::remove(tmp.File("out/base/failures.csv"));
+  WriteText(tmp.File("out/base/pairs/s0_s2.rec.tmp.123.0"), "partial");
+  RunOptions resume;
+  resume.resume = true;
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"), resume);
+  EXPECT_EQ(run.stats.pairs_skipped, 3);
+  EXPECT_EQ(run.stats.pairs_done, 3);
+  EXPECT_EQ(Get(run.calls, "flip"), 3);
+  EXPECT_EQ(Snapshot(tmp.File("out")), full);
+}
+
+TEST(Runner, ShardsMergedEqualASingleRun) {
+  TempDir tmp;
+  const std::string config =
+      WriteTestDataset(tmp.File("data"), 4, "variants:\n  - {name: flip1, set: {pipeline.flip.choose: 1}}\n");
+  RunConfig(config, tmp.File("single"), tmp.File("cache"));
+  std::vector<std::string> shards;
+  int pairs = 0;
+  for (int i = 0; i < 3; ++i) {
+    RunOptions shard;
+    shard.shard_index = i;
+    shard.shard_count = 3;
+    shards.push_back(tmp.File("shard" + std::to_string(i)));
+    pairs += RunConfig(config, shards.back(), tmp.File("cache"), shard).stats.pairs_total;
+  }
+  EXPECT_EQ(pairs, 2 * 12);  // every pair in exactly one shard, both variants
+  TestEvaluation evaluation;
+  EXPECT_TRUE(MergeRuns(shards, tmp.File("merged"), evaluation).empty());
+  EXPECT_EQ(Snapshot(tmp.File("merged")), Snapshot(tmp.File("single")));
+}
+
+TEST(Runner, BadMeshIsRecordedAndTheRunGoesOn) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  WriteText(tmp.File("data/shapes/s1.off"), "OFF\n3 1 0\n0 0 0\n");  // truncated
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  EXPECT_FALSE(run.stats.ok());
+  EXPECT_EQ(run.stats.pairs_done, 2);  // s0 <-> s2
+  const std::string failures = ReadText(tmp.File("out/base/failures.csv"));
+  EXPECT_NE(failures.find("pair,s0,s1,shape 's1' failed"), std::string::npos) << failures;
+  EXPECT_NE(failures.find("shape,s1,,"), std::string::npos) << failures;
+  EXPECT_NE(failures.find("truncated OFF mesh"), std::string::npos) << failures;
+  EXPECT_EQ(run.stats.failures.size(), 5u);  // the shape and its four pairs
+  const std::string summary = ReadText(tmp.File("out/base/summary.txt"));
+  EXPECT_NE(summary.find("s0->s2: s0 s2"), std::string::npos);
+  EXPECT_NE(summary.find("s1->s0: failed"), std::string::npos);
+  EXPECT_NE(summary.find("failures 5"), std::string::npos);
+  // Shard + merge reproduces the failures too.
+  std::vector<std::string> shards;
+  for (int i = 0; i < 2; ++i) {
+    RunOptions shard;
+    shard.shard_index = i;
+    shard.shard_count = 2;
+    shards.push_back(tmp.File("shard" + std::to_string(i)));
+    RunConfig(config, shards.back(), tmp.File("cache"), shard);
+  }
+  TestEvaluation evaluation;
+  EXPECT_EQ(MergeRuns(shards, tmp.File("merged"), evaluation).size(), 5u);
+  EXPECT_EQ(Snapshot(tmp.File("merged")), Snapshot(tmp.File("out")));
+}
+
+TEST(Runner, EvaluationFailureIsRecordedWithoutARecord) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  TestEvaluation evaluation;
+  evaluation.fail_source = "s2";
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"), {}, &evaluation);
+  EXPECT_EQ(run.stats.failures.size(), 2u);
+  EXPECT_FALSE(fs::exists(tmp.File("out/base/pairs/s2_s0.rec")));
+  EXPECT_TRUE(fs::exists(tmp.File("out/base/maps/s2_s0.map")));
+  EXPECT_NE(ReadText(tmp.File("out/base/failures.csv")).find("pair,s2,s0,evaluation refused s2"),
+            std::string::npos);
+}
+
+TEST(Runner, DamagedCacheEntryIsRecomputed) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 2);
+  RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  int damaged = 0;
+  for (const auto& e : fs::directory_iterator(tmp.File("cache/embedding"))) {
+    const std::string bytes = ReadText(e.path().string());
+    WriteText(e.path().string(), bytes.substr(0, bytes.size() / 2));
+    ++damaged;
+  }
+  EXPECT_EQ(damaged, 2);
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  EXPECT_EQ(Get(run.calls, "embedding"), 2);
+  EXPECT_EQ(Get(run.calls, "geodesics"), 0);  // D comes from the cache
+  EXPECT_EQ(Get(run.calls, "symmetry"), 0);
+}
+
+TEST(Runner, UnknownVariantAndBadShardAreErrors) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 2);
+  RunOptions options;
+  options.variant = "nope";
+  EXPECT_THROW(RunConfig(config, tmp.File("out"), "", options), ConfigError);
+  RunOptions shard;
+  shard.shard_index = 2;
+  shard.shard_count = 2;
+  EXPECT_THROW(RunConfig(config, tmp.File("out"), "", shard), ConfigError);
+}
+
+TEST(Runner, RemovedInputVerticesTakeTheNearestKeptVertex) {
+  Eigen::MatrixX3d V(4, 3);
+  V << 0, 0, 0, 1, 0, 0, 0.9, 0.1, 0, 5, 5, 5;
+  std::vector<int> kept, nearest;
+  InputToKept(V, {0, 1}, &kept, &nearest);
+  EXPECT_EQ(kept, (std::vector<int>{0, 1, -1, -1}));
+  EXPECT_EQ(nearest, (std::vector<int>{0, 1, 1, 1}));
+}
+
+}  // namespace
+}  // namespace symembed

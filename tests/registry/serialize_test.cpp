@@ -1,0 +1,137 @@
+#include "registry/serialize.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "registry/hash.h"
+
+namespace symembed {
+namespace {
+
+TEST(Hash, MatchesTheFnv1aReferenceValues) {
+  // Published FNV-1a 64-bit test vectors.
+  EXPECT_EQ(HashBytes("", 0), 0xcbf29ce484222325ULL);
+  EXPECT_EQ(HashBytes("a", 1), 0xaf63dc4c8601ec8cULL);
+  EXPECT_EQ(HashBytes("foobar", 6), 0x85944171f73967e8ULL);
+  EXPECT_EQ(HexDigest(0xaf63dc4c8601ec8cULL), "af63dc4c8601ec8c");
+}
+
+TEST(Hash, LengthPrefixSeparatesFields) {
+  EXPECT_NE(Hasher().AddString("ab").AddString("c").Digest(),
+            Hasher().AddString("a").AddString("bc").Digest());
+  EXPECT_EQ(Hasher(7).AddString("x").Digest(), Hasher(7).AddString("x").Digest());
+  EXPECT_NE(Hasher(7).AddString("x").Digest(), Hasher(8).AddString("x").Digest());
+}
+
+TEST(Archive, RoundTripsEveryFieldExactly) {
+  ArchiveWriter out;
+  out.U64(42);
+  out.I64(-3);
+  out.F64(std::numeric_limits<double>::quiet_NaN());
+  out.F64(0.1);
+  out.String(std::string("a\0b", 3));
+  out.Ints({1, -2, 3});
+  out.Doubles({});
+  Eigen::MatrixXd M(2, 3);
+  M << 1, 2, 3, 4, 5, 6.25;
+  out.Matrix(M);
+  Eigen::MatrixXi I(1, 2);
+  I << 7, -8;
+  out.IntMatrix(I);
+  out.FloatMatrix(M * 0.1);
+  ArchiveReader in(out.Finish("tag"), "tag");
+  EXPECT_EQ(in.U64(), 42u);
+  EXPECT_EQ(in.I64(), -3);
+  EXPECT_TRUE(std::isnan(in.F64()));
+  EXPECT_EQ(in.F64(), 0.1);
+  EXPECT_EQ(in.String(), std::string("a\0b", 3));
+  EXPECT_EQ(in.Ints(), (std::vector<int>{1, -2, 3}));
+  EXPECT_TRUE(in.Doubles().empty());
+  EXPECT_EQ(in.Matrix(), M);
+  EXPECT_EQ(in.IntMatrix(), I);
+  const Eigen::MatrixXd F = in.FloatMatrix();
+  // Float storage: relative rounding of 2^-24.
+  EXPECT_LT((F - M * 0.1).cwiseAbs().maxCoeff(), 1e-7);
+  in.ExpectEnd();
+}
+
+TEST(Archive, RejectsWrongTagTruncationAndCorruption) {
+  ArchiveWriter out;
+  out.Doubles({1, 2, 3});
+  const std::string bytes = out.Finish("a");
+  EXPECT_THROW(ArchiveReader(bytes, "b"), ArchiveError);
+  EXPECT_THROW(ArchiveReader(bytes.substr(0, bytes.size() - 1), "a"), ArchiveError);
+  EXPECT_THROW(ArchiveReader(bytes.substr(0, 5), "a"), ArchiveError);
+  EXPECT_THROW(ArchiveReader("", "a"), ArchiveError);
+  std::string flipped = bytes;
+  flipped.back() ^= 1;
+  EXPECT_THROW(ArchiveReader(flipped, "a"), ArchiveError);
+  // Reading past the payload or leaving bytes unread is an error.
+  ArchiveReader in(bytes, "a");
+  EXPECT_THROW(in.ExpectEnd(), ArchiveError);
+  in.Doubles();
+  EXPECT_THROW(in.U64(), ArchiveError);
+}
+
+TEST(Archive, LengthFieldsCannotAllocateBeyondThePayload) {
+  ArchiveWriter out;
+  out.U64(1ULL << 60);  // read as a vector length
+  ArchiveReader in(out.Finish("x"), "x");
+  EXPECT_THROW(in.Ints(), ArchiveError);
+}
+
+TEST(Archive, RoundTripsShapeResults) {
+  PreprocessResult pre;
+  pre.surface.V = Eigen::MatrixX3d::Random(4, 3);
+  pre.surface.F.resize(2, 3);
+  pre.surface.F << 0, 1, 2, 0, 2, 3;
+  pre.input_ids = {0, 2, 3, 5};
+  pre.scale = 1.5;
+  pre.report = {{"flipped_faces", 3}, {"components_removed", 1}};
+  pre.status.converged = false;
+  pre.status.message = "note";
+  SymmetryResult sym;
+  sym.normal = Eigen::Vector3d(0, 1, 0);
+  sym.offset = -0.5;
+  sym.sigma = {1, 0};
+  sym.confidence = Eigen::Vector2d(0.5, 1.0);
+  EmbeddingResult emb;
+  emb.Y = Eigen::MatrixXd::Random(4, 3);
+  emb.reflection = -1;
+  emb.stress_history = {3, 2, 1};
+  std::map<std::string, Eigen::MatrixXd> aux = {{"hks", Eigen::MatrixXd::Ones(4, 2)}};
+
+  ArchiveWriter out;
+  Write(out, pre);
+  Write(out, sym);
+  Write(out, emb);
+  Write(out, aux);
+  ArchiveReader in(out.Finish("shape"), "shape");
+  PreprocessResult pre2;
+  SymmetryResult sym2;
+  EmbeddingResult emb2;
+  std::map<std::string, Eigen::MatrixXd> aux2;
+  Read(in, &pre2);
+  Read(in, &sym2);
+  Read(in, &emb2);
+  Read(in, &aux2);
+  in.ExpectEnd();
+  EXPECT_EQ(pre2.surface.V, pre.surface.V);
+  EXPECT_EQ(pre2.surface.F, pre.surface.F);
+  EXPECT_EQ(pre2.input_ids, pre.input_ids);
+  EXPECT_EQ(pre2.report, pre.report);
+  EXPECT_FALSE(pre2.status.converged);
+  EXPECT_EQ(pre2.status.message, "note");
+  EXPECT_EQ(sym2.normal, sym.normal);
+  EXPECT_EQ(sym2.sigma, sym.sigma);
+  EXPECT_EQ(sym2.confidence, sym.confidence);
+  EXPECT_EQ(emb2.Y, emb.Y);
+  EXPECT_EQ(emb2.reflection, -1);
+  EXPECT_EQ(emb2.stress_history, emb.stress_history);
+  EXPECT_EQ(aux2.at("hks"), aux.at("hks"));
+}
+
+}  // namespace
+}  // namespace symembed
