@@ -1,12 +1,87 @@
 #include <iostream>
 
+#include "apps/args.h"
 #include "apps/commands.h"
+#include "eval/run_evaluation.h"
+#include "core/mesh_io.h"
+#include "registry/config.h"
+#include "registry/registry.h"
+#include "registry/runner.h"
 
 namespace symembed {
+namespace {
 
-int RunCommand(const Args& /*args*/) {
-  std::cerr << "symembed run: not implemented yet. It will provide run CONFIG: the experiment runner (issue: runner and evaluator)\n";
-  return 1;
+// "i/N" with 0 <= i < N.
+void ParseShard(const std::string& text, int* index, int* count) {
+  const size_t slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    size_t used = 0;
+    *index = std::stoi(text.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("index");
+    const std::string n = text.substr(slash + 1);
+    *count = std::stoi(n, &used);
+    if (used != n.size()) throw std::invalid_argument("count");
+  } catch (const std::exception&) {
+    throw UsageError{"--shard: expected i/N (e.g. 0/4), got '" + text + "'"};
+  }
+  if (*count < 1 || *index < 0 || *index >= *count) {
+    throw UsageError{"--shard " + text + ": need 0 <= i < N"};
+  }
+}
+
+}  // namespace
+
+int RunCommand(const Args& args) {
+  ArgParser parser(
+      "run",
+      "Run an experiment: every variant of CONFIG (or one), per-shape stages cached on disk, "
+      "pairs in parallel. Writes OUT/<variant>/ (config.yaml, maps/, pairs/, summary.json, "
+      "pairs.csv, curve.csv, timings.csv, failures.csv) and OUT/comparison.csv. A failed "
+      "shape or pair is recorded in failures.csv and the run goes on. Exit status: 0 when "
+      "everything succeeded, 1 when something failed, 2 for usage errors.");
+  parser.Option("variant", "run only this variant ('base' is the base pipeline)", "");
+  parser.Option("jobs", "worker threads (0: all cores)", "0");
+  parser.Switch("resume", "keep the pairs that already have a record in OUT");
+  parser.Option("shard", "run shard i of N of the pairs (i/N); join shards with merge", "0/1");
+  parser.Option("out", "output folder", "results/<config name>");
+  parser.Option("cache", "per-shape cache folder ('' disables it)", "results/.cache");
+  parser.Switch("quiet", "no progress on stderr");
+  parser.Positionals("CONFIG", "the experiment's YAML file", 1, 1);
+  if (!parser.Parse(args)) return 0;
+
+  RunOptions options;
+  ParseShard(parser.Get("shard"), &options.shard_index, &options.shard_count);
+  options.jobs = parser.GetInt("jobs");
+  if (options.jobs < 0) throw UsageError{"--jobs: must be >= 0"};
+  options.variant = parser.Get("variant");
+  options.resume = parser.Flag("resume");
+  options.quiet = parser.Flag("quiet");
+  options.cache_dir = parser.Get("cache");
+  options.load_mesh = [](const std::string& path) { return LoadSurface(path); };
+
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  const ExperimentConfig config = LoadExperimentConfig(parser.positionals()[0], registry);
+  options.out_dir = parser.Given("out") ? parser.Get("out") : "results/" + config.name;
+
+  EvaluatorHooks evaluation;
+  const RunStats stats = RunExperiment(config, registry, options, evaluation);
+  for (const std::string& warning : evaluation.warnings()) {
+    std::cerr << "symembed run: warning: " << warning << "\n";
+  }
+  if (!options.quiet) {
+    std::cerr << "symembed run: " << stats.pairs_done << " pairs computed, "
+              << stats.pairs_skipped << " kept from an earlier run, " << stats.failures.size()
+              << " failures; outputs in " << options.out_dir << "\n";
+  }
+  if (!stats.ok()) {
+    std::cerr << "symembed run: " << stats.failures.size() << " failures (first: "
+              << stats.failures.front().kind << " " << stats.failures.front().source
+              << (stats.failures.front().target.empty() ? "" : " -> " + stats.failures.front().target)
+              << ": " << stats.failures.front().message << "); see failures.csv\n";
+  }
+  return stats.ok() ? 0 : 1;
 }
 
 }  // namespace symembed

@@ -1,0 +1,144 @@
+#include "eval/run_evaluation.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <mutex>
+
+#include "eval/evaluator.h"
+#include "eval/report.h"
+
+namespace symembed {
+namespace {
+
+class EvaluatorVariant : public VariantEvaluation {
+ public:
+  explicit EvaluatorVariant(const Pipeline& pipeline)
+      : evaluator_(pipeline.evaluation, *pipeline.evaluation_geodesics) {}
+
+  double MeanError(const PairContext& pair, const std::vector<int>& predicted) const override {
+    // A full-length map holding the predictions at the ground-truth source vertices.
+    std::vector<int> map(pair.source.input.NumVertices(), 0);
+    for (size_t i = 0; i < predicted.size(); ++i) map[pair.ground_truth.source_ids[i]] = predicted[i];
+    return evaluator_.MeanError(pair.target.name, Target(pair.target), map, pair.ground_truth);
+  }
+
+  std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
+                       std::string* failure) const override {
+    PairEvaluation evaluation =
+        evaluator_.Evaluate(pair.source.name, pair.target.name, Target(pair.target), outcome.map,
+                            pair.ground_truth, outcome.flip.chosen, outcome.oracle);
+    if (!evaluation.ok) {
+      *failure = "evaluation: " + evaluation.message;
+      return "";
+    }
+    for (const StageTime& t : outcome.times) evaluation.stage_seconds[t.stage] = t.seconds;
+    return SerializePairRecord(evaluation);
+  }
+
+ private:
+  // The evaluator's view of a target, built once per shape.
+  const EvalShape& Target(const ShapeOutcome& shape) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& slot = targets_[shape.name];
+    if (!slot) {
+      PreprocessResult pre;
+      pre.surface = shape.data->surface;
+      pre.input_ids = shape.data->input_ids;
+      pre.scale = shape.data->scale;
+      slot = std::make_unique<EvalShape>(MakeEvalShape(pre, shape.input));
+    }
+    return *slot;
+  }
+
+  Evaluator evaluator_;
+  mutable std::mutex mutex_;
+  mutable std::map<std::string, std::unique_ptr<EvalShape>> targets_;
+};
+
+// The evaluation section of a variant's resolved config.yaml.
+EvaluationOptions ReadEvaluationOptions(const std::string& config_path) {
+  const YAML::Node root = YAML::LoadFile(config_path);
+  const YAML::Node node = root["evaluation"];
+  EvaluationOptions options;
+  if (!node.IsMap()) return options;
+  if (node["geodesics"]) options.geodesics = node["geodesics"].as<std::string>();
+  if (node["max_error"]) options.max_error = node["max_error"].as<double>();
+  if (node["step"]) options.step = node["step"].as<double>();
+  if (node["points"] && node["points"].as<std::string>() != "all") {
+    options.points = node["points"].as<int>();
+  }
+  return options;
+}
+
+}  // namespace
+
+std::unique_ptr<VariantEvaluation> EvaluatorHooks::ForVariant(const Pipeline& pipeline) {
+  return std::make_unique<EvaluatorVariant>(pipeline);
+}
+
+DatasetPair EvaluatorHooks::PairOfRecord(const std::string& record,
+                                         const std::string& where) const {
+  const PairEvaluation evaluation = ParsePairRecord(record, where);
+  return {evaluation.source, evaluation.target};
+}
+
+void EvaluatorHooks::WriteVariant(const VariantResults& results) {
+  std::map<std::pair<std::string, std::string>, std::string> messages;
+  for (const Failure& f : results.failures) {
+    if (f.kind == "pair") messages.emplace(std::make_pair(f.source, f.target), f.message);
+  }
+  std::vector<PairEvaluation> pairs;
+  for (size_t i = 0; i < results.pairs.size(); ++i) {
+    const DatasetPair& p = results.pairs[i];
+    if (!results.records[i].empty()) {
+      pairs.push_back(ParsePairRecord(results.records[i], results.dir + "/pairs"));
+      continue;
+    }
+    PairEvaluation failed;
+    failed.source = p.source;
+    failed.target = p.target;
+    auto it = messages.find({p.source, p.target});
+    failed.message = it == messages.end() ? "failed" : it->second;
+    pairs.push_back(std::move(failed));
+  }
+  VariantTimings timings;
+  timings.total_seconds = results.wall_seconds;
+  timings.peak_rss_mb = PeakRssMb();
+  if (!results.merged_from.empty()) {
+    // A merge: the shards' own totals (they ran elsewhere, possibly at the same time).
+    timings.total_seconds = 0.0;
+    timings.peak_rss_mb = 0.0;
+    for (const std::string& shard : results.merged_from) {
+      try {
+        const VariantSummary s = ReadSummaryJson(shard + "/summary.json");
+        timings.total_seconds += s.time_total_s;
+        timings.peak_rss_mb = std::max(timings.peak_rss_mb, s.peak_rss_mb);
+      } catch (const std::exception& e) {
+        warnings_.push_back(shard + ": no timings (" + e.what() + ")");
+      }
+    }
+  }
+  for (const ShapeRecord& shape : results.shapes) {
+    auto& stages = timings.shape_stage_seconds[shape.name];
+    for (const StageTime& t : shape.times) stages[t.stage] = t.seconds;
+  }
+  const EvaluationOptions options = ReadEvaluationOptions(results.dir + "/config.yaml");
+  const VariantSummary summary = Summarize(results.variant, pairs, options, timings);
+  WriteVariantOutputs(results.dir, summary, pairs, timings);
+}
+
+void EvaluatorHooks::WriteExperiment(const std::string& dir,
+                                     const std::vector<std::string>& variants) {
+  std::vector<VariantSummary> summaries;
+  for (const std::string& name : variants) {
+    const std::string path = dir + "/" + name + "/summary.json";
+    if (std::filesystem::exists(path)) summaries.push_back(ReadSummaryJson(path));
+  }
+  std::string warning;
+  if (!WriteComparison(dir, summaries, &warning) && !warning.empty()) warnings_.push_back(warning);
+}
+
+}  // namespace symembed

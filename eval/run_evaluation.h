@@ -1,0 +1,31 @@
+// The evaluation behind `symembed run` and `symembed merge`: the runner's hooks
+// (registry/runner.h RunEvaluation) implemented with the evaluator (eval/evaluator.h) and its
+// report writers (eval/report.h).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "registry/runner.h"
+
+namespace symembed {
+
+class EvaluatorHooks : public RunEvaluation {
+ public:
+  std::unique_ptr<VariantEvaluation> ForVariant(const Pipeline& pipeline) override;
+  DatasetPair PairOfRecord(const std::string& record, const std::string& where) const override;
+  // summary.json, pairs.csv, curve.csv, timings.csv from the records; a pair without a record
+  // is reported failed with its message from failures.csv.
+  void WriteVariant(const VariantResults& results) override;
+  // comparison.csv and the plots.
+  void WriteExperiment(const std::string& dir, const std::vector<std::string>& variants) override;
+
+  // Problems that are not errors (a plot that could not be made), for the command to print.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+ private:
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace symembed

@@ -1,0 +1,126 @@
+// The runner with the real evaluator behind it (eval/run_evaluation.h): the outputs of a run,
+// of shards merged and of a resumed run are the same, timings aside.
+#include "eval/run_evaluation.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "eval/report.h"
+#include "registry/config.h"
+#include "tests/registry/runner_fixture.h"
+
+namespace symembed {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ReadText;
+using testing::TempDir;
+using testing::runner::ReadOff;
+using testing::runner::TestRegistry;
+using testing::runner::WriteTestDataset;
+
+RunStats RunConfig(const std::string& config_text, const std::string& out,
+                   const std::string& cache, RunOptions options = {}) {
+  const Registry registry = TestRegistry();
+  const ExperimentConfig config = ParseExperimentConfig(config_text, "test.yaml", registry);
+  options.out_dir = out;
+  options.cache_dir = cache;
+  options.quiet = true;
+  options.jobs = 2;
+  options.load_mesh = ReadOff;
+  EvaluatorHooks evaluation;
+  return RunExperiment(config, registry, options, evaluation);
+}
+
+// Drops timing lines/columns: summary.json time_* and peak_rss_mb keys, comparison.csv's last
+// four columns (times and memory), stage_seconds of the pair records; skips timings.csv and
+// the shape records.
+std::map<std::string, std::string> Outputs(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const std::string rel = fs::relative(e.path(), dir).string();
+    const std::string name = e.path().filename().string();
+    if (name == "timings.csv" || rel.find("/shapes/") != std::string::npos ||
+        name.find(".tmp.") != std::string::npos || e.path().extension() == ".png" ||
+        e.path().extension() == ".svg") {
+      continue;
+    }
+    std::string text = ReadText(e.path().string());
+    if (e.path().extension() == ".rec") {
+      PairEvaluation pair = ParsePairRecord(text);
+      pair.stage_seconds.clear();
+      text = SerializePairRecord(pair);
+    } else if (name == "summary.json" || name == "comparison.csv") {
+      std::istringstream in(text);
+      std::string kept;
+      for (std::string line; std::getline(in, line);) {
+        if (line.find("time_") != std::string::npos || line.find("peak_rss") != std::string::npos) {
+          if (name == "summary.json") continue;
+        }
+        if (name == "comparison.csv") {
+          for (int drop = 0; drop < 4; ++drop) line = line.substr(0, line.rfind(','));
+        }
+        kept += line + "\n";
+      }
+      text = kept;
+    }
+    files[rel] = text;
+  }
+  return files;
+}
+
+TEST(RunEvaluation, WritesTheEvaluatorsOutputs) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  const RunStats stats = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  EXPECT_TRUE(stats.ok());
+  for (const char* file : {"summary.json", "pairs.csv", "curve.csv", "timings.csv",
+                           "failures.csv", "config.yaml"}) {
+    EXPECT_TRUE(fs::exists(tmp.File("out/base/") + file)) << file;
+  }
+  EXPECT_TRUE(fs::exists(tmp.File("out/comparison.csv")));
+  const VariantSummary summary = ReadSummaryJson(tmp.File("out/base/summary.json"));
+  EXPECT_EQ(summary.pairs, 6);
+  EXPECT_EQ(summary.failed_pairs, 0);
+  // Same connectivity, identity matching: every ground-truth point maps exactly.
+  EXPECT_EQ(summary.mean_direct, 0.0);
+  EXPECT_EQ(summary.FlippedTotal(), 0);
+}
+
+TEST(RunEvaluation, ShardsMergedAndResumedRunsEqualASingleRun) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(
+      tmp.File("data"), 4, "variants:\n  - {name: flip2, set: {pipeline.flip.choose: 2}}\n");
+  // A bad mesh: its pairs fail in every form of the run alike.
+  testing::WriteText(tmp.File("data/shapes/s3.off"), "OFF\n");
+  EXPECT_FALSE(RunConfig(config, tmp.File("single"), tmp.File("cache")).ok());
+  const auto single = Outputs(tmp.File("single"));
+  EXPECT_NE(single.at("flip2/pairs.csv").find("front_back"), std::string::npos)
+      << single.at("flip2/pairs.csv");
+
+  std::vector<std::string> shards;
+  for (int i = 0; i < 3; ++i) {
+    RunOptions shard;
+    shard.shard_index = i;
+    shard.shard_count = 3;
+    shards.push_back(tmp.File("shard" + std::to_string(i)));
+    RunConfig(config, shards.back(), tmp.File("cache"), shard);
+  }
+  EvaluatorHooks evaluation;
+  EXPECT_EQ(MergeRuns(shards, tmp.File("merged"), evaluation).size(), 2u * (1 + 6));
+  EXPECT_EQ(Outputs(tmp.File("merged")), single);
+
+  RunConfig(config, tmp.File("resumed"), tmp.File("cache"));
+  for (const char* stem : {"s0_s1", "s2_s1"}) fs::remove(tmp.File("resumed/base/pairs/") + stem + ".rec");
+  fs::remove(tmp.File("resumed/base/summary.json"));
+  RunOptions resume;
+  resume.resume = true;
+  const RunStats stats = RunConfig(config, tmp.File("resumed"), tmp.File("cache"), resume);
+  EXPECT_EQ(stats.pairs_done, 2);
+  EXPECT_EQ(Outputs(tmp.File("resumed")), single);
+}
+
+}  // namespace
+}  // namespace symembed
