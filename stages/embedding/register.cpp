@@ -1,8 +1,76 @@
+// Registered adapters of the embedding stages; the algorithms are in lsmds.h and isomap.h.
+#include <memory>
+
+#include "core/errors.h"
+#include "stages/embedding/isomap.h"
+#include "stages/embedding/lsmds.h"
 #include "stages/register.h"
 
 namespace symembed {
+namespace {
 
-// No embedding implementation is built in yet.
-void RegisterEmbeddingStages(Registry& /*registry*/) {}
+class LsmdsStage : public EmbeddingStage {
+ public:
+  explicit LsmdsStage(LsmdsOptions options) : options_(std::move(options)) {}
+  EmbeddingResult Run(const EmbeddingInput& input) const override {
+    return LsmdsEmbedding(input, options_);
+  }
+
+ private:
+  LsmdsOptions options_;
+};
+
+class IsomapStage : public EmbeddingStage {
+ public:
+  explicit IsomapStage(IsomapOptions options) : options_(std::move(options)) {}
+  EmbeddingResult Run(const EmbeddingInput& input) const override {
+    return IsomapEmbedding(input, options_);
+  }
+
+ private:
+  IsomapOptions options_;
+};
+
+std::unique_ptr<Stage> MakeLsmds(OptionReader& reader) {
+  LsmdsOptions o;
+  o.dims = reader.GetInt("dims", o.dims, 2, 3);
+  o.init = reader.GetEnum<LsmdsInit>("init", o.init,
+                                     {{"original", LsmdsInit::kOriginal},
+                                      {"isomap", LsmdsInit::kIsomap},
+                                      {"random", LsmdsInit::kRandom}});
+  o.seed = static_cast<unsigned>(reader.GetInt("seed", static_cast<int>(o.seed), 0));
+  o.smacof.tolerance = reader.GetDouble("tolerance", o.smacof.tolerance, 0.0, 1.0);
+  o.smacof.max_iterations = reader.GetInt("max_iterations", o.smacof.max_iterations, 0);
+  o.smacof.weight_power = reader.GetDouble("weight_power", o.smacof.weight_power, 0.0, 8.0);
+  o.smacof.relaxation = reader.GetDouble("relaxation", o.smacof.relaxation, 1.0, 1.999);
+  o.out_of_sample.neighbors = reader.GetInt("neighbors", o.out_of_sample.neighbors, 1);
+  o.out_of_sample.max_iterations =
+      reader.GetInt("out_of_sample_iterations", o.out_of_sample.max_iterations, 0);
+  std::string why;
+  if (!o.IsValid(&why)) reader.Fail("", why);
+  return std::make_unique<LsmdsStage>(o);
+}
+
+std::unique_ptr<Stage> MakeIsomap(OptionReader& reader) {
+  IsomapOptions o;
+  o.dims = reader.GetInt("dims", o.dims, 2, 3);
+  o.fix_orientation = reader.GetBool("fix_orientation", o.fix_orientation);
+  std::string why;
+  if (!o.IsValid(&why)) reader.Fail("", why);
+  return std::make_unique<IsomapStage>(o);
+}
+
+}  // namespace
+
+void RegisterEmbeddingStages(Registry& registry) {
+  registry.Add("embedding", "lsmds",
+               "least-squares MDS (SMACOF) of the sample geodesics from the input coordinates, "
+               "out-of-sample placement of every vertex; keeps the surface's orientation",
+               MakeLsmds);
+  registry.Add("embedding", "isomap",
+               "classical MDS of the sample geodesics + landmark MDS of every vertex; "
+               "eigenvector signs arbitrary, so it may reflect",
+               MakeIsomap);
+}
 
 }  // namespace symembed

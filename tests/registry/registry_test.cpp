@@ -40,6 +40,8 @@ TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
       "dataset/pairs_vts",
       "dataset/same_connectivity",
       "dataset/synthetic",
+      "embedding/isomap",
+      "embedding/lsmds",
       "geodesics/dijkstra",
       "geodesics/fast_marching",
       "geodesics/heat",
