@@ -65,7 +65,7 @@ int RunCommand(const Args& args) {
   const ExperimentConfig config = LoadExperimentConfig(parser.positionals()[0], registry);
   options.out_dir = parser.Given("out") ? parser.Get("out") : "results/" + config.name;
 
-  EvaluatorHooks evaluation;
+  EvaluatorHooks evaluation(&registry);
   const RunStats stats = RunExperiment(config, registry, options, evaluation);
   for (const std::string& warning : evaluation.warnings()) {
     std::cerr << "symembed run: warning: " << warning << "\n";

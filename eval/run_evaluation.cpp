@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <sstream>
 
 #include "eval/evaluator.h"
 #include "eval/report.h"
@@ -13,36 +14,18 @@
 namespace symembed {
 namespace {
 
-class EvaluatorVariant : public VariantEvaluation {
- public:
-  explicit EvaluatorVariant(const Pipeline& pipeline)
-      : evaluator_(pipeline.evaluation, *pipeline.evaluation_geodesics) {}
+}  // namespace
 
-  double MeanError(const PairContext& pair, const std::vector<int>& predicted) const override {
-    // A full-length map holding the predictions at the ground-truth source vertices.
-    std::vector<int> map(pair.source.input.NumVertices(), 0);
-    for (size_t i = 0; i < predicted.size(); ++i) map[pair.ground_truth.source_ids[i]] = predicted[i];
-    return evaluator_.MeanError(pair.target.name, Target(pair.target), map, pair.ground_truth);
-  }
+// An Evaluator with its own geodesics stage, and the evaluator's view of each target shape.
+struct EvaluatorHooks::Shared {
+  std::unique_ptr<GeodesicsStage> geodesics;
+  std::unique_ptr<Evaluator> evaluator;
+  std::mutex mutex;
+  std::map<std::string, std::unique_ptr<EvalShape>> targets;
 
-  std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
-                       std::string* failure) const override {
-    PairEvaluation evaluation =
-        evaluator_.Evaluate(pair.source.name, pair.target.name, Target(pair.target), outcome.map,
-                            pair.ground_truth, outcome.flip.chosen, outcome.oracle);
-    if (!evaluation.ok) {
-      *failure = "evaluation: " + evaluation.message;
-      return "";
-    }
-    for (const StageTime& t : outcome.times) evaluation.stage_seconds[t.stage] = t.seconds;
-    return SerializePairRecord(evaluation);
-  }
-
- private:
-  // The evaluator's view of a target, built once per shape.
-  const EvalShape& Target(const ShapeOutcome& shape) const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto& slot = targets_[shape.name];
+  const EvalShape& Target(const ShapeOutcome& shape) {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = targets[shape.name];
     if (!slot) {
       PreprocessResult pre;
       pre.surface = shape.data->surface;
@@ -52,10 +35,38 @@ class EvaluatorVariant : public VariantEvaluation {
     }
     return *slot;
   }
+};
 
-  Evaluator evaluator_;
-  mutable std::mutex mutex_;
-  mutable std::map<std::string, std::unique_ptr<EvalShape>> targets_;
+namespace {
+
+class EvaluatorVariant : public VariantEvaluation {
+ public:
+  using Shared = EvaluatorHooks::Shared;
+  explicit EvaluatorVariant(std::shared_ptr<Shared> shared) : shared_(std::move(shared)) {}
+
+  double MeanError(const PairContext& pair, const std::vector<int>& predicted) const override {
+    // A full-length map holding the predictions at the ground-truth source vertices.
+    std::vector<int> map(pair.source.input.NumVertices(), 0);
+    for (size_t i = 0; i < predicted.size(); ++i) map[pair.ground_truth.source_ids[i]] = predicted[i];
+    return shared_->evaluator->MeanError(pair.target.name, shared_->Target(pair.target), map,
+                                         pair.ground_truth);
+  }
+
+  std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
+                       std::string* failure) const override {
+    PairEvaluation evaluation = shared_->evaluator->Evaluate(
+        pair.source.name, pair.target.name, shared_->Target(pair.target), outcome.map,
+        pair.ground_truth, outcome.flip.chosen, outcome.oracle);
+    if (!evaluation.ok) {
+      *failure = "evaluation: " + evaluation.message;
+      return "";
+    }
+    for (const StageTime& t : outcome.times) evaluation.stage_seconds[t.stage] = t.seconds;
+    return SerializePairRecord(evaluation);
+  }
+
+ private:
+  std::shared_ptr<Shared> shared_;
 };
 
 // The evaluation section of a variant's resolved config.yaml.
@@ -75,8 +86,25 @@ EvaluationOptions ReadEvaluationOptions(const std::string& config_path) {
 
 }  // namespace
 
+EvaluatorHooks::EvaluatorHooks(const Registry* registry) : registry_(registry) {}
+EvaluatorHooks::~EvaluatorHooks() = default;
+
 std::unique_ptr<VariantEvaluation> EvaluatorHooks::ForVariant(const Pipeline& pipeline) {
-  return std::make_unique<EvaluatorVariant>(pipeline);
+  SYMEMBED_CHECK(registry_ != nullptr, "EvaluatorHooks::ForVariant needs the registry");
+  const EvaluationOptions& e = pipeline.evaluation;
+  std::ostringstream key;
+  key.precision(17);
+  key << OptionsText(*pipeline.evaluation_geodesics) << "|" << e.max_error << "|" << e.step << "|"
+      << e.points << "|" << OptionsText(*pipeline.preprocess);
+  std::shared_ptr<Shared>& shared = shared_[key.str()];
+  if (!shared) {
+    shared = std::make_shared<Shared>();
+    shared->geodesics = registry_->CreateAs<GeodesicsStage>(
+        "geodesics", YAML::Clone(pipeline.evaluation_geodesics->resolved_options()), "",
+        "evaluation.geodesics");
+    shared->evaluator = std::make_unique<Evaluator>(e, *shared->geodesics);
+  }
+  return std::make_unique<EvaluatorVariant>(shared);
 }
 
 DatasetPair EvaluatorHooks::PairOfRecord(const std::string& record,

@@ -3,16 +3,25 @@
 // report writers (eval/report.h).
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "registry/registry.h"
 #include "registry/runner.h"
 
 namespace symembed {
 
+// Variants whose evaluation options and preprocess stage resolve alike share one Evaluator, so
+// the distances it caches per target (the bulk of the evaluation's time) are computed once for
+// all of them.
 class EvaluatorHooks : public RunEvaluation {
  public:
+  // registry: builds the evaluation geodesics of ForVariant (not needed by merge alone).
+  explicit EvaluatorHooks(const Registry* registry = nullptr);
+  ~EvaluatorHooks() override;
+
   std::unique_ptr<VariantEvaluation> ForVariant(const Pipeline& pipeline) override;
   DatasetPair PairOfRecord(const std::string& record, const std::string& where) const override;
   // summary.json, pairs.csv, curve.csv, timings.csv from the records; a pair without a record
@@ -24,7 +33,11 @@ class EvaluatorHooks : public RunEvaluation {
   // Problems that are not errors (a plot that could not be made), for the command to print.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
+  struct Shared;  // an Evaluator shared by variants (defined in the .cpp)
+
  private:
+  const Registry* registry_;
+  std::map<std::string, std::shared_ptr<Shared>> shared_;
   std::vector<std::string> warnings_;
 };
 

@@ -8,6 +8,7 @@
 
 #include "eval/report.h"
 #include "registry/config.h"
+#include "tests/eval/run_outputs_fixture.h"
 #include "tests/registry/runner_fixture.h"
 
 namespace symembed {
@@ -29,46 +30,12 @@ RunStats RunConfig(const std::string& config_text, const std::string& out,
   options.quiet = true;
   options.jobs = 2;
   options.load_mesh = ReadOff;
-  EvaluatorHooks evaluation;
+  EvaluatorHooks evaluation(&registry);
   return RunExperiment(config, registry, options, evaluation);
 }
 
-// Drops timing lines/columns: summary.json time_* and peak_rss_mb keys, comparison.csv's last
-// four columns (times and memory), stage_seconds of the pair records; skips timings.csv and
-// the shape records.
 std::map<std::string, std::string> Outputs(const std::string& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (!e.is_regular_file()) continue;
-    const std::string rel = fs::relative(e.path(), dir).string();
-    const std::string name = e.path().filename().string();
-    if (name == "timings.csv" || rel.find("/shapes/") != std::string::npos ||
-        name.find(".tmp.") != std::string::npos || e.path().extension() == ".png" ||
-        e.path().extension() == ".svg") {
-      continue;
-    }
-    std::string text = ReadText(e.path().string());
-    if (e.path().extension() == ".rec") {
-      PairEvaluation pair = ParsePairRecord(text);
-      pair.stage_seconds.clear();
-      text = SerializePairRecord(pair);
-    } else if (name == "summary.json" || name == "comparison.csv") {
-      std::istringstream in(text);
-      std::string kept;
-      for (std::string line; std::getline(in, line);) {
-        if (line.find("time_") != std::string::npos || line.find("peak_rss") != std::string::npos) {
-          if (name == "summary.json") continue;
-        }
-        if (name == "comparison.csv") {
-          for (int drop = 0; drop < 4; ++drop) line = line.substr(0, line.rfind(','));
-        }
-        kept += line + "\n";
-      }
-      text = kept;
-    }
-    files[rel] = text;
-  }
-  return files;
+  return testing::OutputsWithoutTimings(dir);
 }
 
 TEST(RunEvaluation, WritesTheEvaluatorsOutputs) {
@@ -87,6 +54,23 @@ TEST(RunEvaluation, WritesTheEvaluatorsOutputs) {
   // Same connectivity, identity matching: every ground-truth point maps exactly.
   EXPECT_EQ(summary.mean_direct, 0.0);
   EXPECT_EQ(summary.FlippedTotal(), 0);
+}
+
+TEST(RunEvaluation, VariantsWithTheSameEvaluationShareItsDistances) {
+  TempDir tmp;
+  const std::string variants = "variants:\n  - {name: flip2, set: {pipeline.flip.choose: 2}}\n";
+  const std::string config = WriteTestDataset(tmp.File("data"), 3, variants);
+  RunOptions base_only;
+  base_only.variant = "base";
+  testing::runner::CallCounter::Get().Take();
+  RunConfig(config, tmp.File("one"), tmp.File("cache1"), base_only);
+  const int one = testing::runner::CallCounter::Get().Take()["geodesics"];
+  RunConfig(config, tmp.File("two"), tmp.File("cache2"));
+  const int two = testing::runner::CallCounter::Get().Take()["geodesics"];
+  // The test geodesics solver serves both the pipeline and the evaluation; flip2 reuses base's
+  // per-shape chain (cache) and base's evaluation distances (shared Evaluator).
+  EXPECT_GT(one, 3);
+  EXPECT_EQ(two, one);
 }
 
 TEST(RunEvaluation, ShardsMergedAndResumedRunsEqualASingleRun) {
