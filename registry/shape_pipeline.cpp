@@ -96,10 +96,28 @@ std::map<std::string, int> StageCounters::hits() const {
   return hits_;
 }
 
+namespace {
+
+// A copy of node without the map keys in kOutcomeNeutralKeys, at any depth.
+YAML::Node WithoutNeutralKeys(const YAML::Node& node) {
+  static const char* const kOutcomeNeutralKeys[] = {"threads"};
+  if (!node.IsMap()) return YAML::Clone(node);
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    bool neutral = false;
+    for (const char* k : kOutcomeNeutralKeys) neutral = neutral || key == k;
+    if (!neutral) out[key] = WithoutNeutralKeys(kv.second);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string OptionsText(const Stage& stage) {
   YAML::Emitter emitter;
   emitter.SetDoublePrecision(17);
-  emitter << stage.resolved_options();
+  emitter << WithoutNeutralKeys(stage.resolved_options());
   return emitter.c_str();
 }
 

@@ -81,7 +81,8 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
 void InputToKept(const Eigen::MatrixX3d& input_V, const std::vector<int>& input_ids,
                  std::vector<int>* kept_of_input, std::vector<int>* nearest_kept);
 
-// The YAML text of a stage's resolved options (hashed into cache keys).
+// The YAML text of a stage's resolved options (hashed into cache keys), without the options
+// that cannot change a result (`threads`), so that they do not invalidate cached outputs.
 std::string OptionsText(const Stage& stage);
 
 }  // namespace symembed

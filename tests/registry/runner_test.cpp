@@ -265,3 +265,18 @@ TEST(Runner, RemovedInputVerticesTakeTheNearestKeptVertex) {
 
 }  // namespace
 }  // namespace symembed
+
+namespace symembed {
+namespace {
+
+TEST(Runner, CacheKeysIgnoreThreadCounts) {
+  testing::runner::TestSampling a(3), b(3);
+  a.set_resolved_options(YAML::Load("{type: x, count: 3, threads: 4, common: {threads: 2, precision: float}}"));
+  b.set_resolved_options(YAML::Load("{type: x, count: 3, threads: 1, common: {threads: 8, precision: float}}"));
+  EXPECT_EQ(OptionsText(a), OptionsText(b));
+  EXPECT_EQ(OptionsText(a).find("threads"), std::string::npos);
+  EXPECT_NE(OptionsText(a).find("precision: float"), std::string::npos) << OptionsText(a);
+}
+
+}  // namespace
+}  // namespace symembed
