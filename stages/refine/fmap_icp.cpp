@@ -36,7 +36,6 @@ FunctionalMapIcpResult FunctionalMapIcp(const LaplaceBasis& source, const Laplac
   std::vector<int> all(ns);
   std::iota(all.begin(), all.end(), 0);
   const Eigen::MatrixXd Phi_s = source.evecs.leftCols(k), Phi_t = target.evecs.leftCols(k);
-  const std::unique_ptr<SpectralKdTree> tree = TargetSpectralTree(Phi_t, target.mass, k);
 
   FunctionalMapIcpResult result;
   result.map = initial_map;
@@ -45,7 +44,8 @@ FunctionalMapIcpResult FunctionalMapIcp(const LaplaceBasis& source, const Laplac
     const Eigen::MatrixXd C = FitOrthogonalFunctionalMap(Phi_s, Phi_t, all, result.map,
                                                          source.mass);
     std::vector<double> sq_dist;
-    std::vector<int> mapped = PointMapFromFunctionalMap(Phi_s, C, all, *tree, &sq_dist);
+    std::vector<int> mapped = PointMapFromFunctionalMap(Phi_s, Phi_t, target.mass, C, all,
+                                                        &sq_dist);
     int changes = 0;
     for (int i = 0; i < ns; ++i) changes += mapped[i] != result.map[i];
     result.map = std::move(mapped);

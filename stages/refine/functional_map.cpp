@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "stages/refine/spectral_knn.h"
 
 namespace symembed {
 
@@ -78,32 +79,34 @@ Eigen::MatrixXd FitOrthogonalFunctionalMap(const Eigen::MatrixXd& Phi_s,
   return svd.matrixU() * svd.matrixV().transpose();
 }
 
-std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& C,
+std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s,
+                                           const Eigen::MatrixXd& Phi_t,
+                                           const Eigen::VectorXd& mass_t, const Eigen::MatrixXd& C,
                                            const std::vector<int>& source_ids,
-                                           const SpectralKdTree& target_tree,
                                            std::vector<double>* sq_dist) {
-  SYMEMBED_CHECK(C.rows() <= Phi_s.cols(), "C has more rows than the source basis has columns");
-  SYMEMBED_CHECK(C.cols() == target_tree.dims(), "C and the target tree differ in dimension");
-  Eigen::MatrixXd rows(source_ids.size(), C.rows());
-  for (size_t r = 0; r < source_ids.size(); ++r) {
-    rows.row(r) = Phi_s.row(source_ids[r]).head(C.rows());
-  }
-  std::vector<int> nearest;
-  target_tree.Query(rows * C, &nearest, sq_dist);
-  return nearest;
-}
-
-std::unique_ptr<SpectralKdTree> TargetSpectralTree(const Eigen::MatrixXd& Phi_t,
-                                                   const Eigen::VectorXd& mass_t, int k) {
-  SYMEMBED_CHECK(k <= Phi_t.cols(), "tree of " << k << " columns from " << Phi_t.cols());
+  const int ks = static_cast<int>(C.rows()), kt = static_cast<int>(C.cols());
+  SYMEMBED_CHECK(ks <= Phi_s.cols() && kt <= Phi_t.cols(),
+                 "C is " << ks << " x " << kt << " for bases of " << Phi_s.cols() << " and "
+                         << Phi_t.cols() << " columns");
+  SYMEMBED_CHECK(mass_t.size() == Phi_t.rows(), "mass_t must have one entry per target vertex");
   std::vector<int> ids;
-  for (int i = 0; i < Phi_t.rows(); ++i) {
-    if (mass_t(i) > 0.0) ids.push_back(i);
+  for (int j = 0; j < Phi_t.rows(); ++j) {
+    if (mass_t(j) > 0.0) ids.push_back(j);
   }
   if (ids.empty()) throw InvalidInputError("target surface has no vertex with positive area");
-  Eigen::MatrixXd points(ids.size(), k);
-  for (size_t r = 0; r < ids.size(); ++r) points.row(r) = Phi_t.row(ids[r]).head(k);
-  return std::make_unique<SpectralKdTree>(points, std::move(ids));
+  Eigen::MatrixXd points(ids.size(), kt);
+  for (size_t r = 0; r < ids.size(); ++r) points.row(r) = Phi_t.row(ids[r]).head(kt);
+  const SpectralNearest tree(points * C.transpose(), std::move(ids));
+
+  Eigen::MatrixXd queries(source_ids.size(), ks);
+  for (size_t r = 0; r < source_ids.size(); ++r) {
+    const int i = source_ids[r];
+    SYMEMBED_CHECK(i >= 0 && i < Phi_s.rows(), "source id " << i << " out of range");
+    queries.row(r) = Phi_s.row(i).head(ks);
+  }
+  std::vector<int> nearest;
+  tree.Query(queries, &nearest, sq_dist);
+  return nearest;
 }
 
 double OrthogonalityDefect(const Eigen::MatrixXd& C) {

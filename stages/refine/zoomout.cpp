@@ -64,11 +64,11 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
     const bool last = it + 1 == k_sizes.size();
     const Eigen::MatrixXd C = FitFunctionalMap(source.evecs.leftCols(k), target.evecs.leftCols(k),
                                                active, active_map, weights);
-    const std::unique_ptr<SpectralKdTree> tree = TargetSpectralTree(target.evecs, target.mass, k);
     std::vector<double> sq_dist;
     // The last query maps every source vertex (the dense map of the sampled variant).
     const std::vector<int>& query = (last && sampled) ? all : active;
-    std::vector<int> mapped = PointMapFromFunctionalMap(source.evecs, C, query, *tree, &sq_dist);
+    std::vector<int> mapped = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C,
+                                                        query, &sq_dist);
     result.k.push_back(k);
     result.orthogonality.push_back(OrthogonalityDefect(C));
     result.spectral_residual.push_back(

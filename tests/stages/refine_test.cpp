@@ -13,6 +13,7 @@
 #include "registry/registry.h"
 #include "stages/refine/fmap_icp.h"
 #include "stages/refine/functional_map.h"
+#include "stages/refine/spectral_knn.h"
 #include "stages/refine/zoomout.h"
 #include "tests/test_util.h"
 
@@ -111,10 +112,9 @@ TEST_F(RefineTest, FunctionalMapOfTruthIsNearlyOrthogonal) {
   // A near-isometry with an area-preserving bijection: C^T C ~ I (measured defect 1.5e-4; the
   // twist stretches the surface by a few percent).
   EXPECT_LT(OrthogonalityDefect(C), 0.01);
-  // The convention of functional_map.h: rows of Phi_s C are rows T(i) of Phi_t, so the map of
-  // C recovers the truth.
-  const auto tree = TargetSpectralTree(t.evecs, t.mass, 30);
-  const std::vector<int> map = PointMapFromFunctionalMap(s.evecs, C, all, *tree);
+  // The convention of functional_map.h: rows T(i) of Phi_t C^T are rows i of Phi_s, so the map
+  // of C recovers the truth.
+  const std::vector<int> map = PointMapFromFunctionalMap(s.evecs, t.evecs, t.mass, C, all);
   EXPECT_LT(MeanError(*pair_, map), 0.003);  // measured 0
 }
 
@@ -189,6 +189,31 @@ TEST(RefineStages, OptionsAreCheckedStrictly) {
   EXPECT_EQ(resolved["k_end"].as<int>(), 120);
   EXPECT_EQ(resolved["step"].as<int>(), 5);
   EXPECT_EQ(resolved["sample_count"].as<int>(), 0);
+}
+
+TEST(SpectralNearest, KdTreeAndBruteForceMatchNaiveSearch) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int dims : {3, 64}) {
+    Eigen::MatrixXd points(500, dims), queries(200, dims);
+    for (int i = 0; i < points.size(); ++i) points.data()[i] = normal(rng);
+    for (int i = 0; i < queries.size(); ++i) queries.data()[i] = normal(rng);
+    std::vector<int> ids(points.rows());
+    for (int i = 0; i < points.rows(); ++i) ids[i] = 1000 + i;
+    for (auto method : {SpectralNearest::Method::kKdTree, SpectralNearest::Method::kBruteForce}) {
+      const SpectralNearest search(points, ids, method);
+      std::vector<int> nearest;
+      std::vector<double> sq_dist;
+      search.Query(queries, &nearest, &sq_dist);
+      for (int q = 0; q < queries.rows(); ++q) {
+        Eigen::Index best = 0;
+        const double d = (points.rowwise() - queries.row(q)).rowwise().squaredNorm().minCoeff(&best);
+        // Gaussian data: the nearest is unique by far more than float rounding (1e-6 relative).
+        EXPECT_EQ(nearest[q], 1000 + best) << "dims " << dims << " query " << q;
+        EXPECT_NEAR(sq_dist[q], d, 1e-9 * d);
+      }
+    }
+  }
 }
 
 TEST(FunctionalMap, EuclideanFarthestPointsSpreadAndRespectKeep) {
