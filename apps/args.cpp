@@ -19,6 +19,16 @@ void ArgParser::Switch(const std::string& name, const std::string& help) {
   order_.push_back(name);
 }
 
+void ArgParser::Repeated(const std::string& name, const std::string& help) {
+  specs_[name] = Spec{help, "", false, true};
+  order_.push_back(name);
+}
+
+std::vector<std::string> ArgParser::GetAll(const std::string& name) const {
+  auto it = repeated_values_.find(name);
+  return it == repeated_values_.end() ? std::vector<std::string>{} : it->second;
+}
+
 void ArgParser::Positionals(const std::string& usage, const std::string& help, int min, int max) {
   positional_usage_ = usage;
   positional_help_ = help;
@@ -52,6 +62,7 @@ bool ArgParser::Parse(const std::vector<std::string>& args) {
           value = args[++i];
         }
         values_[name] = value;
+        if (it->second.repeated) repeated_values_[name].push_back(value);
       }
     } else {
       positionals_.push_back(a);
@@ -97,7 +108,8 @@ std::string ArgParser::Help() const {
   if (!order_.empty()) out << "\noptions:\n";
   for (const auto& name : order_) {
     const Spec& s = specs_.at(name);
-    out << "  --" << name << (s.is_switch ? "" : " VALUE") << "\n      " << s.help;
+    out << "  --" << name << (s.is_switch ? "" : " VALUE") << (s.repeated ? " (repeatable)" : "")
+        << "\n      " << s.help;
     if (!s.is_switch && !s.default_value.empty()) out << " (default: " << s.default_value << ")";
     out << "\n";
   }

@@ -19,6 +19,9 @@ class ArgParser {
   // Declares a flag taking a value (default shown in --help) or a boolean switch.
   void Option(const std::string& name, const std::string& help, const std::string& default_value);
   void Switch(const std::string& name, const std::string& help);
+  // A flag that may be given several times; all values are kept in order.
+  void Repeated(const std::string& name, const std::string& help);
+  std::vector<std::string> GetAll(const std::string& name) const;
   // Declares the positionals: their usage text and minimum/maximum count (-1: unbounded).
   void Positionals(const std::string& usage, const std::string& help, int min, int max);
 
@@ -38,7 +41,9 @@ class ArgParser {
     std::string help;
     std::string default_value;
     bool is_switch = false;
+    bool repeated = false;
   };
+  std::map<std::string, std::vector<std::string>> repeated_values_;
   std::string command_, summary_;
   std::map<std::string, Spec> specs_;
   std::vector<std::string> order_;

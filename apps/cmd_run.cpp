@@ -47,6 +47,8 @@ int RunCommand(const Args& args) {
   parser.Option("out", "output folder", "results/<config name>");
   parser.Option("cache", "per-shape cache folder ('' disables it)", "results/.cache");
   parser.Switch("quiet", "no progress on stderr");
+  parser.Repeated("set", "override dotted.path=value in the base and every variant "
+                         "(e.g. --set evaluation.geodesics=fast_marching)");
   parser.Positionals("CONFIG", "the experiment's YAML file", 1, 1);
   if (!parser.Parse(args)) return 0;
 
@@ -62,7 +64,8 @@ int RunCommand(const Args& args) {
 
   Registry registry;
   RegisterBuiltinStages(registry);
-  const ExperimentConfig config = LoadExperimentConfig(parser.positionals()[0], registry);
+  const ExperimentConfig config = LoadExperimentConfig(parser.positionals()[0], registry,
+                                                           parser.GetAll("set"));
   options.out_dir = parser.Given("out") ? parser.Get("out") : "results/" + config.name;
 
   EvaluatorHooks evaluation(&registry);

@@ -185,10 +185,29 @@ EvaluationOptions ParseEvaluation(const YAML::Node& node, const std::string& fil
   return e;
 }
 
+// Applies "dotted.path=value" overrides given on the command line to a config tree.
+void ApplyCommandLineOverrides(YAML::Node tree, const std::vector<std::string>& overrides,
+                               const std::string& file) {
+  for (const std::string& o : overrides) {
+    const size_t eq = o.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw ConfigError("--set '" + o + "': expected dotted.path=value");
+    }
+    YAML::Node value;
+    try {
+      value = YAML::Load(o.substr(eq + 1));
+    } catch (const YAML::Exception& e) {
+      throw ConfigError("--set '" + o + "': value is not valid YAML: " + e.msg);
+    }
+    ApplyOverride(tree, o.substr(0, eq), value, YAML::Node(), file + " (--set " + o + ")");
+  }
+}
+
 }  // namespace
 
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
-                                       const Registry& registry) {
+                                       const Registry& registry,
+                                       const std::vector<std::string>& overrides) {
   const std::string text = SubstituteText(yaml_text, file);
   // Each variant gets its own parse of the text, so that every node keeps its file position
   // (YAML::Clone drops positions) and no node is shared between variants.
@@ -247,6 +266,7 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
 
   YAML::Node base = parse();
   base.remove("variants");
+  ApplyCommandLineOverrides(base, overrides, file);
   config.variants.push_back(VariantConfig{"base", base});
 
   const YAML::Node variants = croot["variants"];
@@ -277,6 +297,7 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
       YAML::Node tree = parse();
       const YAML::Node set = static_cast<const YAML::Node&>(tree)["variants"][i]["set"];
       tree.remove("variants");
+      ApplyCommandLineOverrides(tree, overrides, file);
       if (set.IsDefined() && !set.IsNull()) {
         if (!set.IsMap()) throw ConfigError(NodeLocation(file, set) + ": " + path + ".set: expected a map of dotted.path: value");
         // Type changes first, so that options set next to them are kept.
@@ -297,12 +318,13 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
   return config;
 }
 
-ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry) {
+ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry,
+                                      const std::vector<std::string>& overrides) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open config file");
   std::ostringstream text;
   text << in.rdbuf();
-  return ParseExperimentConfig(text.str(), path, registry);
+  return ParseExperimentConfig(text.str(), path, registry, overrides);
 }
 
 Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& variant,
@@ -311,7 +333,7 @@ Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& vari
   const YAML::Node& tree = variant.tree;
   const YAML::Node stages = tree["pipeline"];
   auto node = [&](const std::string& kind) {
-    return stages.IsMap() ? stages[kind] : YAML::Node();
+    return stages.IsDefined() && stages.IsMap() ? stages[kind] : YAML::Node();
   };
   auto create = [&](const std::string& kind, auto* tag) {
     using T = std::remove_pointer_t<decltype(tag)>;

@@ -76,9 +76,13 @@ struct ExperimentConfig {
 
 // Reads, substitutes, resolves and validates (instantiating every stage of every variant).
 // Throws ConfigError (file:line:col, dotted path, expectation) or IoError.
-ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry);
+// `overrides` ("dotted.path=value", as `symembed run --set`) apply to the base and to every
+// variant, before the variant's own overrides.
+ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry,
+                                      const std::vector<std::string>& overrides = {});
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
-                                       const Registry& registry);
+                                       const Registry& registry,
+                                       const std::vector<std::string>& overrides = {});
 
 // Instantiates the stages of one variant (throws ConfigError).
 Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& variant,

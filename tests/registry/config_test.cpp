@@ -242,3 +242,48 @@ TEST(Config, ResolvedConfigRoundTrips) {
 
 }  // namespace
 }  // namespace symembed
+
+namespace symembed {
+namespace {
+
+TEST(Config, CommandLineOverridesApplyToEveryVariant) {
+  const Registry registry = FakeRegistry();
+  const ExperimentConfig c = ParseExperimentConfig(
+      kConfig, "exp.yaml", registry, {"evaluation.geodesics=fast_marching", "pipeline.sampling.seed=7"});
+  for (const auto& v : c.variants) {
+    const Pipeline p = BuildPipeline(c, v, registry);
+    EXPECT_EQ(p.evaluation.geodesics, "fast_marching") << v.name;
+    EXPECT_EQ(p.sampling->resolved_options()["seed"].as<int>(), 7) << v.name;
+  }
+  // The variant's own override still wins over the command line for the same key.
+  const ExperimentConfig d =
+      ParseExperimentConfig(kConfig, "exp.yaml", registry, {"pipeline.sampling.count=50"});
+  EXPECT_EQ(BuildPipeline(d, *d.Find("more_samples"), registry)
+                .sampling->resolved_options()["count"].as<int>(),
+            2000);
+  EXPECT_EQ(BuildPipeline(d, *d.Find("base"), registry)
+                .sampling->resolved_options()["count"].as<int>(),
+            50);
+  EXPECT_THROW(ParseExperimentConfig(kConfig, "exp.yaml", registry, {"evaluation.geodesics"}),
+               ConfigError);
+  EXPECT_THROW(ParseExperimentConfig(kConfig, "exp.yaml", registry, {"pipline.x.y=1"}),
+               ConfigError);
+}
+
+}  // namespace
+}  // namespace symembed
+
+namespace symembed {
+namespace {
+
+TEST(Config, PipelineAndEvaluationSectionsAreOptional) {
+  const Registry registry = FakeRegistry();
+  const ExperimentConfig c =
+      ParseExperimentConfig("name: minimal\ndataset: {format: pairs_vts, root: /x}\n", "m.yaml", registry);
+  const Pipeline p = BuildPipeline(c, c.variants[0], registry);
+  EXPECT_EQ(p.embedding->resolved_options()["type"].as<std::string>(), "lsmds");
+  EXPECT_EQ(p.evaluation.geodesics, "fast_marching");
+}
+
+}  // namespace
+}  // namespace symembed
