@@ -97,7 +97,16 @@ class VariantRun {
 
   void Run() {
     const auto start = std::chrono::steady_clock::now();
-    WriteFileAtomically(dir_ + "/config.yaml", ResolvedConfigYaml(config_, variant_, pipeline_));
+    const std::string resolved = ResolvedConfigYaml(config_, variant_, pipeline_);
+    if (options_.resume) {
+      // Records made under other settings must not be mixed into this run's outputs.
+      auto previous = ReadFileBytes(dir_ + "/config.yaml");
+      if (previous && *previous != resolved) {
+        throw ConfigError(dir_ + "/config.yaml: the resolved config differs from the one of the "
+                          "run being resumed; run without --resume (or into another --out)");
+      }
+    }
+    WriteFileAtomically(dir_ + "/config.yaml", resolved);
     index_ = pipeline_.dataset->Load();
     SelectPairs();
     ComputeShapes();

@@ -162,6 +162,19 @@ TEST(Runner, ResumeAfterAnInterruptionGivesTheSameOutputs) {
   EXPECT_EQ(Snapshot(tmp.File("out")), full);
 }
 
+TEST(Runner, ResumeRefusesAChangedConfig) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 2);
+  RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  RunOptions resume;
+  resume.resume = true;
+  const std::string changed = config + "variants: []\n";
+  EXPECT_NO_THROW(RunConfig(changed, tmp.File("out"), tmp.File("cache"), resume));
+  std::string other = config;
+  other.replace(other.find("count: 6"), 8, "count: 7");
+  EXPECT_THROW(RunConfig(other, tmp.File("out"), tmp.File("cache"), resume), ConfigError);
+}
+
 TEST(Runner, ShardsMergedEqualASingleRun) {
   TempDir tmp;
   const std::string config =
