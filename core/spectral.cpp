@@ -1,9 +1,9 @@
 #include "core/spectral.h"
 
-#include <Eigen/SparseCholesky>
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
 
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <sstream>
 #include <vector>
@@ -126,8 +126,8 @@ LaplaceBasis ComputeLaplaceBasis(const Surface& surface, const LaplaceBasisOptio
                    Spectra::SortRule::SmallestAlge);
     if (solver.info() != Spectra::CompInfo::Successful) {
       std::ostringstream out;
-      out << "Laplace-Beltrami basis: the Lanczos iteration did not converge (k = " << nev
-          << ", " << solver.num_iterations() << " restarts)";
+      out << "Laplace-Beltrami basis: the Lanczos iteration did not converge (k = " << nev << ", "
+          << solver.num_iterations() << " restarts)";
       throw SolverError(out.str());
     }
     basis.evals = solver.eigenvalues().head(k);
@@ -174,8 +174,8 @@ LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k) {
   const auto evecs = aux.find(kLbEvecsKey);
   const auto mass = aux.find(kLbMassKey);
   if (evals == aux.end() || evecs == aux.end() || mass == aux.end()) {
-    throw InvalidInputError("shape data holds no Laplace-Beltrami basis (lb_evals, lb_evecs, "
-                            "lb_mass)");
+    throw InvalidInputError(
+        "shape data holds no Laplace-Beltrami basis (lb_evals, lb_evecs, lb_mass)");
   }
   const int n = static_cast<int>(evecs->second.rows());
   if (!HasLaplaceBasis(aux, std::max(k, 0), n)) {

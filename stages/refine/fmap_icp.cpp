@@ -41,17 +41,16 @@ FunctionalMapIcpResult FunctionalMapIcp(const LaplaceBasis& source, const Laplac
   result.map = initial_map;
   result.status.converged = false;
   for (int it = 0; it < options.max_iterations; ++it) {
-    const Eigen::MatrixXd C = FitOrthogonalFunctionalMap(Phi_s, Phi_t, all, result.map,
-                                                         source.mass);
+    const Eigen::MatrixXd C =
+        FitOrthogonalFunctionalMap(Phi_s, Phi_t, all, result.map, source.mass);
     std::vector<double> sq_dist;
-    std::vector<int> mapped = PointMapFromFunctionalMap(Phi_s, Phi_t, target.mass, C, all,
-                                                        &sq_dist);
+    std::vector<int> mapped =
+        PointMapFromFunctionalMap(Phi_s, Phi_t, target.mass, C, all, &sq_dist);
     int changes = 0;
     for (int i = 0; i < ns; ++i) changes += mapped[i] != result.map[i];
     result.map = std::move(mapped);
     result.changes.push_back(changes);
-    result.spectral_residual.push_back(std::accumulate(sq_dist.begin(), sq_dist.end(), 0.0) /
-                                       ns);
+    result.spectral_residual.push_back(std::accumulate(sq_dist.begin(), sq_dist.end(), 0.0) / ns);
     if (changes == 0) {
       result.status.converged = true;
       break;
@@ -61,8 +60,8 @@ FunctionalMapIcpResult FunctionalMapIcp(const LaplaceBasis& source, const Laplac
 
   std::ostringstream message;
   message << "icp k " << k << "; " << (result.status.converged ? "converged" : "stopped")
-          << " after " << result.changes.size() << " iterations; changed " << result.changed
-          << "/" << ns << "; per iteration: changes, mean NN spectral residual:";
+          << " after " << result.changes.size() << " iterations; changed " << result.changed << "/"
+          << ns << "; per iteration: changes, mean NN spectral residual:";
   message.precision(3);
   for (size_t it = 0; it < result.changes.size(); ++it) {
     message << " " << result.changes[it] << "," << result.spectral_residual[it];

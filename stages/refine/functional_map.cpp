@@ -2,7 +2,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
-
 #include <algorithm>
 #include <limits>
 #include <sstream>
@@ -18,8 +17,7 @@ namespace {
 // returns A^T W A and A^T W B.
 void NormalEquations(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& Phi_t,
                      const std::vector<int>& source_ids, const std::vector<int>& target_ids,
-                     const Eigen::VectorXd& weights, Eigen::MatrixXd* AtWA,
-                     Eigen::MatrixXd* AtWB) {
+                     const Eigen::VectorXd& weights, Eigen::MatrixXd* AtWA, Eigen::MatrixXd* AtWB) {
   const int m = static_cast<int>(source_ids.size());
   if (target_ids.size() != source_ids.size()) {
     throw InvalidInputError("functional map: source and target id lists differ in length");

@@ -1,6 +1,8 @@
 // The refine stages: thin adapters around ZoomOut and FunctionalMapIcp. Each computes the
 // Laplace-Beltrami basis of a shape once, in PrepareShape, into ShapeData::aux (keys of
 // core/spectral.h, shared with the `hks` flip scorer).
+#include "stages/register.h"
+
 #include <memory>
 #include <string>
 
@@ -8,7 +10,6 @@
 #include "stages/refine/fmap_icp.h"
 #include "stages/refine/functional_map.h"
 #include "stages/refine/zoomout.h"
-#include "stages/register.h"
 
 namespace symembed {
 
@@ -108,8 +109,9 @@ class IcpRefine : public RefineStage {
 }  // namespace
 
 void RegisterRefineStages(Registry& registry) {
-  registry.Add("refine", "none", "no refinement: the matching stage's map unchanged",
-               [](OptionReader&) -> std::unique_ptr<Stage> { return std::make_unique<NoRefine>(); });
+  registry.Add(
+      "refine", "none", "no refinement: the matching stage's map unchanged",
+      [](OptionReader&) -> std::unique_ptr<Stage> { return std::make_unique<NoRefine>(); });
   registry.Add(
       "refine", "zoomout",
       "ZoomOut spectral upsampling of the map [Melzi et al. 2019], Laplace-Beltrami basis by "

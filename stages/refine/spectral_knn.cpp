@@ -1,38 +1,35 @@
 #include "stages/refine/spectral_knn.h"
 
-#include <flann/flann.hpp>
-
 #include <algorithm>
+#include <flann/flann.hpp>
 #include <limits>
 
 #include "core/errors.h"
 
 namespace symembed {
 
-SpectralNearest::SpectralNearest(const Eigen::MatrixXd& points, std::vector<int> ids,
-                                 Method method)
+SpectralNearest::SpectralNearest(const Eigen::MatrixXd& points, std::vector<int> ids, Method method)
     : dims_(static_cast<int>(points.cols())), points_(points), ids_(std::move(ids)) {
   SYMEMBED_CHECK(points.rows() > 0 && points.cols() > 0,
                  "nearest-neighbour search needs at least one point");
-  SYMEMBED_CHECK(ids_.empty() || ids_.size() == static_cast<size_t>(points.rows()),
-                 "nearest-neighbour search: " << ids_.size() << " ids for " << points.rows()
-                                              << " points");
-  if (method == Method::kBruteForce ||
-      (method == Method::kAuto && dims_ >= kBruteForceMinDims)) {
+  SYMEMBED_CHECK(
+      ids_.empty() || ids_.size() == static_cast<size_t>(points.rows()),
+      "nearest-neighbour search: " << ids_.size() << " ids for " << points.rows() << " points");
+  if (method == Method::kBruteForce || (method == Method::kAuto && dims_ >= kBruteForceMinDims)) {
     points_f_ = points.cast<float>();
     sq_norms_f_ = points_f_.rowwise().squaredNorm();
     return;
   }
   flann::Matrix<double> data(points_.data(), points_.rows(), points_.cols());
-  index_ = std::make_unique<flann::Index<flann::L2<double>>>(data,
-                                                             flann::KDTreeSingleIndexParams(16));
+  index_ =
+      std::make_unique<flann::Index<flann::L2<double>>>(data, flann::KDTreeSingleIndexParams(16));
   index_->buildIndex();
 }
 
 SpectralNearest::~SpectralNearest() = default;
 
 void SpectralNearest::QueryBruteForce(const Eigen::MatrixXd& queries,
-                                     std::vector<int>* rows) const {
+                                      std::vector<int>* rows) const {
   // Blocks of queries keep the block x n product in cache-friendly size (n ~ 5k: 1 MB).
   constexpr int kBlock = 64;
   const int m = static_cast<int>(queries.rows());
@@ -58,7 +55,7 @@ void SpectralNearest::QueryBruteForce(const Eigen::MatrixXd& queries,
 }
 
 void SpectralNearest::Query(const Eigen::MatrixXd& queries, std::vector<int>* nearest,
-                           std::vector<double>* sq_dist) const {
+                            std::vector<double>* sq_dist) const {
   SYMEMBED_CHECK(queries.cols() == dims_,
                  "query has " << queries.cols() << " columns, points " << dims_);
   SYMEMBED_CHECK(nearest != nullptr, "nearest is null");

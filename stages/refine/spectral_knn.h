@@ -53,8 +53,8 @@ class SpectralNearest {
   RowMatrix points_;
   std::vector<int> ids_;
   std::unique_ptr<flann::Index<flann::L2<double>>> index_;  // low dimensions only
-  Eigen::MatrixXf points_f_;      // brute force: n x d single-precision copy
-  Eigen::VectorXf sq_norms_f_;    // brute force: ||p||^2 per point
+  Eigen::MatrixXf points_f_;    // brute force: n x d single-precision copy
+  Eigen::VectorXf sq_norms_f_;  // brute force: ||p||^2 per point
 };
 
 }  // namespace symembed

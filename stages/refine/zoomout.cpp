@@ -30,8 +30,8 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
   const int ns = source.NumVertices(), nt = target.NumVertices();
   if (source.NumEigenpairs() < options.k_end || target.NumEigenpairs() < options.k_end) {
     std::ostringstream out;
-    out << "zoomout: k_end = " << options.k_end << " but the bases have "
-        << source.NumEigenpairs() << " and " << target.NumEigenpairs() << " eigenpairs";
+    out << "zoomout: k_end = " << options.k_end << " but the bases have " << source.NumEigenpairs()
+        << " and " << target.NumEigenpairs() << " eigenpairs";
     throw InvalidInputError(out.str());
   }
   CheckPointMap(initial_map, ns, nt);
@@ -67,12 +67,13 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
     std::vector<double> sq_dist;
     // The last query maps every source vertex (the dense map of the sampled variant).
     const std::vector<int>& query = (last && sampled) ? all : active;
-    std::vector<int> mapped = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C,
-                                                        query, &sq_dist);
+    std::vector<int> mapped =
+        PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C, query, &sq_dist);
     result.k.push_back(k);
     result.orthogonality.push_back(OrthogonalityDefect(C));
     result.spectral_residual.push_back(
-        sq_dist.empty() ? 0.0 : std::accumulate(sq_dist.begin(), sq_dist.end(), 0.0) / sq_dist.size());
+        sq_dist.empty() ? 0.0
+                        : std::accumulate(sq_dist.begin(), sq_dist.end(), 0.0) / sq_dist.size());
     if (last) {
       result.map = std::move(mapped);
     } else {
@@ -83,8 +84,8 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
 
   std::ostringstream message;
   message << "zoomout k " << options.k_start << ".." << options.k_end << " step " << options.step
-          << (sampled ? " on " + std::to_string(samples.size()) + " samples" : "")
-          << "; changed " << result.changed << "/" << ns
+          << (sampled ? " on " + std::to_string(samples.size()) + " samples" : "") << "; changed "
+          << result.changed << "/" << ns
           << "; per k: orthogonality defect ||C^T C - I||^2/k, mean NN spectral residual:";
   message.precision(3);
   for (size_t it = 0; it < result.k.size(); ++it) {

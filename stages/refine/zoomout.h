@@ -18,19 +18,19 @@
 namespace symembed {
 
 struct ZoomOutOptions {
-  int k_start = 20;      // basis size of the first functional map (>= 1)
-  int k_end = 120;       // basis size of the last one (>= k_start; both bases need k_end pairs)
-  int step = 5;          // increment of k per iteration (>= 1); k_end is always the last size
+  int k_start = 20;  // basis size of the first functional map (>= 1)
+  int k_end = 120;   // basis size of the last one (>= k_start; both bases need k_end pairs)
+  int step = 5;      // increment of k per iteration (>= 1); k_end is always the last size
 
   bool IsValid(std::string* error) const;
 };
 
 struct ZoomOutResult {
-  std::vector<int> map;                 // #Vs: target vertex of each source vertex
-  std::vector<int> k;                   // per iteration: basis size
-  std::vector<double> orthogonality;    // per iteration: ||C_k^T C_k - I||_F^2 / k
+  std::vector<int> map;                   // #Vs: target vertex of each source vertex
+  std::vector<int> k;                     // per iteration: basis size
+  std::vector<double> orthogonality;      // per iteration: ||C_k^T C_k - I||_F^2 / k
   std::vector<double> spectral_residual;  // per iteration: mean squared NN spectral distance
-  int changed = 0;                      // source vertices whose target changed
+  int changed = 0;                        // source vertices whose target changed
   StageStatus status;
 };
 

@@ -127,9 +127,17 @@ void BM_SpectralNearest(benchmark::State& state, SpectralNearest::Method method)
   }
 }
 BENCHMARK_CAPTURE(BM_SpectralNearest, kd_tree, SpectralNearest::Method::kKdTree)
-    ->Arg(10)->Arg(20)->Arg(40)->Arg(120)->Unit(benchmark::kMillisecond);
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(40)
+    ->Arg(120)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SpectralNearest, brute_force, SpectralNearest::Method::kBruteForce)
-    ->Arg(10)->Arg(20)->Arg(40)->Arg(120)->Unit(benchmark::kMillisecond);
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(40)
+    ->Arg(120)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_Refine(benchmark::State& state, const BenchPair* pair, const std::string& yaml) {
   if (pair == nullptr) {
@@ -164,18 +172,15 @@ const std::vector<std::pair<std::string, std::string>>& Variants() {
 
 const bool kRegistered = [] {
   for (const auto& [name, yaml] : Variants()) {
-    benchmark::RegisterBenchmark(("BM_Refine/" + name).c_str(),
-                                 [yaml = yaml](benchmark::State& s) {
-                                   BM_Refine(s, &BlobPair(), yaml);
-                                 })
-        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_Refine/" + name).c_str(), [yaml = yaml](benchmark::State& s) {
+      BM_Refine(s, &BlobPair(), yaml);
+    })->Unit(benchmark::kMillisecond);
   }
   for (const auto& [name, yaml] : Variants()) {
-    benchmark::RegisterBenchmark(("BM_RefineTosca/" + name).c_str(),
-                                 [yaml = yaml](benchmark::State& s) {
-                                   BM_Refine(s, ToscaPair(), yaml);
-                                 })
-        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_RefineTosca/" + name).c_str(), [yaml = yaml](
+                                                                         benchmark::State& s) {
+      BM_Refine(s, ToscaPair(), yaml);
+    })->Unit(benchmark::kMillisecond);
   }
   return true;
 }();

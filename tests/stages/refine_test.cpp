@@ -173,8 +173,8 @@ TEST_F(RefineTest, RejectsMalformedMaps) {
 
 TEST(RefineStages, WorkWithoutPrepareShape) {
   Pair p = MakePair(6, 0.2);  // 218 vertices
-  const MatchResult r =
-      MakeStage("{type: zoomout, k_start: 5, k_end: 20, step: 5}")->Run({p.source, p.target}, p.truth);
+  const MatchResult r = MakeStage("{type: zoomout, k_start: 5, k_end: 20, step: 5}")
+                            ->Run({p.source, p.target}, p.truth);
   EXPECT_NE(r.status.message.find("basis computed per pair"), std::string::npos);
   EXPECT_EQ(r.map.size(), p.truth.size());
 }
@@ -250,7 +250,8 @@ TEST(SpectralNearest, KdTreeAndBruteForceMatchNaiveSearch) {
       search.Query(queries, &nearest, &sq_dist);
       for (int q = 0; q < queries.rows(); ++q) {
         Eigen::Index best = 0;
-        const double d = (points.rowwise() - queries.row(q)).rowwise().squaredNorm().minCoeff(&best);
+        const double d =
+            (points.rowwise() - queries.row(q)).rowwise().squaredNorm().minCoeff(&best);
         // Gaussian data: the nearest is unique by far more than float rounding (1e-6 relative).
         EXPECT_EQ(nearest[q], 1000 + best) << "dims " << dims << " query " << q;
         EXPECT_NEAR(sq_dist[q], d, 1e-9 * d);
