@@ -44,8 +44,7 @@ ProcrustesFit FitProcrustes(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y,
 Eigen::MatrixXd ApplyProcrustes(const ProcrustesFit& fit, const Eigen::MatrixXd& X) {
   SYMEMBED_CHECK(X.cols() == fit.R.rows(), "ApplyProcrustes: " << X.cols() << " columns, fit is "
                                                                << fit.R.rows() << "-dimensional");
-  return ((fit.scale * (X.rowwise() - fit.source_mean) * fit.R).rowwise() + fit.target_mean)
-      .eval();
+  return ((fit.scale * (X.rowwise() - fit.source_mean) * fit.R).rowwise() + fit.target_mean).eval();
 }
 
 int ProcrustesReflection(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {

@@ -18,12 +18,12 @@ struct ProcrustesOptions {
 
 // The fit Y ~ s * (X - source_mean) * R + target_mean, points as rows.
 struct ProcrustesFit {
-  Eigen::MatrixXd R;                 // d x d orthogonal
-  Eigen::RowVectorXd source_mean;    // 1 x d
-  Eigen::RowVectorXd target_mean;    // 1 x d
+  Eigen::MatrixXd R;               // d x d orthogonal
+  Eigen::RowVectorXd source_mean;  // 1 x d
+  Eigen::RowVectorXd target_mean;  // 1 x d
   double scale = 1.0;
-  double rms_residual = 0.0;         // sqrt(mean_i ||fitted_i - y_i||^2), in Y's units
-  int det_sign = 1;                  // sign of det(R): -1 when the fit needs a reflection
+  double rms_residual = 0.0;  // sqrt(mean_i ||fitted_i - y_i||^2), in Y's units
+  int det_sign = 1;           // sign of det(R): -1 when the fit needs a reflection
   // Smallest singular value of the cross-covariance over the largest: near 0 when X or Y is
   // (nearly) contained in a lower-dimensional subspace, so the sign of det(R) is ill-defined.
   double conditioning = 0.0;

@@ -1,8 +1,9 @@
 #include "stages/embedding/classical_mds.h"
 
-#include <Eigen/Eigenvalues>
 #include <Spectra/MatOp/DenseSymMatProd.h>
 #include <Spectra/SymEigsSolver.h>
+
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -13,9 +14,12 @@ namespace symembed {
 
 bool ClassicalMdsOptions::IsValid(std::string* error) const {
   std::ostringstream why;
-  if (dims < 1) why << "dims must be >= 1, got " << dims;
-  else if (dense_limit < 0) why << "dense_limit must be >= 0, got " << dense_limit;
-  else if (!(eigen_tolerance > 0.0)) why << "eigen_tolerance must be > 0, got " << eigen_tolerance;
+  if (dims < 1)
+    why << "dims must be >= 1, got " << dims;
+  else if (dense_limit < 0)
+    why << "dense_limit must be >= 0, got " << dense_limit;
+  else if (!(eigen_tolerance > 0.0))
+    why << "eigen_tolerance must be > 0, got " << eigen_tolerance;
   else if (eigen_max_iterations < 1)
     why << "eigen_max_iterations must be >= 1, got " << eigen_max_iterations;
   if (why.str().empty()) return true;

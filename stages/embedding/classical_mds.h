@@ -31,11 +31,11 @@ struct ClassicalMdsOptions {
 };
 
 struct ClassicalMdsResult {
-  Eigen::MatrixXd X;            // n x dims, centred
-  Eigen::VectorXd eigenvalues;  // dims, descending (may be <= 0 for non-Euclidean input)
-  Eigen::MatrixXd eigenvectors; // n x dims, unit columns
-  Eigen::VectorXd mean_squared; // n: delta_mu, the mean of each column of D^2
-  int solver_iterations = 0;    // Lanczos restarts (0 for the dense path)
+  Eigen::MatrixXd X;             // n x dims, centred
+  Eigen::VectorXd eigenvalues;   // dims, descending (may be <= 0 for non-Euclidean input)
+  Eigen::MatrixXd eigenvectors;  // n x dims, unit columns
+  Eigen::VectorXd mean_squared;  // n: delta_mu, the mean of each column of D^2
+  int solver_iterations = 0;     // Lanczos restarts (0 for the dense path)
 };
 
 // D: n x n distances (symmetric part used), n >= dims + 1. Throws InvalidInputError on bad D,

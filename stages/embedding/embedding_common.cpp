@@ -11,10 +11,11 @@ void CheckEmbeddingInput(const EmbeddingInput& input) {
   const int nv = input.surface.NumVertices();
   const int ns = static_cast<int>(input.samples.size());
   std::ostringstream why;
-  if (ns < 2) why << "need at least 2 samples, got " << ns;
+  if (ns < 2)
+    why << "need at least 2 samples, got " << ns;
   else if (input.D.rows() != ns || input.D.cols() != nv)
-    why << "distances are " << input.D.rows() << "x" << input.D.cols() << ", expected " << ns
-        << "x" << nv << " (#samples x #vertices)";
+    why << "distances are " << input.D.rows() << "x" << input.D.cols() << ", expected " << ns << "x"
+        << nv << " (#samples x #vertices)";
   else if (!input.D.allFinite() || (input.D.array() < 0.0).any())
     why << "distances must be finite and non-negative (is the surface connected?)";
   if (why.str().empty()) {

@@ -10,8 +10,10 @@ namespace symembed {
 
 bool IsomapOptions::IsValid(std::string* error) const {
   std::string why;
-  if (dims != 2 && dims != 3) why = "dims must be 2 or 3, got " + std::to_string(dims);
-  else if (!mds.IsValid(&why)) why = "mds: " + why;
+  if (dims != 2 && dims != 3)
+    why = "dims must be 2 or 3, got " + std::to_string(dims);
+  else if (!mds.IsValid(&why))
+    why = "mds: " + why;
   if (why.empty()) return true;
   if (error) *error = why;
   return false;

@@ -12,9 +12,12 @@ namespace symembed {
 
 bool LsmdsOptions::IsValid(std::string* error) const {
   std::string why;
-  if (dims != 2 && dims != 3) why = "dims must be 2 or 3, got " + std::to_string(dims);
-  else if (!smacof.IsValid(&why)) why = "smacof: " + why;
-  else if (!out_of_sample.IsValid(&why)) why = "out_of_sample: " + why;
+  if (dims != 2 && dims != 3)
+    why = "dims must be 2 or 3, got " + std::to_string(dims);
+  else if (!smacof.IsValid(&why))
+    why = "smacof: " + why;
+  else if (!out_of_sample.IsValid(&why))
+    why = "out_of_sample: " + why;
   if (why.empty()) return true;
   if (error) *error = why;
   return false;
@@ -67,8 +70,7 @@ EmbeddingResult LsmdsEmbedding(const EmbeddingInput& input, const LsmdsOptions& 
   for (int i = 0; i < ns; ++i) result.Y.row(input.samples[i]) = smacof.X.row(i);
   const std::vector<int> rest = NonSampleVertices(input);
   if (!rest.empty()) {
-    const Eigen::MatrixXd placed = PlaceOutOfSample(smacof.X, input.D, rest,
-                                                    options.out_of_sample);
+    const Eigen::MatrixXd placed = PlaceOutOfSample(smacof.X, input.D, rest, options.out_of_sample);
     for (size_t r = 0; r < rest.size(); ++r) result.Y.row(rest[r]) = placed.row(r);
   }
   result.normalized_stress = smacof.normalized_stress;

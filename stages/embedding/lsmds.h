@@ -22,9 +22,9 @@ namespace symembed {
 enum class LsmdsInit { kOriginal, kIsomap, kRandom };
 
 struct LsmdsOptions {
-  int dims = 3;                        // 2 or 3
+  int dims = 3;  // 2 or 3
   LsmdsInit init = LsmdsInit::kOriginal;
-  unsigned seed = 1;                   // for init kRandom
+  unsigned seed = 1;  // for init kRandom
   SmacofOptions smacof;
   OutOfSampleOptions out_of_sample;
 

@@ -1,10 +1,11 @@
 // Registered adapters of the embedding stages; the algorithms are in lsmds.h and isomap.h.
+#include "stages/register.h"
+
 #include <memory>
 
 #include "core/errors.h"
 #include "stages/embedding/isomap.h"
 #include "stages/embedding/lsmds.h"
-#include "stages/register.h"
 
 namespace symembed {
 namespace {
@@ -43,7 +44,10 @@ std::unique_ptr<Stage> MakeLsmds(OptionReader& reader) {
   o.smacof.max_iterations = reader.GetInt("max_iterations", o.smacof.max_iterations, 0);
   o.smacof.weight_power = reader.GetDouble("weight_power", o.smacof.weight_power, 0.0, 8.0);
   o.smacof.relaxation = reader.GetDouble("relaxation", o.smacof.relaxation, 1.0, 1.999);
-  o.out_of_sample.neighbors = reader.GetInt("neighbors", o.out_of_sample.neighbors, 1);
+  o.smacof.anderson_window = reader.GetInt("anderson_window", o.smacof.anderson_window, 0, 20);
+  o.out_of_sample.neighbors = reader.GetInt("neighbors", o.out_of_sample.neighbors, 1, 64);
+  o.out_of_sample.weight_power =
+      reader.GetDouble("out_of_sample_weight_power", o.out_of_sample.weight_power, 0.0, 4.0);
   o.out_of_sample.max_iterations =
       reader.GetInt("out_of_sample_iterations", o.out_of_sample.max_iterations, 0);
   std::string why;

@@ -83,7 +83,7 @@ TEST(IsomapStage, ReportsReflectionAndFixesItOnRequest) {
     const std::vector<int> samples = EveryThird(s.NumVertices());
     const Eigen::MatrixXd D = EuclideanDistances(Rows(s.V, samples), s.V);
     const EmbeddingResult r = plain->Run({s, samples, D});
-    EXPECT_LT(r.normalized_stress, 1e-8);  // Euclidean input: classical MDS is exact
+    EXPECT_LT(r.normalized_stress, 1e-8);         // Euclidean input: classical MDS is exact
     EXPECT_LT(RelativeResidual(s.V, r.Y), 1e-8);  // landmark MDS is exact for Euclidean data
     EXPECT_EQ(r.reflection, CrossCovarianceDetSign(Rows(s.V, samples), Rows(r.Y, samples)));
     reflections.push_back(r.reflection);

@@ -72,29 +72,33 @@ TEST(Smacof, RecoversEuclideanPointsFromPerturbedStart) {
 TEST(Smacof, StressNeverIncreasesAndHistoryIsTheIteratesStress) {
   const Eigen::MatrixXd P = BoxPoints(60, 3);
   const Eigen::MatrixXd D = CurvedDistances(P);
-  for (double relaxation : {1.0, 1.9}) {
-    for (double weight_power : {0.0, 1.0}) {
-      for (unsigned seed : {1u, 2u, 3u, 4u}) {
-        SCOPED_TRACE(::testing::Message() << "relaxation " << relaxation << " weight_power "
-                                          << weight_power << " seed " << seed);
-        SmacofOptions options;
-        options.relaxation = relaxation;
-        options.weight_power = weight_power;
-        options.tolerance = 0.0;
-        options.max_iterations = 40;
-        const Eigen::MatrixXd init = RandomConfiguration(60, 3, seed);
-        const SmacofResult r = Smacof(D, init, options);
-        ASSERT_EQ(r.stress_history.size(), static_cast<size_t>(r.iterations) + 1);
-        for (size_t k = 1; k < r.stress_history.size(); ++k) {
-          EXPECT_LE(r.stress_history[k], r.stress_history[k - 1]) << "iteration " << k;
-        }
-        // The recorded value is the stress of the iterate (checked independently, uniform
-        // weights only since RawStress is unweighted); relative 1e-12 allows summation order.
-        if (weight_power == 0.0) {
-          for (int k : {0, 1, 5, r.iterations}) {
-            options.max_iterations = k;
-            const Eigen::MatrixXd Xk = Smacof(D, init, options).X;
-            EXPECT_NEAR(RawStress(D, Xk), r.stress_history[k], 1e-12 * r.stress_history[0]);
+  for (int anderson_window : {0, 5}) {
+    for (double relaxation : {1.0, 1.9}) {
+      for (double weight_power : {0.0, 1.0}) {
+        for (unsigned seed : {1u, 2u, 3u, 4u}) {
+          SCOPED_TRACE(::testing::Message()
+                       << "relaxation " << relaxation << " weight_power " << weight_power
+                       << " anderson " << anderson_window << " seed " << seed);
+          SmacofOptions options;
+          options.anderson_window = anderson_window;
+          options.relaxation = relaxation;
+          options.weight_power = weight_power;
+          options.tolerance = 0.0;
+          options.max_iterations = 40;
+          const Eigen::MatrixXd init = RandomConfiguration(60, 3, seed);
+          const SmacofResult r = Smacof(D, init, options);
+          ASSERT_EQ(r.stress_history.size(), static_cast<size_t>(r.iterations) + 1);
+          for (size_t k = 1; k < r.stress_history.size(); ++k) {
+            EXPECT_LE(r.stress_history[k], r.stress_history[k - 1]) << "iteration " << k;
+          }
+          // The recorded value is the stress of the iterate (checked independently, uniform
+          // weights only since RawStress is unweighted); relative 1e-12 allows summation order.
+          if (weight_power == 0.0) {
+            for (int k : {0, 1, 5, r.iterations}) {
+              options.max_iterations = k;
+              const Eigen::MatrixXd Xk = Smacof(D, init, options).X;
+              EXPECT_NEAR(RawStress(D, Xk), r.stress_history[k], 1e-12 * r.stress_history[0]);
+            }
           }
         }
       }
@@ -102,19 +106,26 @@ TEST(Smacof, StressNeverIncreasesAndHistoryIsTheIteratesStress) {
   }
 }
 
-TEST(Smacof, RelaxationNeedsFewerIterations) {
+TEST(Smacof, AccelerationNeedsFewerStressEvaluations) {
   const Eigen::MatrixXd P = BoxPoints(200, 4);
   const Eigen::MatrixXd D = CurvedDistances(P);
   SmacofOptions plain;
   plain.relaxation = 1.0;
-  SmacofOptions relaxed;
-  const SmacofResult a = Smacof(D, ScaleToDistances(D, P), plain);
-  const SmacofResult b = Smacof(D, ScaleToDistances(D, P), relaxed);
-  EXPECT_TRUE(a.converged);
-  EXPECT_TRUE(b.converged);
-  EXPECT_LT(b.iterations, a.iterations);
-  // Both reach the same local minimum from the same start (to the tolerance's precision).
+  plain.anderson_window = 0;
+  SmacofOptions relaxed = plain;
+  relaxed.relaxation = 1.9;
+  const SmacofOptions accelerated;  // defaults: relaxation and Anderson acceleration
+  const Eigen::MatrixXd init = RandomConfiguration(200, 3, 21);
+  const SmacofResult a = Smacof(D, init, plain);
+  const SmacofResult b = Smacof(D, init, relaxed);
+  const SmacofResult c = Smacof(D, init, accelerated);
+  EXPECT_TRUE(a.converged && b.converged && c.converged);
+  EXPECT_EQ(a.evaluations, a.iterations + 1);  // plain steps are never rejected
+  EXPECT_LT(b.evaluations, a.evaluations);
+  EXPECT_LT(c.evaluations, b.evaluations);
+  // All reach the same local minimum from the same start (to the tolerance's precision).
   EXPECT_NEAR(b.normalized_stress, a.normalized_stress, 1e-3 * a.normalized_stress);
+  EXPECT_NEAR(c.normalized_stress, a.normalized_stress, 1e-3 * a.normalized_stress);
 }
 
 TEST(Smacof, WeightedPathRecoversEuclideanPoints) {
@@ -159,8 +170,7 @@ TEST(ClassicalMds, RecoversEuclideanPointsDenseAndLanczos) {
     // The eigenvalues are the principal second moments of the centred points.
     const Eigen::MatrixXd Pc = P.rowwise() - P.colwise().mean();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> moments(Pc.transpose() * Pc);
-    EXPECT_LT((r.eigenvalues - moments.eigenvalues().reverse()).norm(),
-              1e-8 * r.eigenvalues(0));
+    EXPECT_LT((r.eigenvalues - moments.eigenvalues().reverse()).norm(), 1e-8 * r.eigenvalues(0));
   }
 }
 
