@@ -81,7 +81,8 @@ EmbeddingResult LsmdsEmbedding(const EmbeddingInput& input, const LsmdsOptions& 
   result.status.residual = smacof.normalized_stress;
   std::ostringstream msg;
   msg << "SMACOF " << (smacof.converged ? "converged" : "stopped at max_iterations") << " after "
-      << smacof.iterations << " iterations, normalized stress " << smacof.normalized_stress;
+      << smacof.iterations << " iterations (" << smacof.evaluations
+      << " stress evaluations), normalized stress " << smacof.normalized_stress;
   result.status.message = msg.str();
   return result;
 }
