@@ -51,9 +51,17 @@ Eigen::MatrixXd SampleCoordinates(const EmbeddingInput& input) {
   return X;
 }
 
-int EmbeddingReflection(const EmbeddingInput& input, const Eigen::MatrixXd& Ys) {
-  if (Ys.cols() != 3) return 1;
-  return ProcrustesReflection(SampleCoordinates(input), Ys);
+ReflectionState EmbeddingReflection(const EmbeddingInput& input, const Eigen::MatrixXd& Ys) {
+  if (Ys.cols() != 3) return {};
+  const ProcrustesFit fit = FitProcrustes(SampleCoordinates(input), Ys);
+  return {fit.det_sign, fit.conditioning};
+}
+
+std::string ReflectionText(const ReflectionState& state) {
+  std::ostringstream out;
+  out << "reflection " << (state.sign < 0 ? "-1" : "+1") << " (Procrustes conditioning "
+      << state.conditioning << ")";
+  return out.str();
 }
 
 std::vector<int> NonSampleVertices(const EmbeddingInput& input) {

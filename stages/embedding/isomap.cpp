@@ -29,13 +29,14 @@ EmbeddingResult IsomapEmbedding(const EmbeddingInput& input, const IsomapOptions
   ClassicalMdsResult mds = ClassicalMds(Dss, mds_options);
 
   EmbeddingResult result;
-  result.reflection = EmbeddingReflection(input, mds.X);
-  if (options.fix_orientation && result.reflection < 0) {
+  ReflectionState reflection = EmbeddingReflection(input, mds.X);
+  if (options.fix_orientation && reflection.sign < 0) {
     // Negating one eigenvector keeps the decomposition valid and turns det -1 into +1.
     mds.X.col(options.dims - 1) *= -1.0;
     mds.eigenvectors.col(options.dims - 1) *= -1.0;
-    result.reflection = EmbeddingReflection(input, mds.X);
+    reflection = EmbeddingReflection(input, mds.X);
   }
+  result.reflection = reflection.sign;
   const int ns = static_cast<int>(input.samples.size());
   result.Y.resize(input.surface.NumVertices(), options.dims);
   for (int i = 0; i < ns; ++i) result.Y.row(input.samples[i]) = mds.X.row(i);
@@ -50,7 +51,7 @@ EmbeddingResult IsomapEmbedding(const EmbeddingInput& input, const IsomapOptions
   std::ostringstream msg;
   msg << "classical MDS, eigenvalues";
   for (int k = 0; k < options.dims; ++k) msg << " " << mds.eigenvalues(k);
-  msg << ", normalized stress " << result.normalized_stress;
+  msg << ", normalized stress " << result.normalized_stress << ", " << ReflectionText(reflection);
   result.status.message = msg.str();
   return result;
 }

@@ -74,7 +74,8 @@ EmbeddingResult LsmdsEmbedding(const EmbeddingInput& input, const LsmdsOptions& 
     for (size_t r = 0; r < rest.size(); ++r) result.Y.row(rest[r]) = placed.row(r);
   }
   result.normalized_stress = smacof.normalized_stress;
-  result.reflection = EmbeddingReflection(input, smacof.X);
+  const ReflectionState reflection = EmbeddingReflection(input, smacof.X);
+  result.reflection = reflection.sign;
   result.stress_history = std::move(smacof.stress_history);
   result.status.converged = smacof.converged;
   result.status.iterations = smacof.iterations;
@@ -82,7 +83,8 @@ EmbeddingResult LsmdsEmbedding(const EmbeddingInput& input, const LsmdsOptions& 
   std::ostringstream msg;
   msg << "SMACOF " << (smacof.converged ? "converged" : "stopped at max_iterations") << " after "
       << smacof.iterations << " iterations (" << smacof.evaluations
-      << " stress evaluations), normalized stress " << smacof.normalized_stress;
+      << " stress evaluations), normalized stress " << smacof.normalized_stress << ", "
+      << ReflectionText(reflection);
   result.status.message = msg.str();
   return result;
 }
