@@ -8,6 +8,8 @@
 // BM_OutOfSample/<vertices>: placement of every vertex from 1,000 samples (target for 5,000
 //   vertices: < 0.1 s); the 50,000-vertex figure is a denser rest pose.
 // BM_SmacofTosca/<shape>: SMACOF on 1,000 FPS samples of TOSCA shapes (skipped without data).
+// Time is wall-clock; CPU is the process's CPU time over all threads (stages run on
+// DefaultThreadCount() threads; SYMEMBED_THREADS overrides).
 // Counters: iterations (accepted updates), evaluations (O(n^2) stress passes), stress
 // (normalised).
 #include <benchmark/benchmark.h>
@@ -47,25 +49,25 @@ Surface Figure(int vertices) {
 struct Input {
   Surface surface;
   std::vector<int> samples;
-  Eigen::MatrixXd D;    // #S x #V
-  Eigen::MatrixXd Dss;  // #S x #S
-  Eigen::MatrixXd init; // `original` init of the samples
+  Eigen::MatrixXd D;     // #S x #V
+  Eigen::MatrixXd Dss;   // #S x #S
+  Eigen::MatrixXd init;  // `original` init of the samples
 };
 
 std::unique_ptr<Input> MakeInput(Surface surface, int samples) {
   auto in = std::make_unique<Input>();
   in->surface = std::move(surface);
   const Registry& r = Builtins();
-  in->samples = r.CreateAs<SamplingStage>("sampling",
-                                          YAML::Load("{type: farthest_point, count: " +
-                                                     std::to_string(samples) + "}"),
-                                          "bench", "sampling")
-                    ->Run(in->surface)
-                    .samples;
-  in->D = r.CreateAs<GeodesicsStage>("geodesics", YAML::Load("{type: dijkstra}"), "bench",
-                                     "geodesics")
-              ->Prepare(in->surface)
-              ->Distances(in->samples);
+  in->samples =
+      r.CreateAs<SamplingStage>(
+           "sampling", YAML::Load("{type: farthest_point, count: " + std::to_string(samples) + "}"),
+           "bench", "sampling")
+          ->Run(in->surface)
+          .samples;
+  in->D =
+      r.CreateAs<GeodesicsStage>("geodesics", YAML::Load("{type: dijkstra}"), "bench", "geodesics")
+          ->Prepare(in->surface)
+          ->Distances(in->samples);
   const EmbeddingInput e{in->surface, in->samples, in->D};
   in->Dss = SampleDistances(e);
   in->init = LsmdsInitialConfiguration(e, in->Dss, LsmdsOptions{});
@@ -106,7 +108,8 @@ void BM_Smacof(benchmark::State& state) {
   state.counters["stress"] = r.normalized_stress;
   state.counters["converged"] = r.converged;
 }
-BENCHMARK(BM_Smacof)->Arg(500)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Smacof)->Arg(500)->Arg(1000)->Arg(2000)->MeasureProcessCPUTime()->UseRealTime()->Unit(
+    benchmark::kMillisecond);
 
 void BM_ClassicalMds(benchmark::State& state) {
   const Input& in = GetInput(5000, static_cast<int>(state.range(0)));
@@ -115,7 +118,13 @@ void BM_ClassicalMds(benchmark::State& state) {
     benchmark::DoNotOptimize(r.X.data());
   }
 }
-BENCHMARK(BM_ClassicalMds)->Arg(500)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ClassicalMds)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 void BM_OutOfSample(benchmark::State& state) {
   const Input& in = GetInput(static_cast<int>(state.range(0)), 1000);
@@ -132,7 +141,12 @@ void BM_OutOfSample(benchmark::State& state) {
   state.counters["vertices"] = in.surface.NumVertices();
   state.counters["placed"] = static_cast<double>(rest.size());
 }
-BENCHMARK(BM_OutOfSample)->Arg(5000)->Arg(50000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OutOfSample)
+    ->Arg(5000)
+    ->Arg(50000)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 void BM_SmacofTosca(benchmark::State& state, const std::string& shape) {
   const std::string root = testing::DataRoot();
@@ -160,10 +174,14 @@ const bool registered = [] {
         ->Arg(500)
         ->Arg(1000)
         ->Arg(2000)
+        ->MeasureProcessCPUTime()
+        ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }
   for (const std::string shape : {"cat0", "david0", "michael0"}) {
     benchmark::RegisterBenchmark(("BM_SmacofTosca/" + shape).c_str(), BM_SmacofTosca, shape)
+        ->MeasureProcessCPUTime()
+        ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }
   return true;
