@@ -1,8 +1,54 @@
+// The matching stages: thin adapters around MatchNearest / MatchNearestScaled.
+#include <memory>
+
+#include "stages/matching/nearest.h"
 #include "stages/register.h"
 
 namespace symembed {
+namespace {
 
-// No matching implementation is built in yet.
-void RegisterMatchingStages(Registry& /*registry*/) {}
+class NearestStage : public MatchingStage {
+ public:
+  explicit NearestStage(int threads) : threads_(threads) {}
+  MatchResult Run(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt) const override {
+    return MatchNearest(Ys, Yt, threads_);
+  }
+
+ private:
+  int threads_;
+};
+
+class NearestScaledStage : public MatchingStage {
+ public:
+  explicit NearestScaledStage(ScaledIcpOptions options) : options_(options) {}
+  MatchResult Run(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt) const override {
+    return MatchNearestScaled(Ys, Yt, options_);
+  }
+
+ private:
+  ScaledIcpOptions options_;
+};
+
+}  // namespace
+
+void RegisterMatchingStages(Registry& registry) {
+  registry.Add("matching", "nearest", "nearest neighbour in the aligned embeddings (FLANN kd-tree)",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 return std::make_unique<NearestStage>(o.GetInt("threads", 1, 0, 256));
+               });
+  registry.Add("matching", "nearest_scaled",
+               "ICP up to per-axis scale and translation, then nearest neighbour",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 ScaledIcpOptions s;
+                 s.iterations = o.GetInt("iterations", s.iterations, 0, 1000);
+                 s.symmetric = o.GetBool("symmetric", s.symmetric);
+                 s.min_scale = o.GetDouble("min_scale", s.min_scale, 1e-3, 1.0);
+                 s.max_scale = o.GetDouble("max_scale", s.max_scale, 1.0, 1e3);
+                 s.threads = o.GetInt("threads", 1, 0, 256);
+                 std::string error;
+                 if (!s.IsValid(&error)) o.Fail("", error);
+                 return std::make_unique<NearestScaledStage>(s);
+               });
+}
 
 }  // namespace symembed

@@ -1,8 +1,77 @@
+// The symmetrize stages: thin adapters around SymmetrizeCeres / SymmetrizeAverage /
+// SymmetrizeNone.
+#include <memory>
+
 #include "stages/register.h"
+#include "stages/symmetrize/ceres_symmetrize.h"
+#include "stages/symmetrize/simple_symmetrize.h"
+#include "stages/symmetrize/symmetrize_common.h"
 
 namespace symembed {
+namespace {
 
-// No symmetrize implementation is built in yet.
-void RegisterSymmetrizeStages(Registry& /*registry*/) {}
+class CeresStage : public SymmetrizeStage {
+ public:
+  explicit CeresStage(CeresSymmetrizeOptions options) : options_(options) {}
+  SymmetrizeResult Run(const SymmetryInput& in, const SymmetryResult& sym) const override {
+    CheckSymmetrizeInput(in, sym);
+    return SymmetrizeCeres(in.embedding.Y, in.samples, sym, options_);
+  }
+
+ private:
+  CeresSymmetrizeOptions options_;
+};
+
+class AverageStage : public SymmetrizeStage {
+ public:
+  explicit AverageStage(int follow_neighbors) : follow_neighbors_(follow_neighbors) {}
+  SymmetrizeResult Run(const SymmetryInput& in, const SymmetryResult& sym) const override {
+    CheckSymmetrizeInput(in, sym);
+    return SymmetrizeAverage(in.embedding.Y, in.samples, sym, follow_neighbors_);
+  }
+
+ private:
+  int follow_neighbors_;
+};
+
+class NoneStage : public SymmetrizeStage {
+ public:
+  SymmetrizeResult Run(const SymmetryInput& in, const SymmetryResult& sym) const override {
+    CheckSymmetrizeInput(in, sym);
+    return SymmetrizeNone(in.embedding.Y, in.samples, sym);
+  }
+};
+
+}  // namespace
+
+void RegisterSymmetrizeStages(Registry& registry) {
+  registry.Add("symmetrize", "ceres",
+               "Ceres: stress on a sample k-NN graph + symmetry_weight * ||M y_i - y_sigma(i)||^2; "
+               "dense vertices follow the samples",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 CeresSymmetrizeOptions c;
+                 c.symmetry_weight = o.GetDouble("symmetry_weight", c.symmetry_weight, 0.0);
+                 c.plane_weight = o.GetDouble("plane_weight", c.plane_weight, 0.0);
+                 c.anchor_weight = o.GetDouble("anchor_weight", c.anchor_weight, 0.0);
+                 c.graph_neighbors = o.GetInt("graph_neighbors", c.graph_neighbors, 1, 1000);
+                 c.follow_neighbors = o.GetInt("follow_neighbors", c.follow_neighbors, 1, 1000);
+                 c.max_iterations = o.GetInt("max_iterations", c.max_iterations, 0);
+                 c.function_tolerance =
+                     o.GetDouble("function_tolerance", c.function_tolerance, 0.0);
+                 c.threads = o.GetInt("threads", c.threads, 1, 256);
+                 std::string error;
+                 if (!c.IsValid(&error)) o.Fail("", error);
+                 return std::make_unique<CeresStage>(c);
+               });
+  registry.Add("symmetrize", "average",
+               "closed form y_i <- (y_i + M y_sigma(i)) / 2 on the samples; dense vertices follow",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 return std::make_unique<AverageStage>(o.GetInt("follow_neighbors", 8, 1, 1000));
+               });
+  registry.Add("symmetrize", "none", "plane moved to x = 0, no deformation",
+               [](OptionReader&) -> std::unique_ptr<Stage> {
+                 return std::make_unique<NoneStage>();
+               });
+}
 
 }  // namespace symembed

@@ -1,8 +1,48 @@
+// The symmetry stages: thin adapters around DetectSymmetryPlane2d / DetectSymmetryPlane3d.
+#include <memory>
+
 #include "stages/register.h"
+#include "stages/symmetry/plane3d.h"
 
 namespace symembed {
+namespace {
 
-// No symmetry implementation is built in yet.
-void RegisterSymmetryStages(Registry& /*registry*/) {}
+ReflectionSearchOptions ReadSearchOptions(OptionReader& o) {
+  ReflectionSearchOptions s;
+  s.max_iterations = o.GetInt("max_iterations", s.max_iterations, 1);
+  s.trim_fraction = o.GetDouble("trim_fraction", s.trim_fraction, 0.05, 1.0);
+  s.max_fixed_fraction = o.GetDouble("max_fixed_fraction", s.max_fixed_fraction, 0.0, 1.0);
+  return s;
+}
+
+class Plane3dStage : public SymmetryStage {
+ public:
+  explicit Plane3dStage(Plane3dOptions options) : options_(options) {}
+  SymmetryResult Run(const SymmetryInput& in) const override {
+    return DetectSymmetryPlane3d(in.D, in.samples, in.embedding.Y, options_);
+  }
+
+ private:
+  Plane3dOptions options_;
+};
+
+}  // namespace
+
+void RegisterSymmetryStages(Registry& registry) {
+  registry.Add("symmetry", "plane3d",
+               "reflection plane searched in the 3D embedding (principal axes + sphere of "
+               "normals, reflect/NN/refit, trimmed score, intrinsic check)",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 Plane3dOptions p;
+                 p.search = ReadSearchOptions(o);
+                 p.num_directions = o.GetInt("num_directions", p.num_directions, 0, 10000);
+                 p.intrinsic_weight = o.GetDouble("intrinsic_weight", p.intrinsic_weight, 0.0);
+                 p.intrinsic_pairs = o.GetInt("intrinsic_pairs", p.intrinsic_pairs, 1);
+                 p.seed = o.GetInt("seed", p.seed);
+                 std::string error;
+                 if (!p.IsValid(&error)) o.Fail("", error);
+                 return std::make_unique<Plane3dStage>(p);
+               });
+}
 
 }  // namespace symembed

@@ -1,0 +1,49 @@
+// Exact k-nearest-neighbour queries on a fixed point set (FLANN kd-tree).
+//
+// [Muja & Lowe 2014] Scalable nearest neighbor algorithms for high dimensional data. A single
+// kd-tree (KDTreeSingleIndex) is exact and fast in low dimension (2D and 3D embeddings).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace flann {
+template <typename T>
+struct L2;
+template <typename Distance>
+class Index;
+}  // namespace flann
+
+namespace symembed {
+
+class KnnIndex {
+ public:
+  // points: #N x d (d >= 1, #N >= 1), copied. leaf_size: kd-tree leaf size.
+  // Throws InvalidInputError for an empty or non-finite point set.
+  explicit KnnIndex(const Eigen::MatrixXd& points, int leaf_size = 10);
+  ~KnnIndex();
+  KnnIndex(const KnnIndex&) = delete;
+  KnnIndex& operator=(const KnnIndex&) = delete;
+
+  int size() const { return num_points_; }
+  int dims() const { return dims_; }
+
+  // The k nearest points (k <= size()) of every row of queries (#Q x d), nearest first:
+  // indices #Q x k point ids, distances #Q x k Euclidean distances (either may be null).
+  // Queries are split over `threads` threads (0 = DefaultThreadCount()). Thread-safe.
+  void Query(const Eigen::MatrixXd& queries, int k, Eigen::MatrixXi* indices,
+             Eigen::MatrixXd* distances, int threads = 0) const;
+
+  // The nearest point of every query row (#Q); its distance through *distances when given.
+  std::vector<int> Nearest(const Eigen::MatrixXd& queries, Eigen::VectorXd* distances = nullptr,
+                           int threads = 0) const;
+
+ private:
+  int num_points_ = 0;
+  int dims_ = 0;
+  std::vector<double> data_;  // row-major copy the index points into
+  std::unique_ptr<flann::Index<flann::L2<double>>> index_;
+};
+
+}  // namespace symembed

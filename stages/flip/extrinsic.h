@@ -1,0 +1,61 @@
+// Flip scorer `extrinsic`: resolves the four-fold ambiguity of the canonical frame by comparing
+// extrinsic surface features (shape index, curvedness) of the original surfaces.
+//
+// [Yoshiyasu et al. 2016] Symmetry-aware embedding for shape correspondence: front and back, top
+// and bottom are told apart by global and local extrinsic characteristics such as curvature.
+// [Koenderink & van Doorn 1992] Surface shape and curvature scales (shape index, curvedness).
+// For each candidate rotation R_k of the target (canonical frames, y up-down, z front-back):
+//   local_k  = sum_v a_v mean_f |F_s(v, f) - F_t(T_k(v), f)| / sigma_f, T_k the nearest-neighbour
+//              map source -> rotated target, a_v source area fractions, sigma_f the pooled
+//              standard deviation of feature f;
+//   global_k = for the y and z axes: L1 distance of the area profiles along the axis, plus the
+//              L1 distances of the shape-index histograms of the two halves (u > 0, u < 0) and
+//              the differences of their mean curvedness / sigma;
+//   score_k  = local_weight * local_k + global_weight * global_k
+//              + chamfer_weight * symmetric Chamfer distance of the embeddings.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+
+#include "core/mesh.h"
+
+namespace symembed {
+
+// Per-vertex features in ShapeData::aux under this key: #V x 3 columns
+// [shape index in [-1, 1], log(1 + curvedness * sqrt(area)), vertex area / total area].
+inline constexpr const char* kExtrinsicFeaturesKey = "extrinsic_features";
+
+struct ExtrinsicFlipOptions {
+  double local_weight = 1.0;
+  double global_weight = 1.0;
+  double chamfer_weight = 0.0;
+  // Bins of the area profiles along y and z (over [-2, 2] RMS radii).
+  int profile_bins = 16;
+  // Bins of the shape-index histograms of each half.
+  int histogram_bins = 8;
+  // k-ring averaging of the curvatures (CurvatureOptions::smoothing_rings), against noise.
+  int smoothing_rings = 2;
+  int threads = 1;
+
+  bool IsValid(std::string* error) const;
+};
+
+// Per-candidate terms; total = weighted sum (see above).
+struct ExtrinsicScores {
+  std::array<double, 4> local{}, global{}, chamfer{}, total{};
+};
+
+// Ys, Yt: #Vs x 3, #Vt x 3 canonical embeddings; Fs, Ft: #V x 3 features (kExtrinsicFeaturesKey
+// layout). Throws InvalidInputError on mismatched shapes.
+ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                                    const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
+                                    const ExtrinsicFlipOptions& options);
+
+// The features of `surface` in the kExtrinsicFeaturesKey layout from core/curvature.h, with
+// curvatures averaged over smoothing_rings rings. Curvedness sqrt((k1^2 + k2^2) / 2)
+// [Koenderink & van Doorn 1992] is made scale-free by sqrt(total area).
+Eigen::MatrixXd ExtrinsicFeatures(const Surface& surface, int smoothing_rings);
+
+}  // namespace symembed

@@ -1,0 +1,72 @@
+#include "stages/flip/flip_common.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.h"
+#include "core/knn.h"
+
+namespace symembed {
+
+CandidateMaps ComputeCandidateMaps(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                                   int threads) {
+  // ||R y_t - y_s|| = ||y_t - R^T y_s||: one tree on Yt, queries R^T y_s (rows y_s^T R).
+  const KnnIndex index(Yt);
+  const auto rotations = CandidateRotations();
+  CandidateMaps out;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::MatrixX3d Q = Ys * rotations[k];
+    out.map[k] = index.Nearest(Q, &out.dist[k], threads);
+  }
+  return out;
+}
+
+namespace {
+
+double RmsRadius(const Eigen::MatrixX3d& Y) {
+  const Eigen::RowVector3d c = Y.colwise().mean();
+  return std::sqrt((Y.rowwise() - c).rowwise().squaredNorm().mean());
+}
+
+}  // namespace
+
+std::array<double, 4> ChamferScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                                    int threads) {
+  const CandidateMaps forward = ComputeCandidateMaps(Ys, Yt, threads);
+  const KnnIndex source_index(Ys);
+  const auto rotations = CandidateRotations();
+  const double size = 0.5 * (RmsRadius(Ys) + RmsRadius(Yt));
+  std::array<double, 4> scores{};
+  for (int k = 0; k < 4; ++k) {
+    Eigen::VectorXd back;
+    source_index.Nearest(Yt * rotations[k].transpose(), &back, threads);
+    scores[k] = (forward.dist[k].mean() + back.mean()) / std::max(size, 1e-300);
+  }
+  return scores;
+}
+
+FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name) {
+  FlipResult result;
+  result.scores = scores;
+  for (int k = 1; k < 4; ++k) {
+    if (scores[k] < scores[result.chosen]) result.chosen = k;
+  }
+  std::ostringstream message;
+  message << name << " scores [I, Rx, Ry, Rz]:";
+  for (double s : scores) message << " " << s;
+  result.status.message = message.str();
+  result.status.residual = scores[result.chosen];
+  return result;
+}
+
+void CheckFlipPair(const PairInput& pair) {
+  for (const ShapeData* shape : {&pair.source, &pair.target}) {
+    if (shape->Y.rows() == 0 || shape->Y.rows() != shape->surface.NumVertices()) {
+      throw InvalidInputError("flip: shape '" + shape->name + "' has a canonical embedding of " +
+                              std::to_string(shape->Y.rows()) + " rows for " +
+                              std::to_string(shape->surface.NumVertices()) + " vertices");
+    }
+  }
+}
+
+}  // namespace symembed

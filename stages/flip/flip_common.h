@@ -1,0 +1,34 @@
+// Shared steps of the flip scorers: the nearest-neighbour map under each candidate rotation and
+// the choice among the four candidates.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "registry/types.h"
+
+namespace symembed {
+
+// For each candidate k of CandidateRotations(): map[k][i] = nearest vertex of the rotated target
+// (rows R_k y_t of Yt) to source row i of Ys, dist[k](i) its distance. Ys: #Vs x 3, Yt: #Vt x 3.
+struct CandidateMaps {
+  std::array<std::vector<int>, 4> map;
+  std::array<Eigen::VectorXd, 4> dist;
+};
+CandidateMaps ComputeCandidateMaps(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                                   int threads = 1);
+
+// Symmetric Chamfer distance between Ys and each rotated target, divided by the mean RMS radius
+// of the two sets: mean NN distance source -> target plus target -> source.
+std::array<double, 4> ChamferScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                                    int threads = 1);
+
+// chosen = argmin of scores (first on ties); message lists the scores.
+FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name);
+
+// Throws InvalidInputError when a shape's canonical embedding Y does not match its surface.
+void CheckFlipPair(const PairInput& pair);
+
+}  // namespace symembed

@@ -1,0 +1,112 @@
+#include "stages/matching/nearest.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "core/errors.h"
+#include "core/knn.h"
+
+namespace symembed {
+
+namespace {
+
+void CheckEmbedding(const Eigen::MatrixX3d& Y, const char* which) {
+  if (Y.rows() == 0) throw InvalidInputError(std::string("matching: empty ") + which + " embedding");
+  if (!Y.allFinite()) {
+    throw InvalidInputError(std::string("matching: non-finite ") + which + " embedding");
+  }
+}
+
+}  // namespace
+
+MatchResult MatchNearest(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt, int threads) {
+  CheckEmbedding(Ys, "source");
+  CheckEmbedding(Yt, "target");
+  const KnnIndex index(Yt);
+  Eigen::VectorXd dist;
+  MatchResult result;
+  result.map = index.Nearest(Ys, &dist, threads);
+  result.status.residual = dist.mean();
+  return result;
+}
+
+bool ScaledIcpOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  if (iterations < 0) out << "iterations must be >= 0, got " << iterations;
+  else if (!(min_scale > 0.0 && min_scale <= 1.0)) out << "min_scale must be in (0, 1], got " << min_scale;
+  else if (!(max_scale >= 1.0)) out << "max_scale must be >= 1, got " << max_scale;
+  else if (threads < 0) out << "threads must be >= 0, got " << threads;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+ScaledAlignment AlignScaled(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                            const ScaledIcpOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("matching nearest_scaled: " + error);
+  CheckEmbedding(Ys, "source");
+  CheckEmbedding(Yt, "target");
+  const KnnIndex target_index(Yt);
+  ScaledAlignment a;
+  for (int it = 0; it < options.iterations; ++it) {
+    const Eigen::MatrixX3d Z =
+        (Ys.array().rowwise() * a.scale.transpose().array()).rowwise() + a.translation.transpose().array();
+    // Pairs (source point, target point) in both directions.
+    std::vector<int> src, tgt;
+    const std::vector<int> fwd = target_index.Nearest(Z, nullptr, options.threads);
+    for (int i = 0; i < Ys.rows(); ++i) {
+      src.push_back(i);
+      tgt.push_back(fwd[i]);
+    }
+    if (options.symmetric) {
+      const KnnIndex source_index(Z);
+      const std::vector<int> bwd = source_index.Nearest(Yt, nullptr, options.threads);
+      for (int j = 0; j < Yt.rows(); ++j) {
+        src.push_back(bwd[j]);
+        tgt.push_back(j);
+      }
+    }
+    // Per axis: t = s y + b by least squares.
+    Eigen::Vector3d scale, translation;
+    const double m = static_cast<double>(src.size());
+    for (int c = 0; c < 3; ++c) {
+      double sy = 0, st = 0, syy = 0, syt = 0;
+      for (size_t k = 0; k < src.size(); ++k) {
+        const double y = Ys(src[k], c), t = Yt(tgt[k], c);
+        sy += y;
+        st += t;
+        syy += y * y;
+        syt += y * t;
+      }
+      const double var = syy / m - (sy / m) * (sy / m);
+      const double cov = syt / m - (sy / m) * (st / m);
+      double s = var > 0.0 ? cov / var : 1.0;
+      s = std::clamp(s, options.min_scale, options.max_scale);
+      scale(c) = s;
+      translation(c) = st / m - s * sy / m;
+    }
+    const bool still = (scale - a.scale).cwiseAbs().maxCoeff() < 1e-9 &&
+                       (translation - a.translation).cwiseAbs().maxCoeff() < 1e-12;
+    a.scale = scale;
+    a.translation = translation;
+    a.iterations = it + 1;
+    if (still) break;
+  }
+  return a;
+}
+
+MatchResult MatchNearestScaled(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                               const ScaledIcpOptions& options, ScaledAlignment* alignment) {
+  const ScaledAlignment a = AlignScaled(Ys, Yt, options);
+  const Eigen::MatrixX3d Z =
+      (Ys.array().rowwise() * a.scale.transpose().array()).rowwise() + a.translation.transpose().array();
+  MatchResult result = MatchNearest(Z, Yt, options.threads);
+  result.status.iterations = a.iterations;
+  std::ostringstream message;
+  message << "scale " << a.scale.transpose() << ", translation " << a.translation.transpose();
+  result.status.message = message.str();
+  if (alignment) *alignment = a;
+  return result;
+}
+
+}  // namespace symembed

@@ -1,0 +1,142 @@
+#include "stages/symmetrize/ceres_symmetrize.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "core/errors.h"
+#include "core/knn.h"
+#include "stages/symmetrize/symmetrize_common.h"
+#include "stages/symmetrize/symmetrize_costs.h"
+
+namespace symembed {
+
+bool CeresSymmetrizeOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  if (!(symmetry_weight >= 0.0)) out << "symmetry_weight must be >= 0, got " << symmetry_weight;
+  else if (!(plane_weight >= 0.0)) out << "plane_weight must be >= 0, got " << plane_weight;
+  else if (!(anchor_weight >= 0.0)) out << "anchor_weight must be >= 0, got " << anchor_weight;
+  else if (graph_neighbors < 1) out << "graph_neighbors must be >= 1, got " << graph_neighbors;
+  else if (follow_neighbors < 1) out << "follow_neighbors must be >= 1, got " << follow_neighbors;
+  else if (max_iterations < 0) out << "max_iterations must be >= 0, got " << max_iterations;
+  else if (!(function_tolerance > 0.0))
+    out << "function_tolerance must be > 0, got " << function_tolerance;
+  else if (threads < 1) out << "threads must be >= 1, got " << threads;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+std::vector<std::pair<int, int>> KnnGraphEdges(const Eigen::MatrixX3d& P, int k) {
+  const int n = static_cast<int>(P.rows());
+  std::set<std::pair<int, int>> edges;
+  if (n < 2) return {};
+  const int kk = std::min(k + 1, n);
+  const KnnIndex index(P);
+  Eigen::MatrixXi nn;
+  index.Query(P, kk, &nn, nullptr, 1);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < kk; ++j) {
+      const int o = nn(i, j);
+      if (o != i) edges.insert({std::min(i, o), std::max(i, o)});
+    }
+  }
+  return {edges.begin(), edges.end()};
+}
+
+double GraphStress(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& X, int k) {
+  double num = 0.0, den = 0.0;
+  for (const auto& [i, j] : KnnGraphEdges(P, k)) {
+    const double d0 = (P.row(i) - P.row(j)).norm();
+    const double d = (X.row(i) - X.row(j)).norm();
+    num += (d - d0) * (d - d0);
+    den += d0 * d0;
+  }
+  return den > 0.0 ? std::sqrt(num / den) : 0.0;
+}
+
+SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<int>& samples,
+                                 const SymmetryResult& symmetry,
+                                 const CeresSymmetrizeOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("symmetrize ceres: " + error);
+  const Eigen::MatrixX3d Y = MovePlaneToX0(Y_in, symmetry.normal, symmetry.offset);
+  const Eigen::MatrixX3d P = SampleRows3(Y, samples);
+  const int n = static_cast<int>(samples.size());
+  const std::vector<int>& sigma = symmetry.sigma;
+  const Eigen::RowVector3d centroid = P.colwise().mean();
+  const double size = std::sqrt((P.rowwise() - centroid).rowwise().squaredNorm().mean());
+  if (!(size > 0.0)) throw InvalidInputError("symmetrize ceres: all samples coincide");
+  const double inv_s = 1.0 / size;
+
+  // Unknowns: one 3-vector per sample, stored contiguously.
+  std::vector<double> x(3 * static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) x[3 * i + c] = P(i, c);
+  }
+  auto block = [&](int i) { return x.data() + 3 * static_cast<size_t>(i); };
+  ceres::Problem problem;
+  for (int i = 0; i < n; ++i) problem.AddParameterBlock(block(i), 3);
+  for (const auto& [i, j] : KnnGraphEdges(P, options.graph_neighbors)) {
+    const double d0 = (P.row(i) - P.row(j)).norm();
+    problem.AddResidualBlock(new EdgeStressCost(d0, inv_s), nullptr, block(i), block(j));
+  }
+  for (int i = 0; i < n; ++i) {
+    const double c = symmetry.confidence.size() == n ? symmetry.confidence(i) : 1.0;
+    if (sigma[i] == i) {
+      if (options.plane_weight > 0.0) {
+        problem.AddResidualBlock(new OnPlaneCost(std::sqrt(options.plane_weight) * inv_s), nullptr,
+                                 block(i));
+      }
+    } else if (options.symmetry_weight > 0.0 && c > 0.0) {
+      problem.AddResidualBlock(new MirrorPairCost(std::sqrt(options.symmetry_weight * c) * inv_s),
+                               nullptr, block(i), block(sigma[i]));
+    }
+    if (options.anchor_weight > 0.0) {
+      const double p[3] = {P(i, 0), P(i, 1), P(i, 2)};
+      problem.AddResidualBlock(new AnchorCost(p, std::sqrt(options.anchor_weight) * inv_s), nullptr,
+                               block(i));
+    }
+  }
+
+  ceres::Solver::Options solver;
+  solver.max_num_iterations = options.max_iterations;
+  solver.function_tolerance = options.function_tolerance;
+  solver.num_threads = options.threads;
+  solver.logging_type = ceres::SILENT;
+  solver.minimizer_progress_to_stdout = false;
+  if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
+    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  } else if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
+    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+  } else {
+    solver.linear_solver_type = ceres::CGNR;
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  if (!summary.IsSolutionUsable()) {
+    throw SolverError("symmetrize ceres: " + summary.message);
+  }
+
+  Eigen::MatrixX3d X(n, 3);
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) X(i, c) = x[3 * i + c];
+  }
+  SymmetrizeResult result;
+  result.asymmetry_before = Asymmetry(P, sigma);
+  result.Y = FollowSamples(Y, samples, X, options.follow_neighbors);
+  result.asymmetry_after = Asymmetry(X, sigma);
+  result.status.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.status.iterations = static_cast<int>(summary.iterations.size());
+  result.status.residual = summary.final_cost;
+  std::ostringstream message;
+  message << "asymmetry " << result.asymmetry_before << " -> " << result.asymmetry_after
+          << ", graph stress " << GraphStress(P, X, options.graph_neighbors) << "; "
+          << summary.BriefReport();
+  result.status.message = message.str();
+  return result;
+}
+
+}  // namespace symembed

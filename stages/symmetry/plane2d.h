@@ -1,0 +1,54 @@
+// Symmetry stage `plane2d`: the global reflectional symmetry detected in a 2D embedding and
+// lifted to a plane in the 3D embedding.
+//
+// [Yoshiyasu et al. 2016] Symmetry-aware embedding for shape correspondence: a 2D LS-MDS
+// embedding of the samples' geodesic distances flattens the shape so that its intrinsic
+// reflectional symmetry becomes a mirror line, robustly to pose and missing parts.
+//   1. 2D embedding: classical MDS of the sample distances, refined by SMACOF
+//      [de Leeuw 1977] (stages/embedding/smacof.h).
+//   2. Coarse sweep of num_angles line directions through the centroid; each refined by
+//      reflect / NN / refit iterations with a trimmed score (reflection_search.h).
+//   3. Intrinsic check: the induced self map sigma must preserve geodesic distances; the line
+//      minimising score + intrinsic_weight * distortion wins.
+//   4. Lift: the 3D reflection that best maps y_i to y_sigma(i) (weighted by confidence), then
+//      refine_3d_iterations reflect / NN / refit iterations in 3D for the final sigma.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "registry/types.h"
+#include "stages/symmetry/reflection_search.h"
+
+namespace symembed {
+
+struct Plane2dOptions {
+  ReflectionSearchOptions search;
+  // Line directions of the coarse sweep over [0, pi).
+  int num_angles = 36;
+  // Weight of the intrinsic distortion in the choice among candidate lines (0: off).
+  double intrinsic_weight = 1.0;
+  // Sample pairs used by the intrinsic check.
+  int intrinsic_pairs = 4000;
+  // Seed of the pair sampling.
+  int seed = 1;
+  // SMACOF iterations of the 2D embedding (0: classical MDS only).
+  int smacof_iterations = 200;
+  // Reflect / NN / refit iterations on the 3D embedding after the lift (0: lift only).
+  int refine_3d_iterations = 10;
+
+  bool IsValid(std::string* error) const;
+};
+
+// The 2D embedding of step 1: Dss #S x #S symmetric distances -> #S x 2 (centred).
+Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations);
+
+// D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
+// embedding. Returns the plane in the coordinates of Y, the sample self map, per-sample
+// confidence and the trimmed 3D score. Throws InvalidInputError on inconsistent shapes,
+// ConfigError on invalid options.
+SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
+                                     const Eigen::MatrixXd& Y, const Plane2dOptions& options);
+
+}  // namespace symembed

@@ -1,0 +1,96 @@
+#include "stages/symmetry/plane3d.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/errors.h"
+
+namespace symembed {
+
+bool Plane3dOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  std::string sub;
+  if (!search.IsValid(&sub)) out << sub;
+  else if (num_directions < 0) out << "num_directions must be >= 0, got " << num_directions;
+  else if (!(intrinsic_weight >= 0.0)) out << "intrinsic_weight must be >= 0, got " << intrinsic_weight;
+  else if (intrinsic_pairs < 1) out << "intrinsic_pairs must be >= 1, got " << intrinsic_pairs;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+namespace {
+
+Eigen::MatrixXd SampleRows(const Eigen::MatrixXd& Y, const std::vector<int>& samples) {
+  Eigen::MatrixXd P(samples.size(), Y.cols());
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i] < 0 || samples[i] >= Y.rows()) {
+      throw InvalidInputError("symmetry: sample id out of range");
+    }
+    P.row(i) = Y.row(samples[i]);
+  }
+  return P;
+}
+
+// Principal axes, then n points of a Fibonacci lattice on the upper hemisphere.
+std::vector<Eigen::VectorXd> StartingNormals(const Eigen::MatrixXd& P, int n) {
+  std::vector<Eigen::VectorXd> normals;
+  const Eigen::MatrixXd C = P.rowwise() - P.colwise().mean();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C.transpose() * C);
+  for (int a = 2; a >= 0; --a) normals.push_back(eig.eigenvectors().col(a));
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < n; ++k) {
+    const double z = (k + 0.5) / n;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    normals.push_back(Eigen::Vector3d(r * std::cos(golden * k), r * std::sin(golden * k), z));
+  }
+  return normals;
+}
+
+}  // namespace
+
+SymmetryResult DetectSymmetryPlane3d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
+                                     const Eigen::MatrixXd& Y, const Plane3dOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("symmetry plane3d: " + error);
+  if (Y.cols() != 3) throw InvalidInputError("symmetry plane3d: the embedding must be 3D");
+  if (samples.size() < 4) throw InvalidInputError("symmetry plane3d: fewer than 4 samples");
+  const Eigen::MatrixXd P = SampleRows(Y, samples);
+  const Eigen::MatrixXd Dss = SampleDistances(D, samples);
+  const KnnIndex index(P);
+  const Eigen::VectorXd centroid = P.colwise().mean().transpose();
+
+  double best_total = std::numeric_limits<double>::infinity();
+  ReflectionFit best;
+  double best_intrinsic = 0.0;
+  int iterations = 0;
+  for (const Eigen::VectorXd& n : StartingNormals(P, options.num_directions)) {
+    ReflectionFit fit = RefineReflection(P, index, n, n.dot(centroid), options.search);
+    iterations += fit.iterations;
+    if (!std::isfinite(fit.score)) continue;
+    const double intrinsic =
+        options.intrinsic_weight > 0.0
+            ? IntrinsicDistortion(Dss, fit.sigma, options.search.trim_fraction,
+                                  options.intrinsic_pairs, static_cast<unsigned>(options.seed))
+            : 0.0;
+    const double total = fit.score + options.intrinsic_weight * intrinsic;
+    if (total < best_total) {
+      best_total = total;
+      best = std::move(fit);
+      best_intrinsic = intrinsic;
+    }
+  }
+  if (!std::isfinite(best_total)) {
+    throw InvalidInputError("symmetry plane3d: every candidate plane was rejected (flat or "
+                            "degenerate sample set)");
+  }
+  std::ostringstream message;
+  message << "plane3d: score " << best.score << ", intrinsic distortion " << best_intrinsic;
+  SymmetryResult result =
+      MakeSymmetryResult(P, index, best.normal, best.offset, options.search, 0, message.str());
+  result.status.iterations = iterations;
+  return result;
+}
+
+}  // namespace symembed

@@ -1,0 +1,42 @@
+// Symmetry stage `plane3d`: reflective symmetry plane searched directly in the 3D embedding
+// (the ablation baseline of `plane2d`).
+//
+// Starting planes through the sample centroid with normals along the three principal axes and
+// along a Fibonacci set of directions on the hemisphere; each is refined by reflect / NN / refit
+// iterations with a trimmed score (stages/symmetry/reflection_search.h); the winner minimises
+// score + intrinsic_weight * intrinsic distortion of its self map (geodesic distances between
+// samples should be preserved by a symmetry).
+// [Mitra et al. 2006] Partial and approximate symmetry detection for 3D geometry.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "registry/types.h"
+#include "stages/symmetry/reflection_search.h"
+
+namespace symembed {
+
+struct Plane3dOptions {
+  ReflectionSearchOptions search;
+  // Starting normals besides the principal axes (Fibonacci points on the hemisphere).
+  int num_directions = 32;
+  // Weight of the intrinsic distortion in the choice among candidate planes (0: off).
+  double intrinsic_weight = 1.0;
+  // Sample pairs used by the intrinsic check.
+  int intrinsic_pairs = 4000;
+  // Seed of the pair sampling.
+  int seed = 1;
+
+  bool IsValid(std::string* error) const;
+};
+
+// D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
+// embedding. Returns the plane in the coordinates of Y, the sample self map, per-sample
+// confidence and the trimmed score. Throws InvalidInputError on inconsistent shapes, ConfigError
+// on invalid options.
+SymmetryResult DetectSymmetryPlane3d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
+                                     const Eigen::MatrixXd& Y, const Plane3dOptions& options);
+
+}  // namespace symembed

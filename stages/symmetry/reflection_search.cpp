@@ -1,0 +1,232 @@
+#include "stages/symmetry/reflection_search.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <sstream>
+
+#include "core/errors.h"
+
+namespace symembed {
+
+bool ReflectionSearchOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  if (max_iterations < 1) out << "max_iterations must be >= 1, got " << max_iterations;
+  else if (!(trim_fraction > 0.0 && trim_fraction <= 1.0))
+    out << "trim_fraction must be in (0, 1], got " << trim_fraction;
+  else if (!(max_fixed_fraction >= 0.0 && max_fixed_fraction <= 1.0))
+    out << "max_fixed_fraction must be in [0, 1], got " << max_fixed_fraction;
+  else if (!(tolerance > 0.0)) out << "tolerance must be > 0, got " << tolerance;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+double PointSetSize(const Eigen::MatrixXd& P) {
+  if (P.rows() == 0) return 0.0;
+  const Eigen::RowVectorXd c = P.colwise().mean();
+  return std::sqrt((P.rowwise() - c).rowwise().squaredNorm().mean());
+}
+
+Eigen::MatrixXd Reflect(const Eigen::MatrixXd& P, const Eigen::VectorXd& normal, double offset) {
+  const Eigen::VectorXd s = (P * normal).array() - offset;
+  return P - 2.0 * s * normal.transpose();
+}
+
+bool FitReflection(const Eigen::MatrixXd& P, const std::vector<int>& sigma,
+                   const Eigen::VectorXd& w, Eigen::VectorXd* normal, double* offset) {
+  const int d = static_cast<int>(P.cols());
+  Eigen::MatrixXd scatter = Eigen::MatrixXd::Zero(d, d);
+  Eigen::VectorXd mid_sum = Eigen::VectorXd::Zero(d);
+  double w_sum = 0.0;
+  for (int i = 0; i < P.rows(); ++i) {
+    if (w(i) <= 0.0) continue;
+    const Eigen::VectorXd a = P.row(i).transpose();
+    const Eigen::VectorXd b = P.row(sigma[i]).transpose();
+    const Eigen::VectorXd diff = a - b;
+    scatter += w(i) * diff * diff.transpose();
+    mid_sum += w(i) * 0.5 * (a + b);
+    w_sum += w(i);
+  }
+  if (w_sum <= 0.0 || scatter.trace() <= 0.0) return false;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(scatter);
+  Eigen::VectorXd n = eig.eigenvectors().col(d - 1);
+  // Keep the orientation of the previous normal so that iterates are comparable.
+  if (normal->size() == d && n.dot(*normal) < 0.0) n = -n;
+  *normal = n;
+  *offset = n.dot(mid_sum / w_sum);
+  return true;
+}
+
+namespace {
+
+// Residual value at the trim_fraction quantile.
+double TrimThreshold(const Eigen::VectorXd& r, double trim_fraction) {
+  std::vector<double> sorted(r.data(), r.data() + r.size());
+  const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(trim_fraction * sorted.size())));
+  std::nth_element(sorted.begin(), sorted.begin() + (keep - 1), sorted.end());
+  return sorted[keep - 1];
+}
+
+void Score(const Eigen::MatrixXd& P, const KnnIndex& index, double size,
+           const ReflectionSearchOptions& options, ReflectionFit* fit) {
+  const Eigen::MatrixXd Q = Reflect(P, fit->normal, fit->offset);
+  fit->sigma = index.Nearest(Q, &fit->residual, 1);
+  int fixed = 0;
+  for (int i = 0; i < P.rows(); ++i) fixed += fit->sigma[i] == i;
+  fit->fixed_fraction = static_cast<double>(fixed) / P.rows();
+  std::vector<double> sorted(fit->residual.data(), fit->residual.data() + fit->residual.size());
+  std::sort(sorted.begin(), sorted.end());
+  const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(options.trim_fraction * sorted.size())));
+  double sum = 0.0;
+  for (size_t k = 0; k < keep; ++k) sum += sorted[k];
+  fit->score = sum / keep / std::max(size, std::numeric_limits<double>::min());
+  if (fit->fixed_fraction > options.max_fixed_fraction) {
+    fit->score = std::numeric_limits<double>::infinity();
+  }
+}
+
+}  // namespace
+
+ReflectionFit EvaluateReflection(const Eigen::MatrixXd& P, const KnnIndex& index,
+                                 const Eigen::VectorXd& normal, double offset,
+                                 const ReflectionSearchOptions& options) {
+  ReflectionFit fit;
+  fit.normal = normal.normalized();
+  fit.offset = offset;
+  Score(P, index, PointSetSize(P), options, &fit);
+  return fit;
+}
+
+ReflectionFit RefineReflection(const Eigen::MatrixXd& P, const KnnIndex& index,
+                               const Eigen::VectorXd& normal, double offset,
+                               const ReflectionSearchOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("reflection search: " + error);
+  SYMEMBED_CHECK(P.rows() == index.size() && P.cols() == index.dims(), "index does not match P");
+  const double size = PointSetSize(P);
+  ReflectionFit fit;
+  fit.normal = normal.normalized();
+  fit.offset = offset;
+  Score(P, index, size, options, &fit);
+  for (int it = 0; it < options.max_iterations; ++it) {
+    const double threshold = TrimThreshold(fit.residual, options.trim_fraction);
+    Eigen::VectorXd w = (fit.residual.array() <= threshold).cast<double>();
+    Eigen::VectorXd n = fit.normal;
+    double c = fit.offset;
+    if (!FitReflection(P, fit.sigma, w, &n, &c)) break;
+    ReflectionFit next;
+    next.normal = n;
+    next.offset = c;
+    next.iterations = it + 1;
+    Score(P, index, size, options, &next);
+    const double turn = std::acos(std::clamp(std::abs(n.dot(fit.normal)), 0.0, 1.0));
+    const bool still = turn < options.tolerance &&
+                       std::abs(c - fit.offset) < options.tolerance * std::max(size, 1e-300);
+    // A refit that makes the trimmed score worse (a rare oscillation) is not taken.
+    if (next.score > fit.score) {
+      fit.converged = true;
+      break;
+    }
+    fit = std::move(next);
+    if (still) {
+      fit.converged = true;
+      break;
+    }
+  }
+  return fit;
+}
+
+double IntrinsicDistortion(const Eigen::MatrixXd& Dss, const std::vector<int>& sigma,
+                           double trim_fraction, int num_pairs, unsigned seed) {
+  const int n = static_cast<int>(Dss.rows());
+  SYMEMBED_CHECK(Dss.cols() == n && static_cast<int>(sigma.size()) == n, "shape mismatch");
+  if (n < 2) return 0.0;
+  std::vector<double> diff;
+  double d_sum = 0.0;
+  auto add = [&](int i, int j) {
+    diff.push_back(std::abs(Dss(i, j) - Dss(sigma[i], sigma[j])));
+    d_sum += Dss(i, j);
+  };
+  const long long all_pairs = static_cast<long long>(n) * (n - 1) / 2;
+  if (all_pairs <= num_pairs) {
+    for (int i = 0; i < n; ++i) {
+      for (int j = i + 1; j < n; ++j) add(i, j);
+    }
+  } else {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> pick(0, n - 1);
+    while (static_cast<int>(diff.size()) < num_pairs) {
+      const int i = pick(rng), j = pick(rng);
+      if (i != j) add(i, j);
+    }
+  }
+  if (d_sum <= 0.0) return 0.0;
+  std::sort(diff.begin(), diff.end());
+  const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(trim_fraction * diff.size())));
+  double sum = 0.0;
+  for (size_t k = 0; k < keep; ++k) sum += diff[k];
+  return (sum / keep) / (d_sum / diff.size());
+}
+
+Eigen::VectorXd SymmetryConfidence(const Eigen::VectorXd& residual, const std::vector<int>& sigma,
+                                   double size) {
+  const int n = static_cast<int>(residual.size());
+  Eigen::VectorXd c(n);
+  if (n == 0) return c;
+  std::vector<double> sorted(residual.data(), residual.data() + n);
+  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+  const double h = std::max(2.0 * sorted[n / 2], 1e-3 * size);
+  for (int i = 0; i < n; ++i) {
+    const double r = residual(i) / std::max(h, 1e-300);
+    c(i) = std::exp(-r * r);
+    if (sigma[sigma[i]] != i) c(i) *= 0.5;
+  }
+  return c;
+}
+
+SymmetryResult MakeSymmetryResult(const Eigen::MatrixXd& Y3s, const KnnIndex& index,
+                                  const Eigen::VectorXd& normal, double offset,
+                                  const ReflectionSearchOptions& options, int iterations_3d,
+                                  const std::string& message) {
+  ReflectionFit fit;
+  if (iterations_3d > 0) {
+    ReflectionSearchOptions o = options;
+    o.max_iterations = iterations_3d;
+    fit = RefineReflection(Y3s, index, normal, offset, o);
+  } else {
+    fit = EvaluateReflection(Y3s, index, normal, offset, options);
+  }
+  SymmetryResult result;
+  result.normal = fit.normal;
+  result.offset = fit.offset;
+  result.sigma = fit.sigma;
+  result.confidence = SymmetryConfidence(fit.residual, fit.sigma, PointSetSize(Y3s));
+  result.score = fit.score;
+  result.status.converged = fit.converged || iterations_3d == 0;
+  result.status.iterations = fit.iterations;
+  result.status.residual = fit.score;
+  result.status.message = message;
+  return result;
+}
+
+Eigen::MatrixXd SampleDistances(const Eigen::MatrixXd& D, const std::vector<int>& samples) {
+  const int n = static_cast<int>(samples.size());
+  if (D.rows() != n) {
+    throw InvalidInputError("symmetry: D has " + std::to_string(D.rows()) + " rows for " +
+                            std::to_string(n) + " samples");
+  }
+  Eigen::MatrixXd Dss(n, n);
+  for (int j = 0; j < n; ++j) {
+    if (samples[j] < 0 || samples[j] >= D.cols()) {
+      throw InvalidInputError("symmetry: sample id out of range");
+    }
+    Dss.col(j) = D.col(samples[j]);
+  }
+  Dss = 0.5 * (Dss + Dss.transpose()).eval();
+  Dss.diagonal().setZero();
+  return Dss;
+}
+
+}  // namespace symembed
