@@ -11,6 +11,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+
+#include "core/knn.h"
 #include "core/primitives.h"
 
 namespace fs = std::filesystem;
@@ -120,6 +123,76 @@ Surface TwistedShuffledCopy(const Surface& surface, double twist, unsigned seed,
   }
   if (ground_truth != nullptr) *ground_truth = perm;
   return out;
+}
+
+}  // namespace symembed::testing
+
+namespace symembed::testing {
+namespace {
+
+// Appends part (rotated by R, moved by t, then mirrored x -> -x when mirror) to out.
+void AppendPart(const Surface& part, const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                bool mirror, Surface* out) {
+  const int v0 = out->NumVertices(), f0 = out->NumFaces();
+  out->V.conservativeResize(v0 + part.NumVertices(), 3);
+  out->F.conservativeResize(f0 + part.NumFaces(), 3);
+  for (int i = 0; i < part.NumVertices(); ++i) {
+    Eigen::Vector3d p = R * part.V.row(i).transpose() + t;
+    if (mirror) p.x() = -p.x();
+    out->V.row(v0 + i) = p.transpose();
+  }
+  for (int f = 0; f < part.NumFaces(); ++f) {
+    Eigen::RowVector3i face = part.F.row(f).array() + v0;
+    if (mirror) std::swap(face(1), face(2));  // keep faces counter-clockwise from outside
+    out->F.row(f0 + f) = face;
+  }
+}
+
+Surface BuildFigure(int detail, bool with_left_arm, double arm_angle, double leg_angle) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  auto along = [](const Eigen::Vector3d& d) {
+    return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), d).toRotationMatrix();
+  };
+  Surface out;
+  out.V.resize(0, 3);
+  out.F.resize(0, 3);
+  AppendPart(BoxMesh(3 * detail, 0.5, 0.8, 0.25), I, Eigen::Vector3d::Zero(), false, &out);
+  AppendPart(Icosphere(2, 0.15), I, Eigen::Vector3d(0, 0.58, 0), false, &out);
+  AppendPart(Icosphere(1, 0.06), I, Eigen::Vector3d(0, 0.58, 0.16), false, &out);
+  AppendPart(BoxMesh(2 * detail, 0.3, 0.4, 0.12), I, Eigen::Vector3d(0, 0.05, -0.19), false, &out);
+  const Eigen::Vector3d arm_dir(std::cos(arm_angle), -std::sin(arm_angle), 0.0);
+  const Eigen::Vector3d leg_dir(std::sin(leg_angle), -std::cos(leg_angle), 0.0);
+  const Eigen::Vector3d shoulder(0.27, 0.32, 0.0), hip(0.14, -0.42, 0.0);
+  const Surface arm = Cylinder(8, 8 * detail, 0.06, 0.6);
+  const Surface leg = Cylinder(8, 10 * detail, 0.08, 0.8);
+  const Surface foot = BoxMesh(2 * detail, 0.12, 0.06, 0.32);
+  const Eigen::Vector3d foot_at = hip + 0.8 * leg_dir + Eigen::Vector3d(0, -0.04, 0.12);
+  for (bool mirror : {false, true}) {
+    if (!mirror || with_left_arm) AppendPart(arm, along(arm_dir), shoulder, mirror, &out);
+    AppendPart(leg, along(leg_dir), hip, mirror, &out);
+    AppendPart(foot, I, foot_at, mirror, &out);
+  }
+  return out;
+}
+
+}  // namespace
+
+Surface SymmetricFigure(int detail, bool with_left_arm, std::vector<int>* mirror) {
+  Surface s = BuildFigure(detail, with_left_arm, 0.0, 0.0);
+  if (mirror) {
+    Eigen::MatrixX3d reflected = s.V;
+    reflected.col(0) *= -1.0;
+    Eigen::VectorXd dist;
+    *mirror = KnnIndex(s.V).Nearest(reflected, &dist, 1);
+    for (int i = 0; i < s.NumVertices(); ++i) {
+      if (dist(i) > 1e-9) (*mirror)[i] = -1;
+    }
+  }
+  return s;
+}
+
+Surface PosedSymmetricFigure(int detail, double arm_angle, double leg_angle) {
+  return BuildFigure(detail, true, arm_angle, leg_angle);
 }
 
 }  // namespace symembed::testing

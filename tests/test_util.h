@@ -48,4 +48,18 @@ Surface BumpyBlob(int n, unsigned seed = 1);
 Surface TwistedShuffledCopy(const Surface& surface, double twist, unsigned seed,
                             std::vector<int>* ground_truth);
 
+// A figure exactly mirror-symmetric about x = 0 and asymmetric up-down and front-back, built
+// from disconnected primitives: box torso with a box backpack at -z, sphere head at +y with a
+// nose at +z, cylinder arms along +-x, cylinder legs along -y ending in box feet pointing +z. The parts at x < 0 are mirror
+// images (vertex for vertex) of those at x > 0. `detail` >= 1 scales the resolution (about
+// 900 vertices at 1). Without the left arm (the one at x < 0) it is partial. (*mirror)[i], when
+// given, is the vertex at the mirror position of vertex i (for the partial figure, -1 where the
+// mirror vertex was removed).
+Surface SymmetricFigure(int detail = 1, bool with_left_arm = true,
+                        std::vector<int>* mirror = nullptr);
+
+// The same figure in a second pose: the arms lowered by `arm_angle` radians about their
+// shoulders and the legs spread by `leg_angle` (vertex ids unchanged).
+Surface PosedSymmetricFigure(int detail, double arm_angle, double leg_angle);
+
 }  // namespace symembed::testing

@@ -1,12 +1,50 @@
-// The flip stages: thin adapters around the scorers (extrinsic, chamfer, oracle).
+// The flip stages: thin adapters around the scorers (extrinsic, chamfer, hks, oracle).
 #include <memory>
+#include <sstream>
 
+#include "core/errors.h"
+#include "stages/flip/extrinsic.h"
 #include "stages/flip/flip_common.h"
+#include "stages/flip/hks.h"
 #include "stages/flip/oracle.h"
 #include "stages/register.h"
 
 namespace symembed {
 namespace {
+
+const Eigen::MatrixXd& AuxOf(const ShapeData& shape, const char* key, const char* stage) {
+  auto it = shape.aux.find(key);
+  if (it == shape.aux.end()) {
+    throw InvalidInputError(std::string("flip ") + stage + ": shape '" + shape.name +
+                            "' has no '" + key + "' (PrepareShape was not called)");
+  }
+  return it->second;
+}
+
+class ExtrinsicStage : public FlipStage {
+ public:
+  explicit ExtrinsicStage(ExtrinsicFlipOptions options) : options_(options) {}
+  void PrepareShape(ShapeData& shape) const override {
+    shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
+  }
+  FlipResult Run(const PairInput& pair) const override {
+    CheckFlipPair(pair);
+    const ExtrinsicScores s = ExtrinsicFlipScores(
+        pair.source.Y, pair.target.Y, AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
+        AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_);
+    FlipResult result = MakeFlipResult(s.total, "extrinsic");
+    std::ostringstream detail;
+    detail << "; local";
+    for (double v : s.local) detail << " " << v;
+    detail << "; global";
+    for (double v : s.global) detail << " " << v;
+    result.status.message += detail.str();
+    return result;
+  }
+
+ private:
+  ExtrinsicFlipOptions options_;
+};
 
 class ChamferStage : public FlipStage {
  public:
@@ -18,6 +56,26 @@ class ChamferStage : public FlipStage {
 
  private:
   int threads_;
+};
+
+class HksStage : public FlipStage {
+ public:
+  explicit HksStage(HksFlipOptions options) : options_(options) {}
+  void PrepareShape(ShapeData& shape) const override {
+    LaplaceBasisOptions basis;
+    basis.k = options_.eigenpairs;
+    EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
+  }
+  FlipResult Run(const PairInput& pair) const override {
+    CheckFlipPair(pair);
+    const LaplaceBasis source = GetLaplaceBasis(pair.source.aux, options_.eigenpairs);
+    const LaplaceBasis target = GetLaplaceBasis(pair.target.aux, options_.eigenpairs);
+    return MakeFlipResult(
+        HksFlipScores(pair.source.Y, pair.target.Y, source, target, options_), "hks");
+  }
+
+ private:
+  HksFlipOptions options_;
 };
 
 class OracleStage : public FlipStage {
@@ -34,9 +92,35 @@ class OracleStage : public FlipStage {
 }  // namespace
 
 void RegisterFlipStages(Registry& registry) {
+  registry.Add("flip", "extrinsic",
+               "curvature features of the original surfaces, compared locally through each "
+               "candidate's NN map and globally (front/back, top/bottom distributions)",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 ExtrinsicFlipOptions e;
+                 e.local_weight = o.GetDouble("local_weight", e.local_weight, 0.0);
+                 e.global_weight = o.GetDouble("global_weight", e.global_weight, 0.0);
+                 e.chamfer_weight = o.GetDouble("chamfer_weight", e.chamfer_weight, 0.0);
+                 e.profile_bins = o.GetInt("profile_bins", e.profile_bins, 1, 1000);
+                 e.histogram_bins = o.GetInt("histogram_bins", e.histogram_bins, 1, 1000);
+                 e.smoothing_rings = o.GetInt("smoothing_rings", e.smoothing_rings, 0, 100);
+                 e.threads = o.GetInt("threads", e.threads, 0, 256);
+                 std::string error;
+                 if (!e.IsValid(&error)) o.Fail("", error);
+                 return std::make_unique<ExtrinsicStage>(e);
+               });
   registry.Add("flip", "chamfer", "symmetric Chamfer distance of the embeddings only",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  return std::make_unique<ChamferStage>(o.GetInt("threads", 1, 0, 256));
+               });
+  registry.Add("flip", "hks",
+               "heat kernel signatures (Laplace-Beltrami eigenpairs) compared through each "
+               "candidate's NN map",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 HksFlipOptions h;
+                 h.eigenpairs = o.GetInt("eigenpairs", h.eigenpairs, 2, 10000);
+                 h.num_times = o.GetInt("num_times", h.num_times, 1, 1000);
+                 h.threads = o.GetInt("threads", h.threads, 0, 256);
+                 return std::make_unique<HksStage>(h);
                });
   registry.Add("flip", "oracle",
                "lowest ground-truth error (evaluation only; fails without ground truth)",

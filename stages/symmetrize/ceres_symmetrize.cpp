@@ -18,6 +18,7 @@ bool CeresSymmetrizeOptions::IsValid(std::string* error) const {
   else if (!(plane_weight >= 0.0)) out << "plane_weight must be >= 0, got " << plane_weight;
   else if (!(anchor_weight >= 0.0)) out << "anchor_weight must be >= 0, got " << anchor_weight;
   else if (graph_neighbors < 1) out << "graph_neighbors must be >= 1, got " << graph_neighbors;
+  else if (mirror_neighbors < 1) out << "mirror_neighbors must be >= 1, got " << mirror_neighbors;
   else if (follow_neighbors < 1) out << "follow_neighbors must be >= 1, got " << follow_neighbors;
   else if (max_iterations < 0) out << "max_iterations must be >= 0, got " << max_iterations;
   else if (!(function_tolerance > 0.0))
@@ -42,6 +43,56 @@ std::vector<std::pair<int, int>> KnnGraphEdges(const Eigen::MatrixX3d& P, int k)
     }
   }
   return {edges.begin(), edges.end()};
+}
+
+std::vector<std::vector<std::pair<int, double>>> MirrorWeights(const Eigen::MatrixX3d& P,
+                                                               const std::vector<int>& sigma,
+                                                               int k) {
+  const int n = static_cast<int>(P.rows());
+  std::vector<std::vector<std::pair<int, double>>> out(n);
+  k = std::min(k, n);
+  if (k <= 1) {
+    for (int i = 0; i < n; ++i) out[i] = {{sigma[i], 1.0}};
+    return out;
+  }
+  Eigen::MatrixX3d Q = P;
+  Q.col(0) *= -1.0;
+  Eigen::MatrixXi nn;
+  Eigen::MatrixXd dist;
+  KnnIndex(P).Query(Q, k, &nn, &dist, 1);
+  for (int i = 0; i < n; ++i) {
+    // Mirror point on a sample (up to rounding): that sample alone.
+    if (dist(i, 0) <= 1e-12 * std::max(1.0, dist(i, k - 1))) {
+      out[i] = {{nn(i, 0), 1.0}};
+      continue;
+    }
+    // Locally linear reconstruction: minimise ||sum_j w_j p_j - q||^2 with sum_j w_j = 1,
+    // regularised because k neighbours in 3D give a singular local Gram matrix.
+    Eigen::MatrixXd N(k, 3);
+    for (int j = 0; j < k; ++j) N.row(j) = P.row(nn(i, j)) - Q.row(i);
+    Eigen::MatrixXd G = N * N.transpose();
+    G.diagonal().array() += 1e-3 * G.trace() + 1e-300;
+    Eigen::VectorXd w = G.ldlt().solve(Eigen::VectorXd::Ones(k));
+    w /= w.sum();
+    for (int j = 0; j < k; ++j) out[i].push_back({nn(i, j), w(j)});
+  }
+  return out;
+}
+
+double MirrorResidual(const Eigen::MatrixX3d& X,
+                      const std::vector<std::vector<std::pair<int, double>>>& weights) {
+  if (X.rows() == 0) return 0.0;
+  const Eigen::RowVector3d c = X.colwise().mean();
+  const double size = std::sqrt((X.rowwise() - c).rowwise().squaredNorm().mean());
+  double sum = 0.0;
+  for (int i = 0; i < X.rows(); ++i) {
+    Eigen::RowVector3d m = Eigen::RowVector3d::Zero();
+    for (const auto& [j, w] : weights[i]) m += w * X.row(j);
+    Eigen::RowVector3d r = X.row(i);
+    r.x() = -r.x();
+    sum += (r - m).norm();
+  }
+  return size > 0.0 ? sum / X.rows() / size : 0.0;
 }
 
 double GraphStress(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& X, int k) {
@@ -81,16 +132,29 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
     const double d0 = (P.row(i) - P.row(j)).norm();
     problem.AddResidualBlock(new EdgeStressCost(d0, inv_s), nullptr, block(i), block(j));
   }
+  const auto mirror = MirrorWeights(P, sigma, options.mirror_neighbors);
+  const Eigen::Matrix3d M = MirrorX(), I = Eigen::Matrix3d::Identity();
   for (int i = 0; i < n; ++i) {
     const double c = symmetry.confidence.size() == n ? symmetry.confidence(i) : 1.0;
-    if (sigma[i] == i) {
-      if (options.plane_weight > 0.0) {
-        problem.AddResidualBlock(new OnPlaneCost(std::sqrt(options.plane_weight) * inv_s), nullptr,
-                                 block(i));
+    if (options.mirror_neighbors == 1 && sigma[i] == i && options.plane_weight > 0.0) {
+      problem.AddResidualBlock(new OnPlaneCost(std::sqrt(options.plane_weight) * inv_s), nullptr,
+                               block(i));
+    }
+    if (options.symmetry_weight > 0.0 && c > 0.0) {
+      // M x_i - sum_j w_ij x_j, with x_i's own coefficient merged (blocks must be distinct).
+      std::vector<Eigen::Matrix3d> A = {M};
+      std::vector<double*> blocks = {block(i)};
+      for (const auto& [j, w] : mirror[i]) {
+        if (j == i) {
+          A[0] -= w * I;
+        } else {
+          A.push_back(-w * I);
+          blocks.push_back(block(j));
+        }
       }
-    } else if (options.symmetry_weight > 0.0 && c > 0.0) {
-      problem.AddResidualBlock(new MirrorPairCost(std::sqrt(options.symmetry_weight * c) * inv_s),
-                               nullptr, block(i), block(sigma[i]));
+      problem.AddResidualBlock(
+          new LinearResidualCost(std::move(A), std::sqrt(options.symmetry_weight * c) * inv_s),
+          nullptr, blocks);
     }
     if (options.anchor_weight > 0.0) {
       const double p[3] = {P(i, 0), P(i, 1), P(i, 2)};
@@ -105,12 +169,12 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
   solver.num_threads = options.threads;
   solver.logging_type = ceres::SILENT;
   solver.minimizer_progress_to_stdout = false;
-  if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
-    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-    solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
-  } else if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
+  if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
     solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+  } else if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
+    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
   } else {
     solver.linear_solver_type = ceres::CGNR;
   }
@@ -133,6 +197,7 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
   result.status.residual = summary.final_cost;
   std::ostringstream message;
   message << "asymmetry " << result.asymmetry_before << " -> " << result.asymmetry_after
+          << ", mirror residual " << MirrorResidual(P, mirror) << " -> " << MirrorResidual(X, mirror)
           << ", graph stress " << GraphStress(P, X, options.graph_neighbors) << "; "
           << summary.BriefReport();
   result.status.message = message.str();

@@ -5,12 +5,22 @@
 // Ceres minimises (all residuals divided by the size s of the sample set, so weights are
 // scale-free)
 //   sum_{(i,j) in kNN graph} (||x_i - x_j|| - d0_ij)^2                     shape (stress)
-// + symmetry_weight * sum_i c_i ||M x_i - x_sigma(i)||^2, M = diag(-1,1,1)   symmetry
-// + plane_weight * sum_{i: sigma(i) = i} x_i,x^2                          self-symmetric samples
+// + symmetry_weight * sum_i c_i ||M x_i - m_i||^2, M = diag(-1,1,1)         symmetry
+// + plane_weight * sum_{i: sigma(i) = i} x_i,x^2        self-symmetric samples (mirror_neighbors 1)
 // + anchor_weight * sum_i ||x_i - y_i||^2                                 (optional, off)
 // where d0_ij = ||y_i - y_j|| in the unsymmetrized embedding, the graph is the symmetric k-NN
-// graph of the samples there, and c_i the symmetry confidence. Started from y. Dense vertices
-// follow the samples (FollowSamples). Asymmetry is reported before and after.
+// graph of the samples there, and c_i the symmetry confidence. m_i is the mirror counterpart of
+// sample i: x_sigma(i) when mirror_neighbors = 1 (the design's formula), otherwise an affine
+// combination sum_j w_ij x_j of the mirror_neighbors samples nearest to M y_i with locally
+// linear reconstruction weights [Roweis & Saul 2000]. Forcing M x_i onto a single mirror sample
+// drags the surface by up to half the sample spacing wherever the samples are not themselves
+// placed symmetrically (farthest point sampling never is); the combination reproduces the
+// mirror point between samples instead. Started from y. Dense vertices follow the samples
+// (FollowSamples). With combinations, a sample whose nearest mirror sample is itself is not
+// necessarily on the plane (coarse sampling), so the plane term applies only with
+// mirror_neighbors = 1; otherwise the symmetry term already holds samples near the plane on it.
+// Asymmetry is reported before and after (hard sigma, SymmetrizeResult) and, in the message,
+// the mirror residual of the combinations (MirrorResidual).
 // [Yoshiyasu et al. 2016] Symmetry-aware embedding for shape correspondence;
 // [Agarwal et al.] Ceres Solver.
 #pragma once
@@ -26,12 +36,14 @@ namespace symembed {
 struct CeresSymmetrizeOptions {
   // Weight of the symmetry term relative to the stress term.
   double symmetry_weight = 10.0;
-  // Weight keeping self-symmetric samples (sigma(i) = i) on the plane.
+  // Weight keeping self-symmetric samples (sigma(i) = i) on the plane (mirror_neighbors = 1).
   double plane_weight = 10.0;
   // Weight pulling samples to their unsymmetrized positions (0: off).
   double anchor_weight = 0.0;
   // Neighbours per sample in the stress graph.
   int graph_neighbors = 10;
+  // Samples combined into each mirror counterpart (1: x_sigma(i) itself).
+  int mirror_neighbors = 4;
   // Nearest samples whose displacements a dense vertex follows.
   int follow_neighbors = 8;
   // Ceres limits.
@@ -52,6 +64,17 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y, const std::vector<int
 // Relative stress of sample positions X against the reference P on P's symmetric k-NN graph:
 // sqrt(sum (||x_i - x_j|| - ||p_i - p_j||)^2 / sum ||p_i - p_j||^2). P, X: #S x 3.
 double GraphStress(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& X, int k);
+
+// Mirror counterparts as weighted samples: out[i] = {(j, w_ij)}, weights summing to 1, from the
+// positions P (#S x 3, plane x = 0). k = 1: {(sigma[i], 1)}.
+std::vector<std::vector<std::pair<int, double>>> MirrorWeights(const Eigen::MatrixX3d& P,
+                                                               const std::vector<int>& sigma,
+                                                               int k);
+
+// mean_i ||M x_i - sum_j w_ij x_j|| / size with the weights of MirrorWeights (computed on other
+// positions): how far the reflected samples are from their counterparts. X: #S x 3.
+double MirrorResidual(const Eigen::MatrixX3d& X,
+                      const std::vector<std::vector<std::pair<int, double>>>& weights);
 
 // The symmetric k-NN graph of P (#S x 3) as pairs i < j.
 std::vector<std::pair<int, int>> KnnGraphEdges(const Eigen::MatrixX3d& P, int k);

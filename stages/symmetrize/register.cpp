@@ -54,6 +54,7 @@ void RegisterSymmetrizeStages(Registry& registry) {
                  c.plane_weight = o.GetDouble("plane_weight", c.plane_weight, 0.0);
                  c.anchor_weight = o.GetDouble("anchor_weight", c.anchor_weight, 0.0);
                  c.graph_neighbors = o.GetInt("graph_neighbors", c.graph_neighbors, 1, 1000);
+                 c.mirror_neighbors = o.GetInt("mirror_neighbors", c.mirror_neighbors, 1, 64);
                  c.follow_neighbors = o.GetInt("follow_neighbors", c.follow_neighbors, 1, 1000);
                  c.max_iterations = o.GetInt("max_iterations", c.max_iterations, 0);
                  c.function_tolerance =

@@ -1,6 +1,7 @@
 #include "stages/symmetrize/symmetrize_costs.h"
 
 #include <cmath>
+#include <utility>
 
 namespace symembed {
 
@@ -22,22 +23,26 @@ bool EdgeStressCost::Evaluate(double const* const* parameters, double* residuals
   return true;
 }
 
-bool MirrorPairCost::Evaluate(double const* const* parameters, double* residuals,
-                              double** jacobians) const {
-  const double* a = parameters[0];
-  const double* b = parameters[1];
-  residuals[0] = weight_ * (-a[0] - b[0]);
-  residuals[1] = weight_ * (a[1] - b[1]);
-  residuals[2] = weight_ * (a[2] - b[2]);
+LinearResidualCost::LinearResidualCost(std::vector<Eigen::Matrix3d> A, double weight)
+    : A_(std::move(A)), weight_(weight) {
+  set_num_residuals(3);
+  for (size_t b = 0; b < A_.size(); ++b) mutable_parameter_block_sizes()->push_back(3);
+}
+
+bool LinearResidualCost::Evaluate(double const* const* parameters, double* residuals,
+                                  double** jacobians) const {
+  Eigen::Map<Eigen::Vector3d> r(residuals);
+  r.setZero();
+  for (size_t b = 0; b < A_.size(); ++b) {
+    r += A_[b] * Eigen::Map<const Eigen::Vector3d>(parameters[b]);
+  }
+  r *= weight_;
   if (jacobians) {
-    // Row-major 3 x 3 blocks.
-    for (int k = 0; k < 9; ++k) {
-      if (jacobians[0]) jacobians[0][k] = 0.0;
-      if (jacobians[1]) jacobians[1][k] = 0.0;
-    }
-    for (int c = 0; c < 3; ++c) {
-      if (jacobians[0]) jacobians[0][3 * c + c] = c == 0 ? -weight_ : weight_;
-      if (jacobians[1]) jacobians[1][3 * c + c] = -weight_;
+    for (size_t b = 0; b < A_.size(); ++b) {
+      if (!jacobians[b]) continue;
+      // Ceres Jacobian blocks are row-major (residual x parameter).
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(jacobians[b]);
+      J = weight_ * A_[b];
     }
   }
   return true;

@@ -4,6 +4,9 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/Core>
+#include <vector>
+
 namespace symembed {
 
 // r = (||a - b|| - d0) * inv_scale: keeps the length of a sample-graph edge (stress term).
@@ -18,14 +21,17 @@ class EdgeStressCost : public ceres::SizedCostFunction<1, 3, 3> {
   double inv_scale_;
 };
 
-// r = weight * (M a - b), M = diag(-1, 1, 1): a's mirror image should be its mirror sample b.
-class MirrorPairCost : public ceres::SizedCostFunction<3, 3, 3> {
+// r = weight * sum_b A_b x_b over any number of distinct 3-vector blocks x_b (3 residuals).
+// The symmetry term M x_i - sum_j c_ij x_j is A = {M - c_ii I, -c_ij I, ...}; with one mirror
+// sample, {M, -I}.
+class LinearResidualCost : public ceres::CostFunction {
  public:
-  explicit MirrorPairCost(double weight) : weight_(weight) {}
+  LinearResidualCost(std::vector<Eigen::Matrix3d> A, double weight);
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
 
  private:
+  std::vector<Eigen::Matrix3d> A_;
   double weight_;
 };
 

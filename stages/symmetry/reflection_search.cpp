@@ -16,6 +16,7 @@ bool ReflectionSearchOptions::IsValid(std::string* error) const {
   if (max_iterations < 1) out << "max_iterations must be >= 1, got " << max_iterations;
   else if (!(trim_fraction > 0.0 && trim_fraction <= 1.0))
     out << "trim_fraction must be in (0, 1], got " << trim_fraction;
+  else if (!(outlier_distance > 0.0)) out << "outlier_distance must be > 0, got " << outlier_distance;
   else if (!(max_fixed_fraction >= 0.0 && max_fixed_fraction <= 1.0))
     out << "max_fixed_fraction must be in [0, 1], got " << max_fixed_fraction;
   else if (!(tolerance > 0.0)) out << "tolerance must be > 0, got " << tolerance;
@@ -76,12 +77,8 @@ void Score(const Eigen::MatrixXd& P, const KnnIndex& index, double size,
   int fixed = 0;
   for (int i = 0; i < P.rows(); ++i) fixed += fit->sigma[i] == i;
   fit->fixed_fraction = static_cast<double>(fixed) / P.rows();
-  std::vector<double> sorted(fit->residual.data(), fit->residual.data() + fit->residual.size());
-  std::sort(sorted.begin(), sorted.end());
-  const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(options.trim_fraction * sorted.size())));
-  double sum = 0.0;
-  for (size_t k = 0; k < keep; ++k) sum += sorted[k];
-  fit->score = sum / keep / std::max(size, std::numeric_limits<double>::min());
+  const double s = std::max(size, std::numeric_limits<double>::min());
+  fit->score = fit->residual.array().min(options.outlier_distance * s).mean() / s;
   if (fit->fixed_fraction > options.max_fixed_fraction) {
     fit->score = std::numeric_limits<double>::infinity();
   }
@@ -110,32 +107,30 @@ ReflectionFit RefineReflection(const Eigen::MatrixXd& P, const KnnIndex& index,
   fit.normal = normal.normalized();
   fit.offset = offset;
   Score(P, index, size, options, &fit);
+  // Iterate until the plane stops moving; the trimmed score may rise on the way out of a poor
+  // start, so the best iterate seen is returned.
+  ReflectionFit best = fit;
   for (int it = 0; it < options.max_iterations; ++it) {
     const double threshold = TrimThreshold(fit.residual, options.trim_fraction);
     Eigen::VectorXd w = (fit.residual.array() <= threshold).cast<double>();
     Eigen::VectorXd n = fit.normal;
     double c = fit.offset;
     if (!FitReflection(P, fit.sigma, w, &n, &c)) break;
-    ReflectionFit next;
-    next.normal = n;
-    next.offset = c;
-    next.iterations = it + 1;
-    Score(P, index, size, options, &next);
     const double turn = std::acos(std::clamp(std::abs(n.dot(fit.normal)), 0.0, 1.0));
     const bool still = turn < options.tolerance &&
                        std::abs(c - fit.offset) < options.tolerance * std::max(size, 1e-300);
-    // A refit that makes the trimmed score worse (a rare oscillation) is not taken.
-    if (next.score > fit.score) {
-      fit.converged = true;
-      break;
-    }
-    fit = std::move(next);
+    fit.normal = n;
+    fit.offset = c;
+    fit.iterations = it + 1;
+    Score(P, index, size, options, &fit);
+    if (fit.score <= best.score) best = fit;
     if (still) {
-      fit.converged = true;
+      best.converged = true;
       break;
     }
   }
-  return fit;
+  best.iterations = fit.iterations;
+  return best;
 }
 
 double IntrinsicDistortion(const Eigen::MatrixXd& Dss, const std::vector<int>& sigma,

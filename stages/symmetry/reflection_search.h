@@ -19,9 +19,13 @@ namespace symembed {
 struct ReflectionSearchOptions {
   // Maximum reflect / NN / refit iterations per starting reflection.
   int max_iterations = 30;
-  // Fraction of points (smallest residuals) kept in the score and in the refit; the rest is
-  // treated as unmatched (missing parts, imperfect symmetry).
+  // Fraction of points (smallest residuals) kept in the refit; the rest is treated as
+  // unmatched (missing parts, imperfect symmetry).
   double trim_fraction = 0.8;
+  // Residuals are truncated at outlier_distance * size in the score, so an unmatched point
+  // costs a fixed amount whatever its distance (and a plane that leaves more points unmatched
+  // scores worse).
+  double outlier_distance = 0.1;
   // Reflections mapping more than this fraction of points to themselves are rejected (a flat
   // point set is "symmetric" about its own plane with the identity as self map).
   double max_fixed_fraction = 0.5;
@@ -37,7 +41,8 @@ struct ReflectionFit {
   double offset = 0.0;
   std::vector<int> sigma;     // #N: point -> nearest point to its mirror image
   Eigen::VectorXd residual;   // #N: ||reflect(p_i) - p_sigma(i)||
-  double score = 0.0;         // trimmed mean residual / size; +inf when rejected
+  double score = 0.0;         // mean of min(residual, outlier_distance * size) / size; +inf
+                              // when rejected
   double fixed_fraction = 0.0;
   int iterations = 0;
   bool converged = false;
@@ -81,8 +86,7 @@ Eigen::VectorXd SymmetryConfidence(const Eigen::VectorXd& residual, const std::v
 
 // The symmetry stages' output from a plane in the 3D embedding: refined by up to
 // `iterations_3d` iterations on the 3D sample positions Y3s (#S x 3; index built on them),
-// sigma = NN of the mirrored samples, confidence from the residuals, score = trimmed mean
-// residual / size. `message` goes into the status.
+// sigma = NN of the mirrored samples, confidence from the residuals, score as in ReflectionFit. `message` goes into the status.
 SymmetryResult MakeSymmetryResult(const Eigen::MatrixXd& Y3s, const KnnIndex& index,
                                   const Eigen::VectorXd& normal, double offset,
                                   const ReflectionSearchOptions& options, int iterations_3d,

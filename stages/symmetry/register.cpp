@@ -11,6 +11,7 @@ ReflectionSearchOptions ReadSearchOptions(OptionReader& o) {
   ReflectionSearchOptions s;
   s.max_iterations = o.GetInt("max_iterations", s.max_iterations, 1);
   s.trim_fraction = o.GetDouble("trim_fraction", s.trim_fraction, 0.05, 1.0);
+  s.outlier_distance = o.GetDouble("outlier_distance", s.outlier_distance, 1e-6, 10.0);
   s.max_fixed_fraction = o.GetDouble("max_fixed_fraction", s.max_fixed_fraction, 0.0, 1.0);
   return s;
 }

@@ -1,0 +1,47 @@
+// Flip scorer `hks`: heat kernel signatures compared through each candidate's nearest-neighbour
+// map.
+//
+// [Sun et al. 2009] A concise and provably informative multi-scale signature based on heat
+// diffusion: HKS(x, t) = sum_i exp(-lambda_i t) phi_i(x)^2 from the Laplace-Beltrami eigenpairs
+// (core/spectral.h, stored in ShapeData::aux and shared with the refine stages). HKS is
+// intrinsic, so it cannot tell left from right, but it tells head from tail and top from
+// bottom, which is exactly the ambiguity left by the canonical frame. Signatures are divided by
+// the heat trace sum_i exp(-lambda_i t) (scale normalisation on unit-area shapes) and compared in
+// log scale at times log-spaced in [4 ln 10 / lambda_max, 4 ln 10 / lambda_1] shared by both
+// shapes of the pair.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+
+#include "core/spectral.h"
+
+namespace symembed {
+
+struct HksFlipOptions {
+  // Laplace-Beltrami eigenpairs used (computed per shape when aux does not hold enough).
+  int eigenpairs = 50;
+  // Number of diffusion times.
+  int num_times = 16;
+  int threads = 1;
+
+  bool IsValid(std::string* error) const;
+};
+
+// times: T >= 1 diffusion times. Returns #V x T, each column divided by its heat trace.
+Eigen::MatrixXd HeatKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& times);
+
+// The T times shared by a pair: log-spaced in [4 ln 10 / lambda_max, 4 ln 10 / lambda_1] with
+// lambda_1 the smallest eigenvalue above 1e-8 lambda_max and lambda_max the largest, each the
+// mean over the two bases.
+Eigen::VectorXd HksTimes(const LaplaceBasis& a, const LaplaceBasis& b, int num_times);
+
+// Ys, Yt: canonical embeddings; the bases of the two surfaces (same number of eigenpairs);
+// as: #Vs source vertex areas. Score k = area-weighted mean over source vertices of the mean
+// over times of |log HKS_s(v) - log HKS_t(T_k(v))|.
+std::array<double, 4> HksFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                                    const LaplaceBasis& source, const LaplaceBasis& target,
+                                    const HksFlipOptions& options);
+
+}  // namespace symembed

@@ -1,0 +1,106 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "core/errors.h"
+#include "registry/registry.h"
+#include "stages/symmetry/plane3d.h"
+#include "stages/symmetry/reflection_search.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+// An arbitrary proper rigid motion.
+const Eigen::Matrix3d kRotation =
+    Eigen::AngleAxisd(0.9, Eigen::Vector3d(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
+const Eigen::RowVector3d kShift(0.3, -1.2, 2.0);
+
+// Euclidean distances from every vertex (as sample) to every vertex: for a point set, the
+// exactly symmetric stand-in of geodesic distances.
+Eigen::MatrixXd EuclideanDistances(const Eigen::MatrixXd& V, const std::vector<int>& samples) {
+  Eigen::MatrixXd D(samples.size(), V.rows());
+  for (size_t s = 0; s < samples.size(); ++s) {
+    D.row(s) = (V.rowwise() - V.row(samples[s])).rowwise().norm().transpose();
+  }
+  return D;
+}
+
+std::vector<int> AllVertices(int n) {
+  std::vector<int> ids(n);
+  for (int i = 0; i < n; ++i) ids[i] = i;
+  return ids;
+}
+
+double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::min(1.0, std::abs(a.normalized().dot(b.normalized())))) * 180.0 / M_PI;
+}
+
+TEST(ReflectionSearch, FitIsExactOnAnExactlySymmetricSet) {
+  std::vector<int> mirror;
+  const Surface figure = testing::SymmetricFigure(1, true, &mirror);
+  const Eigen::MatrixXd P = (figure.V * kRotation.transpose()).rowwise() + kShift;
+  Eigen::VectorXd normal;
+  double offset = 0.0;
+  ASSERT_TRUE(FitReflection(P, mirror, Eigen::VectorXd::Ones(P.rows()), &normal, &offset));
+  const Eigen::Vector3d expected = kRotation.col(0);
+  // Rounding only: the pairs are exact mirror images.
+  EXPECT_LT(AngleDeg(normal, expected), 1e-6);
+  EXPECT_NEAR(std::abs(offset), std::abs(expected.dot(kShift.transpose())), 1e-9);
+  EXPECT_NEAR((Reflect(P, normal, offset) - P(mirror, Eigen::all)).norm(), 0.0, 1e-9);
+}
+
+TEST(Plane3d, FindsThePlaneOfAnExactlySymmetricFigure) {
+  std::vector<int> mirror;
+  const Surface figure = testing::SymmetricFigure(1, true, &mirror);
+  const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
+  const std::vector<int> samples = AllVertices(figure.NumVertices());
+  const SymmetryResult r =
+      DetectSymmetryPlane3d(EuclideanDistances(Y, samples), samples, Y, Plane3dOptions{});
+  // Exact data: the plane is found up to rounding (0.01 degree is far above it).
+  EXPECT_LT(AngleDeg(r.normal, kRotation.col(0)), 0.01);
+  int correct = 0;
+  for (size_t i = 0; i < samples.size(); ++i) correct += r.sigma[i] == mirror[i];
+  EXPECT_EQ(correct, static_cast<int>(samples.size()));
+  EXPECT_LT(r.score, 1e-9);
+  EXPECT_GT(r.confidence.minCoeff(), 0.99);
+}
+
+TEST(Plane3d, KeepsWorkingWithOneLimbRemoved) {
+  std::vector<int> mirror;
+  const Surface figure = testing::SymmetricFigure(1, false, &mirror);
+  const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
+  const std::vector<int> samples = AllVertices(figure.NumVertices());
+  const SymmetryResult r =
+      DetectSymmetryPlane3d(EuclideanDistances(Y, samples), samples, Y, Plane3dOptions{});
+  // The unmatched arm (about 12% of the points) costs a bounded amount: within a degree.
+  EXPECT_LT(AngleDeg(r.normal, kRotation.col(0)), 1.0);
+  int correct = 0, with_mirror = 0;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (mirror[i] < 0) continue;
+    ++with_mirror;
+    correct += r.sigma[i] == mirror[i];
+  }
+  EXPECT_GT(correct, 0.95 * with_mirror);
+}
+
+TEST(Plane3d, RegisteredStageRunsAndRejectsBadOptions) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  auto stage = registry.CreateAs<SymmetryStage>(
+      "symmetry", YAML::Load("{type: plane3d, num_directions: 8}"), "t.yaml", "pipeline.symmetry");
+  const Surface figure = testing::SymmetricFigure();
+  const std::vector<int> samples = AllVertices(figure.NumVertices());
+  EmbeddingResult embedding;
+  embedding.Y = figure.V;
+  const Eigen::MatrixXd D = EuclideanDistances(figure.V, samples);
+  const SymmetryResult r = stage->Run(SymmetryInput{figure, samples, D, embedding});
+  EXPECT_LT(AngleDeg(r.normal, Eigen::Vector3d::UnitX()), 0.01);
+  EXPECT_THROW(registry.Create("symmetry", YAML::Load("{type: plane3d, trim_fraction: 0}"),
+                               "t.yaml", "pipeline.symmetry"),
+               ConfigError);
+}
+
+}  // namespace
+}  // namespace symembed
