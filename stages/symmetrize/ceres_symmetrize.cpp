@@ -61,7 +61,15 @@ std::vector<std::vector<std::pair<int, double>>> MirrorWeights(const Eigen::Matr
   Eigen::MatrixXd dist;
   KnnIndex(P).Query(Q, k, &nn, &dist, 1);
   for (int i = 0; i < n; ++i) {
-    // Mirror point on a sample (up to rounding): that sample alone.
+    // Mirror point on a sample (up to rounding): that sample alone. Where the embedding is not
+    // symmetric, the mirror point is not near sigma(i) (which comes from the symmetry stage,
+    // possibly from intrinsic information); sigma(i) alone is kept there too.
+    bool near_sigma = false;
+    for (int j = 0; j < k; ++j) near_sigma |= nn(i, j) == sigma[i];
+    if (!near_sigma) {
+      out[i] = {{sigma[i], 1.0}};
+      continue;
+    }
     if (dist(i, 0) <= 1e-12 * std::max(1.0, dist(i, k - 1))) {
       out[i] = {{nn(i, 0), 1.0}};
       continue;

@@ -10,9 +10,10 @@
 // + anchor_weight * sum_i ||x_i - y_i||^2                                 (optional, off)
 // where d0_ij = ||y_i - y_j|| in the unsymmetrized embedding, the graph is the symmetric k-NN
 // graph of the samples there, and c_i the symmetry confidence. m_i is the mirror counterpart of
-// sample i: x_sigma(i) when mirror_neighbors = 1 (the design's formula), otherwise an affine
-// combination sum_j w_ij x_j of the mirror_neighbors samples nearest to M y_i with locally
-// linear reconstruction weights [Roweis & Saul 2000]. Forcing M x_i onto a single mirror sample
+// sample i: x_sigma(i) when mirror_neighbors = 1 (the design's formula, the default), otherwise,
+// where sigma(i) is among the mirror_neighbors samples nearest to M y_i, an affine combination
+// sum_j w_ij x_j of those samples with locally linear reconstruction weights
+// [Roweis & Saul 2000] (elsewhere x_sigma(i)). Forcing M x_i onto a single mirror sample
 // drags the surface by up to half the sample spacing wherever the samples are not themselves
 // placed symmetrically (farthest point sampling never is); the combination reproduces the
 // mirror point between samples instead. Started from y. Dense vertices follow the samples
@@ -34,16 +35,20 @@
 namespace symembed {
 
 struct CeresSymmetrizeOptions {
-  // Weight of the symmetry term relative to the stress term.
-  double symmetry_weight = 10.0;
+  // Weight of the symmetry term relative to the stress term. Moderate by default: sigma is not
+  // a bijection, and a strong pull onto shared mirror samples distorts the shape (on synthetic
+  // humanoid pairs, weight 1 gave lower map errors than 3 or 10).
+  double symmetry_weight = 1.0;
   // Weight keeping self-symmetric samples (sigma(i) = i) on the plane (mirror_neighbors = 1).
   double plane_weight = 10.0;
   // Weight pulling samples to their unsymmetrized positions (0: off).
   double anchor_weight = 0.0;
   // Neighbours per sample in the stress graph.
-  int graph_neighbors = 10;
-  // Samples combined into each mirror counterpart (1: x_sigma(i) itself).
-  int mirror_neighbors = 4;
+  int graph_neighbors = 16;
+  // Samples combined into each mirror counterpart (1: x_sigma(i) itself, the default: sigma may
+  // come from intrinsic information that the 3D embedding, which keeps part of the pose, does
+  // not show; combinations fit only embeddings that are nearly symmetric already).
+  int mirror_neighbors = 1;
   // Nearest samples whose displacements a dense vertex follows.
   int follow_neighbors = 8;
   // Ceres limits.

@@ -8,10 +8,16 @@
 //      [de Leeuw 1977] (stages/embedding/smacof.h).
 //   2. Coarse sweep of num_angles line directions through the centroid; each refined by
 //      reflect / NN / refit iterations with a trimmed score (reflection_search.h).
-//   3. Intrinsic check: the induced self map sigma must preserve geodesic distances; the line
-//      minimising score + intrinsic_weight * distortion wins.
-//   4. Lift: the 3D reflection that best maps y_i to y_sigma(i) (weighted by confidence), then
-//      refine_3d_iterations reflect / NN / refit iterations in 3D for the final sigma.
+//   3. Lift: the 3D reflection that best maps y_i to y_sigma(i) for the 2D self map sigma
+//      (weighted by its confidence). The 3D embedding keeps much of the pose (it starts from the
+//      surface's coordinates), so it may be far from symmetric: sigma stays the 2D one, and the
+//      symmetrize stage makes the embedding symmetric under it.
+//   4. Intrinsic check: a symmetry's self map preserves geodesic distances. Candidates are every
+//      refined line with its 2D sigma, the same line refined for refine_3d_iterations in 3D
+//      (sigma = 3D nearest neighbours), and, with candidates_3d, the plane3d candidates; the one
+//      minimising score + intrinsic_weight * distortion wins. The 2D embedding of a shape with
+//      many limbs can fold (a quadruped's legs overlap in 2D), where the 3D search does better;
+//      the intrinsic check decides per shape.
 #pragma once
 
 #include <Eigen/Core>
@@ -27,16 +33,20 @@ struct Plane2dOptions {
   ReflectionSearchOptions search;
   // Line directions of the coarse sweep over [0, pi).
   int num_angles = 36;
-  // Weight of the intrinsic distortion in the choice among candidate lines (0: off).
-  double intrinsic_weight = 1.0;
+  // Weight of the intrinsic distortion in the choice among candidates (0: off).
+  double intrinsic_weight = 2.0;
   // Sample pairs used by the intrinsic check.
   int intrinsic_pairs = 4000;
   // Seed of the pair sampling.
   int seed = 1;
   // SMACOF iterations of the 2D embedding (0: classical MDS only).
   int smacof_iterations = 200;
-  // Reflect / NN / refit iterations on the 3D embedding after the lift (0: lift only).
+  // Reflect / NN / refit iterations on the 3D embedding after the lift (0: no such candidates).
   int refine_3d_iterations = 10;
+  // Also consider the plane3d candidates (principal axes and a sphere of normals in 3D).
+  bool candidates_3d = true;
+  // Starting normals of those candidates besides the principal axes.
+  int num_directions = 32;
 
   bool IsValid(std::string* error) const;
 };
@@ -46,7 +56,7 @@ Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations
 
 // D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
 // embedding. Returns the plane in the coordinates of Y, the sample self map, per-sample
-// confidence and the trimmed 3D score. Throws InvalidInputError on inconsistent shapes,
+// confidence and the score of the chosen candidate (in its space). Throws InvalidInputError on inconsistent shapes,
 // ConfigError on invalid options.
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
                                      const Eigen::MatrixXd& Y, const Plane2dOptions& options);

@@ -50,6 +50,32 @@ std::vector<Eigen::VectorXd> StartingNormals(const Eigen::MatrixXd& P, int n) {
 
 }  // namespace
 
+ReflectionFit SearchPlanes3d(const Eigen::MatrixXd& P, const KnnIndex& index,
+                             const Eigen::MatrixXd& Dss, const Plane3dOptions& options,
+                             double* total, double* intrinsic, int* iterations) {
+  const Eigen::VectorXd centroid = P.colwise().mean().transpose();
+  *total = std::numeric_limits<double>::infinity();
+  *intrinsic = 0.0;
+  ReflectionFit best;
+  for (const Eigen::VectorXd& n : StartingNormals(P, options.num_directions)) {
+    ReflectionFit fit = RefineReflection(P, index, n, n.dot(centroid), options.search);
+    *iterations += fit.iterations;
+    if (!std::isfinite(fit.score)) continue;
+    const double distortion =
+        options.intrinsic_weight > 0.0
+            ? IntrinsicDistortion(Dss, fit.sigma, options.search.trim_fraction,
+                                  options.intrinsic_pairs, static_cast<unsigned>(options.seed))
+            : 0.0;
+    const double t = fit.score + options.intrinsic_weight * distortion;
+    if (t < *total) {
+      *total = t;
+      *intrinsic = distortion;
+      best = std::move(fit);
+    }
+  }
+  return best;
+}
+
 SymmetryResult DetectSymmetryPlane3d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
                                      const Eigen::MatrixXd& Y, const Plane3dOptions& options) {
   std::string error;
@@ -59,37 +85,19 @@ SymmetryResult DetectSymmetryPlane3d(const Eigen::MatrixXd& D, const std::vector
   const Eigen::MatrixXd P = SampleRows(Y, samples);
   const Eigen::MatrixXd Dss = SampleDistances(D, samples);
   const KnnIndex index(P);
-  const Eigen::VectorXd centroid = P.colwise().mean().transpose();
-
-  double best_total = std::numeric_limits<double>::infinity();
-  ReflectionFit best;
-  double best_intrinsic = 0.0;
+  double total = 0.0, intrinsic = 0.0;
   int iterations = 0;
-  for (const Eigen::VectorXd& n : StartingNormals(P, options.num_directions)) {
-    ReflectionFit fit = RefineReflection(P, index, n, n.dot(centroid), options.search);
-    iterations += fit.iterations;
-    if (!std::isfinite(fit.score)) continue;
-    const double intrinsic =
-        options.intrinsic_weight > 0.0
-            ? IntrinsicDistortion(Dss, fit.sigma, options.search.trim_fraction,
-                                  options.intrinsic_pairs, static_cast<unsigned>(options.seed))
-            : 0.0;
-    const double total = fit.score + options.intrinsic_weight * intrinsic;
-    if (total < best_total) {
-      best_total = total;
-      best = std::move(fit);
-      best_intrinsic = intrinsic;
-    }
-  }
-  if (!std::isfinite(best_total)) {
+  const ReflectionFit best = SearchPlanes3d(P, index, Dss, options, &total, &intrinsic, &iterations);
+  if (!std::isfinite(total)) {
     throw InvalidInputError("symmetry plane3d: every candidate plane was rejected (flat or "
                             "degenerate sample set)");
   }
   std::ostringstream message;
-  message << "plane3d: score " << best.score << ", intrinsic distortion " << best_intrinsic;
+  message << "plane3d: score " << best.score << ", intrinsic distortion " << intrinsic;
   SymmetryResult result =
       MakeSymmetryResult(P, index, best.normal, best.offset, options.search, 0, message.str());
   result.status.iterations = iterations;
+  result.status.converged = best.converged;
   return result;
 }
 

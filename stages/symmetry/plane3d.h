@@ -23,7 +23,7 @@ struct Plane3dOptions {
   // Starting normals besides the principal axes (Fibonacci points on the hemisphere).
   int num_directions = 32;
   // Weight of the intrinsic distortion in the choice among candidate planes (0: off).
-  double intrinsic_weight = 1.0;
+  double intrinsic_weight = 2.0;
   // Sample pairs used by the intrinsic check.
   int intrinsic_pairs = 4000;
   // Seed of the pair sampling.
@@ -31,6 +31,14 @@ struct Plane3dOptions {
 
   bool IsValid(std::string* error) const;
 };
+
+// The best refined candidate plane on the sample positions P (#S x 3, index built on P), Dss the
+// #S x #S sample distances: minimises score + intrinsic_weight * distortion, returned through
+// *total and *intrinsic (+inf total when every candidate was rejected). *iterations adds up the
+// refinement iterations.
+ReflectionFit SearchPlanes3d(const Eigen::MatrixXd& P, const KnnIndex& index,
+                             const Eigen::MatrixXd& Dss, const Plane3dOptions& options,
+                             double* total, double* intrinsic, int* iterations);
 
 // D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
 // embedding. Returns the plane in the coordinates of Y, the sample self map, per-sample

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "stages/register.h"
+#include "stages/symmetry/plane2d.h"
 #include "stages/symmetry/plane3d.h"
 
 namespace symembed {
@@ -15,6 +16,17 @@ ReflectionSearchOptions ReadSearchOptions(OptionReader& o) {
   s.max_fixed_fraction = o.GetDouble("max_fixed_fraction", s.max_fixed_fraction, 0.0, 1.0);
   return s;
 }
+
+class Plane2dStage : public SymmetryStage {
+ public:
+  explicit Plane2dStage(Plane2dOptions options) : options_(options) {}
+  SymmetryResult Run(const SymmetryInput& in) const override {
+    return DetectSymmetryPlane2d(in.D, in.samples, in.embedding.Y, options_);
+  }
+
+ private:
+  Plane2dOptions options_;
+};
 
 class Plane3dStage : public SymmetryStage {
  public:
@@ -30,6 +42,25 @@ class Plane3dStage : public SymmetryStage {
 }  // namespace
 
 void RegisterSymmetryStages(Registry& registry) {
+  registry.Add("symmetry", "plane2d",
+               "reflection line in a 2D LS-MDS embedding of the samples (angle sweep, "
+               "reflect/NN/refit, intrinsic check), lifted to a plane in the 3D embedding",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 Plane2dOptions p;
+                 p.search = ReadSearchOptions(o);
+                 p.num_angles = o.GetInt("num_angles", p.num_angles, 1, 3600);
+                 p.intrinsic_weight = o.GetDouble("intrinsic_weight", p.intrinsic_weight, 0.0);
+                 p.intrinsic_pairs = o.GetInt("intrinsic_pairs", p.intrinsic_pairs, 1);
+                 p.seed = o.GetInt("seed", p.seed);
+                 p.smacof_iterations = o.GetInt("smacof_iterations", p.smacof_iterations, 0);
+                 p.refine_3d_iterations =
+                     o.GetInt("refine_3d_iterations", p.refine_3d_iterations, 0);
+                 p.candidates_3d = o.GetBool("candidates_3d", p.candidates_3d);
+                 p.num_directions = o.GetInt("num_directions", p.num_directions, 0, 10000);
+                 std::string error;
+                 if (!p.IsValid(&error)) o.Fail("", error);
+                 return std::make_unique<Plane2dStage>(p);
+               });
   registry.Add("symmetry", "plane3d",
                "reflection plane searched in the 3D embedding (principal axes + sphere of "
                "normals, reflect/NN/refit, trimmed score, intrinsic check)",

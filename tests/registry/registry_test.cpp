@@ -60,6 +60,7 @@ TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
       "symmetrize/average",
       "symmetrize/ceres",
       "symmetrize/none",
+      "symmetry/plane2d",
       "symmetry/plane3d",
   };
   EXPECT_EQ(actual, expected);

@@ -140,7 +140,7 @@ TEST(CeresSymmetrize, LowersAsymmetryAndKeepsStress) {
   const AsymmetricFigure f = MakeAsymmetricFigure();
   const std::vector<int> samples = AllVertices(f.surface.NumVertices());
   CeresSymmetrizeOptions options;
-  options.mirror_neighbors = 1;
+  options.symmetry_weight = 10.0;
   const SymmetrizeResult r = SymmetrizeCeres(f.Y, samples, f.symmetry, options);
   EXPECT_GT(r.asymmetry_before, 0.01);  // the deformation is visible
   // symmetry_weight 10 against the stress: the residual asymmetry is a small fraction.
@@ -167,7 +167,10 @@ TEST(CeresSymmetrize, CombinedMirrorCounterpartsKeepTheShapeUnderCoarseSampling)
   sym.sigma = KnnIndex(P).Nearest(Q, nullptr, 1);
   sym.confidence = Eigen::VectorXd::Ones(samples.size());
 
-  const SymmetrizeResult soft = SymmetrizeCeres(f.Y, samples, sym, CeresSymmetrizeOptions{});
+  CeresSymmetrizeOptions combined;
+  combined.mirror_neighbors = 4;
+  combined.symmetry_weight = 10.0;
+  const SymmetrizeResult soft = SymmetrizeCeres(f.Y, samples, sym, combined);
   ASSERT_EQ(soft.Y.rows(), f.surface.NumVertices());
   Eigen::MatrixX3d X(samples.size(), 3);
   for (size_t i = 0; i < samples.size(); ++i) X.row(i) = soft.Y.row(samples[i]);
@@ -179,7 +182,7 @@ TEST(CeresSymmetrize, CombinedMirrorCounterpartsKeepTheShapeUnderCoarseSampling)
   // One mirror sample per sample instead: many samples share a mirror sample and are pulled
   // together, which costs far more stress.
   CeresSymmetrizeOptions hard;
-  hard.mirror_neighbors = 1;
+  hard.symmetry_weight = 10.0;
   const SymmetrizeResult r = SymmetrizeCeres(f.Y, samples, sym, hard);
   EXPECT_GT(GraphStress(before, r.Y, 10), 2.0 * GraphStress(before, soft.Y, 10));
 }

@@ -1,0 +1,170 @@
+#include "stages/symmetry/plane2d.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/errors.h"
+#include "stages/embedding/classical_mds.h"
+#include "stages/embedding/smacof.h"
+#include "stages/symmetry/plane3d.h"
+
+namespace symembed {
+
+bool Plane2dOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  std::string sub;
+  if (!search.IsValid(&sub)) out << sub;
+  else if (num_angles < 1) out << "num_angles must be >= 1, got " << num_angles;
+  else if (!(intrinsic_weight >= 0.0)) out << "intrinsic_weight must be >= 0, got " << intrinsic_weight;
+  else if (intrinsic_pairs < 1) out << "intrinsic_pairs must be >= 1, got " << intrinsic_pairs;
+  else if (smacof_iterations < 0) out << "smacof_iterations must be >= 0, got " << smacof_iterations;
+  else if (refine_3d_iterations < 0)
+    out << "refine_3d_iterations must be >= 0, got " << refine_3d_iterations;
+  else if (num_directions < 0) out << "num_directions must be >= 0, got " << num_directions;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations) {
+  ClassicalMdsOptions mds;
+  mds.dims = 2;
+  Eigen::MatrixXd X = ClassicalMds(Dss, mds).X;
+  if (smacof_iterations > 0) {
+    SmacofOptions options;
+    options.max_iterations = smacof_iterations;
+    options.threads = 1;
+    X = Smacof(Dss, X, options).X;
+  }
+  return X;
+}
+
+namespace {
+
+// One candidate symmetry: plane in the 3D embedding, self map, confidence, and its criterion.
+struct Candidate {
+  Eigen::VectorXd normal;
+  double offset = 0.0;
+  std::vector<int> sigma;
+  Eigen::VectorXd confidence;
+  double score = 0.0, intrinsic = 0.0, total = std::numeric_limits<double>::infinity();
+  bool converged = true;
+  std::string origin;
+};
+
+}  // namespace
+
+SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
+                                     const Eigen::MatrixXd& Y, const Plane2dOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("symmetry plane2d: " + error);
+  if (Y.cols() != 3) throw InvalidInputError("symmetry plane2d: the embedding must be 3D");
+  if (samples.size() < 4) throw InvalidInputError("symmetry plane2d: fewer than 4 samples");
+  const Eigen::MatrixXd Dss = SampleDistances(D, samples);
+  const Eigen::MatrixXd X = EmbedSamples2d(Dss, options.smacof_iterations);
+  const KnnIndex index2(X);
+  const Eigen::Vector2d centroid = X.colwise().mean().transpose();
+  Eigen::MatrixXd P(samples.size(), 3);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i] < 0 || samples[i] >= Y.rows()) {
+      throw InvalidInputError("symmetry plane2d: sample id out of range");
+    }
+    P.row(i) = Y.row(samples[i]);
+  }
+  const KnnIndex index3(P);
+  const double size2 = PointSetSize(X), size3 = PointSetSize(P);
+  auto intrinsic = [&](const std::vector<int>& sigma) {
+    return options.intrinsic_weight > 0.0
+               ? IntrinsicDistortion(Dss, sigma, options.search.trim_fraction,
+                                     options.intrinsic_pairs, static_cast<unsigned>(options.seed))
+               : 0.0;
+  };
+  Candidate best;
+  auto consider = [&](Candidate c) {
+    c.total = c.score + options.intrinsic_weight * c.intrinsic;
+    if (c.total < best.total) best = std::move(c);
+  };
+
+  int iterations = 0;
+  for (int k = 0; k < options.num_angles; ++k) {
+    const double angle = M_PI * k / options.num_angles;
+    const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
+    const ReflectionFit fit = RefineReflection(X, index2, n, n.dot(centroid), options.search);
+    iterations += fit.iterations;
+    if (!std::isfinite(fit.score)) continue;
+    // The 2D self map with the plane lifted to 3D.
+    Candidate lifted;
+    lifted.sigma = fit.sigma;
+    lifted.confidence = SymmetryConfidence(fit.residual, fit.sigma, size2);
+    if (!FitReflection(P, fit.sigma, lifted.confidence, &lifted.normal, &lifted.offset)) continue;
+    lifted.score = fit.score;
+    lifted.intrinsic = intrinsic(fit.sigma);
+    lifted.converged = fit.converged;
+    std::ostringstream origin;
+    origin << "2D line from " << angle * 180.0 / M_PI << " deg";
+    lifted.origin = origin.str();
+    const Eigen::VectorXd n3 = lifted.normal;
+    const double c3 = lifted.offset;
+    consider(std::move(lifted));
+    // The lifted plane refined in 3D.
+    if (options.refine_3d_iterations > 0) {
+      ReflectionSearchOptions o = options.search;
+      o.max_iterations = options.refine_3d_iterations;
+      const ReflectionFit fit3 = RefineReflection(P, index3, n3, c3, o);
+      iterations += fit3.iterations;
+      if (std::isfinite(fit3.score)) {
+        Candidate refined;
+        refined.normal = fit3.normal;
+        refined.offset = fit3.offset;
+        refined.sigma = fit3.sigma;
+        refined.confidence = SymmetryConfidence(fit3.residual, fit3.sigma, size3);
+        refined.score = fit3.score;
+        refined.intrinsic = intrinsic(fit3.sigma);
+        refined.converged = fit3.converged;
+        refined.origin = origin.str() + ", refined in 3D";
+        consider(std::move(refined));
+      }
+    }
+  }
+  if (options.candidates_3d) {
+    Plane3dOptions o3;
+    o3.search = options.search;
+    o3.num_directions = options.num_directions;
+    o3.intrinsic_weight = options.intrinsic_weight;
+    o3.intrinsic_pairs = options.intrinsic_pairs;
+    o3.seed = options.seed;
+    double total = 0.0, distortion = 0.0;
+    const ReflectionFit fit3 = SearchPlanes3d(P, index3, Dss, o3, &total, &distortion, &iterations);
+    if (std::isfinite(total)) {
+      Candidate c;
+      c.normal = fit3.normal;
+      c.offset = fit3.offset;
+      c.sigma = fit3.sigma;
+      c.confidence = SymmetryConfidence(fit3.residual, fit3.sigma, size3);
+      c.score = fit3.score;
+      c.intrinsic = distortion;
+      c.converged = fit3.converged;
+      c.origin = "3D search";
+      consider(std::move(c));
+    }
+  }
+  if (!std::isfinite(best.total)) {
+    throw InvalidInputError("symmetry plane2d: every candidate symmetry was rejected");
+  }
+  SymmetryResult result;
+  result.normal = best.normal;
+  result.offset = best.offset;
+  result.sigma = best.sigma;
+  result.confidence = best.confidence;
+  result.score = best.score;
+  result.status.converged = best.converged;
+  result.status.iterations = iterations;
+  result.status.residual = best.total;
+  std::ostringstream message;
+  message << "plane2d: " << best.origin << ", score " << best.score << ", intrinsic distortion "
+          << best.intrinsic;
+  result.status.message = message.str();
+  return result;
+}
+
+}  // namespace symembed

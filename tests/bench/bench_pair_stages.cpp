@@ -1,0 +1,160 @@
+// Per-pair stages (flip scorers, matching) and the symmetry / symmetrize / canonical-frame steps
+// on a mirror-symmetric figure (tests/test_util.h SymmetricFigure, detail 5: about 4.8k
+// vertices, the size of the TOSCA 5k meshes) and a second pose of it. The figure's own
+// coordinates stand in for the embeddings (time depends on #V, not on the values).
+//
+//   BM_Flip/<scorer>            FlipStage::Run on one pair (per-shape data prepared outside)
+//   BM_FlipPrepare/<scorer>     FlipStage::PrepareShape on one shape
+//   BM_Matching/<matcher>       MatchingStage::Run on one pair
+//   BM_Symmetry/<stage>         SymmetryStage::Run, 1,000 samples (Euclidean distances)
+//   BM_Symmetrize/<stage>       SymmetrizeStage::Run, 1,000 samples
+//   BM_CanonicalFrame           CanonicalFrame of one shape
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/canonical_frame.h"
+#include "registry/registry.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+constexpr int kDetail = 5;
+constexpr int kSamples = 1000;
+
+struct Pair {
+  ShapeData source, target;
+  PairGroundTruth gt;
+  std::vector<int> samples;
+  Eigen::MatrixXd D;  // #S x #V Euclidean distances of the source
+  SymmetryResult symmetry;
+};
+
+const Pair& TestPair() {
+  static const Pair pair = [] {
+    Pair p;
+    p.source.name = "rest";
+    p.source.surface = testing::SymmetricFigure(kDetail);
+    p.source.Y = CanonicalFrame(p.source.surface.V);
+    p.target.name = "posed";
+    p.target.surface = testing::PosedSymmetricFigure(kDetail, 0.5, 0.2);
+    p.target.Y = CanonicalFrame(p.target.surface.V);
+    const int n = p.source.surface.NumVertices();
+    for (int i = 0; i < n; ++i) {
+      p.gt.source_ids.push_back(i);
+      p.gt.target_ids.push_back(i);
+    }
+    for (int s = 0; s < kSamples; ++s) p.samples.push_back(static_cast<int>(1LL * s * n / kSamples));
+    const Eigen::MatrixX3d& V = p.source.surface.V;
+    p.D.resize(kSamples, n);
+    for (int s = 0; s < kSamples; ++s) {
+      p.D.row(s) = (V.rowwise() - V.row(p.samples[s])).rowwise().norm().transpose();
+    }
+    return p;
+  }();
+  return pair;
+}
+
+template <typename T>
+std::unique_ptr<T> Make(const Registry& registry, const std::string& kind, const std::string& name) {
+  return registry.CreateAs<T>(kind, YAML::Load("{type: " + name + "}"), "bench", kind);
+}
+
+void BM_Flip(benchmark::State& state, const Registry* registry, std::string name) {
+  const auto stage = Make<FlipStage>(*registry, "flip", name);
+  Pair p = TestPair();
+  stage->PrepareShape(p.source);
+  stage->PrepareShape(p.target);
+  for (auto _ : state) {
+    FlipResult r = stage->Run(PairInput{p.source, p.target, &p.gt});
+    benchmark::DoNotOptimize(r.chosen);
+  }
+  state.counters["vertices"] = p.source.surface.NumVertices();
+}
+
+void BM_FlipPrepare(benchmark::State& state, const Registry* registry, std::string name) {
+  const auto stage = Make<FlipStage>(*registry, "flip", name);
+  for (auto _ : state) {
+    ShapeData shape = TestPair().source;
+    stage->PrepareShape(shape);
+    benchmark::DoNotOptimize(shape.aux.size());
+  }
+}
+
+void BM_Matching(benchmark::State& state, const Registry* registry, std::string name) {
+  const auto stage = Make<MatchingStage>(*registry, "matching", name);
+  const Pair& p = TestPair();
+  for (auto _ : state) {
+    MatchResult r = stage->Run(p.source.Y, p.target.Y);
+    benchmark::DoNotOptimize(r.map.data());
+  }
+}
+
+void BM_Symmetry(benchmark::State& state, const Registry* registry, std::string name) {
+  const auto stage = Make<SymmetryStage>(*registry, "symmetry", name);
+  const Pair& p = TestPair();
+  EmbeddingResult embedding;
+  embedding.Y = p.source.surface.V;
+  for (auto _ : state) {
+    SymmetryResult r = stage->Run(SymmetryInput{p.source.surface, p.samples, p.D, embedding});
+    benchmark::DoNotOptimize(r.normal.data());
+  }
+}
+
+void BM_Symmetrize(benchmark::State& state, const Registry* registry, std::string name) {
+  const Pair& p = TestPair();
+  EmbeddingResult embedding;
+  embedding.Y = p.source.surface.V;
+  const SymmetryInput input{p.source.surface, p.samples, p.D, embedding};
+  const SymmetryResult symmetry = Make<SymmetryStage>(*registry, "symmetry", "plane3d")->Run(input);
+  const auto stage = Make<SymmetrizeStage>(*registry, "symmetrize", name);
+  for (auto _ : state) {
+    SymmetrizeResult r = stage->Run(input, symmetry);
+    benchmark::DoNotOptimize(r.Y.data());
+  }
+}
+
+void BM_CanonicalFrame(benchmark::State& state) {
+  const Pair& p = TestPair();
+  for (auto _ : state) {
+    Eigen::MatrixX3d C = CanonicalFrame(p.source.surface.V);
+    benchmark::DoNotOptimize(C.data());
+  }
+}
+BENCHMARK(BM_CanonicalFrame)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace symembed
+
+int main(int argc, char** argv) {
+  using namespace symembed;
+  static Registry registry;
+  RegisterBuiltinStages(registry);
+  for (const std::string& name : registry.Names("flip")) {
+    benchmark::RegisterBenchmark(("BM_Flip/" + name).c_str(), BM_Flip, &registry, name)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_FlipPrepare/" + name).c_str(), BM_FlipPrepare, &registry,
+                                 name)
+        ->Unit(benchmark::kMillisecond);
+  }
+  for (const std::string& name : registry.Names("matching")) {
+    benchmark::RegisterBenchmark(("BM_Matching/" + name).c_str(), BM_Matching, &registry, name)
+        ->Unit(benchmark::kMillisecond);
+  }
+  for (const std::string& name : registry.Names("symmetry")) {
+    benchmark::RegisterBenchmark(("BM_Symmetry/" + name).c_str(), BM_Symmetry, &registry, name)
+        ->Unit(benchmark::kMillisecond);
+  }
+  for (const std::string& name : registry.Names("symmetrize")) {
+    benchmark::RegisterBenchmark(("BM_Symmetrize/" + name).c_str(), BM_Symmetrize, &registry,
+                                 name)
+        ->Unit(benchmark::kMillisecond);
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
