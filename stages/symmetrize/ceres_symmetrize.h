@@ -53,7 +53,7 @@ struct CeresSymmetrizeOptions {
   int follow_neighbors = 8;
   // Ceres limits.
   int max_iterations = 100;
-  double function_tolerance = 1e-10;
+  double function_tolerance = 1e-7;
   int threads = 1;
 
   bool IsValid(std::string* error) const;
