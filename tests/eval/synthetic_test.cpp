@@ -371,7 +371,9 @@ TEST(Synthetic, PairsVtsLoaderReadsTheWrittenGroundTruth) {
         ASSERT_EQ(t.rest_ids[gt.ids[i]], i);
         ++present;
       }
-      if (gt.sym_ids[i] >= 0) ASSERT_EQ(t.rest_ids[gt.sym_ids[i]], c.rest.mirror[i]);
+      if (gt.sym_ids[i] >= 0) {
+        ASSERT_EQ(t.rest_ids[gt.sym_ids[i]], c.rest.mirror[i]);
+      }
     }
     EXPECT_EQ(present, t.surface.NumVertices());
   }
