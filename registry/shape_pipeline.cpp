@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "core/canonical_frame.h"
 #include "registry/hash.h"
 
 namespace symembed {
@@ -70,9 +71,6 @@ T Cached(const ShapeContext& context, const std::string& kind, uint64_t key, Com
   times->push_back({kind, entry.seconds, false});
   return std::move(entry.value);
 }
-
-// The canonical frame of a symmetrized embedding (plane normal = x already).
-Eigen::MatrixX3d CanonicalEmbedding(const Eigen::MatrixX3d& Y) { return Y; }
 
 }  // namespace
 
@@ -225,7 +223,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   distances.reset();
 
   start = std::chrono::steady_clock::now();
-  data->Y = CanonicalEmbedding(symmetrized.Y);
+  data->Y = CanonicalFrame(symmetrized.Y);
   out.times.push_back({"canonical_frame", Since(start), false});
 
   out.report.push_back({"samples", static_cast<double>(data->samples.size())});

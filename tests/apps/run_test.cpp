@@ -1,0 +1,164 @@
+// `symembed run` and `symembed merge` as a user runs them, with the default stages on a small
+// synthetic dataset: a run killed while it writes pair records and resumed gives the outputs
+// of an uninterrupted run; shards merged give them too; a bad mesh is recorded, exit code 1.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "tests/eval/run_outputs_fixture.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::OutputsWithoutTimings;
+using testing::ReadText;
+using testing::TempDir;
+using testing::WriteText;
+
+int Symembed(const std::string& args, std::string* output = nullptr) {
+  return testing::RunShell(std::string(SYMEMBED_BINARY) + " " + args, output);
+}
+
+// Starts the binary with args (stdout and stderr to log); returns its pid.
+pid_t Spawn(const std::vector<std::string>& args, const std::string& log) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+    }
+    std::vector<char*> argv = {const_cast<char*>(SYMEMBED_BINARY)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(SYMEMBED_BINARY, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+int CountFiles(const std::string& dir, const std::string& extension) {
+  int n = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().extension() == extension) ++n;
+  }
+  return n;
+}
+
+// A small synthetic dataset (5 poses: 10 pairs) and a fast config of the default pipeline.
+class RunCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string out;
+    ASSERT_EQ(Symembed("synth --poses 5 --vertices 600 --out " + tmp_.File("data"), &out), 0) << out;
+    config_ = tmp_.File("config.yaml");
+    WriteText(config_,
+              "name: small\n"
+              "dataset: {format: pairs_vts, root: " + tmp_.File("data") + "}\n"
+              "pipeline:\n"
+              "  sampling: {type: farthest_point, count: 80}\n"
+              "  symmetry: {type: plane3d}\n"
+              "evaluation: {geodesics: dijkstra}\n");
+  }
+
+  std::string Run(const std::string& out, const std::string& extra, int expected_exit = 0) {
+    std::string log;
+    EXPECT_EQ(Symembed("run " + config_ + " --quiet --jobs 2 --cache " + tmp_.File("cache") +
+                           " --out " + out + " " + extra, &log),
+              expected_exit)
+        << log;
+    return log;
+  }
+
+  TempDir tmp_;
+  std::string config_;
+};
+
+TEST_F(RunCommandTest, KilledRunResumesToTheOutputsOfAnUninterruptedRun) {
+  Run(tmp_.File("full"), "");
+  const auto full = OutputsWithoutTimings(tmp_.File("full"));
+  ASSERT_TRUE(full.count("base/summary.json"));
+  ASSERT_TRUE(full.count("comparison.csv"));
+  const int pairs = CountFiles(tmp_.File("full/base/pairs"), ".rec");
+  ASSERT_EQ(pairs, 10);
+
+  // One job, a cold cache of its own: kill it as soon as a pair record exists.
+  const std::string killed = tmp_.File("killed");
+  const pid_t pid = Spawn({"run", config_, "--jobs", "1", "--cache", tmp_.File("cache2"), "--out",
+                           killed},
+                          tmp_.File("killed.log"));
+  ASSERT_GT(pid, 0);
+  int status = 0;
+  bool exited = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (CountFiles(killed + "/base/pairs", ".rec") < 1) {
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      exited = true;
+      break;
+    }
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  if (!exited) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+  }
+  ASSERT_FALSE(exited) << "the run finished before it could be killed: " << ReadText(tmp_.File("killed.log"));
+  const int done = CountFiles(killed + "/base/pairs", ".rec");
+  EXPECT_LT(done, pairs);
+  EXPECT_FALSE(fs::exists(killed + "/base/summary.json"));
+
+  const std::string log = Run(killed, "--resume");
+  EXPECT_EQ(OutputsWithoutTimings(killed), full);
+}
+
+TEST_F(RunCommandTest, ShardsMergedEqualASingleRun) {
+  Run(tmp_.File("full"), "");
+  std::string shards;
+  for (int i = 0; i < 3; ++i) {
+    const std::string dir = tmp_.File("shard" + std::to_string(i));
+    Run(dir, "--shard " + std::to_string(i) + "/3");
+    shards += " " + dir;
+  }
+  std::string log;
+  ASSERT_EQ(Symembed("merge --out " + tmp_.File("merged") + shards, &log), 0) << log;
+  EXPECT_EQ(OutputsWithoutTimings(tmp_.File("merged")), OutputsWithoutTimings(tmp_.File("full")));
+}
+
+TEST_F(RunCommandTest, BadMeshIsRecordedAndTheExitCodeIs1) {
+  std::string name;
+  for (const auto& e : fs::directory_iterator(tmp_.File("data/shapes"))) {
+    name = e.path().stem().string();
+    WriteText(e.path().string(), "OFF\n3 1 0\n0 0 0\n");  // truncated
+    break;
+  }
+  Run(tmp_.File("out"), "", 1);
+  const std::string failures = ReadText(tmp_.File("out/base/failures.csv"));
+  EXPECT_NE(failures.find("shape," + name + ",,"), std::string::npos) << failures;
+  // The other shapes' pairs were computed: 4 of the 5 poses give 6 pairs.
+  EXPECT_EQ(CountFiles(tmp_.File("out/base/pairs"), ".rec"), 6);
+  EXPECT_TRUE(fs::exists(tmp_.File("out/base/summary.json")));
+}
+
+TEST(RunCommand, UsageErrorsExit2) {
+  std::string out;
+  EXPECT_EQ(Symembed("run", &out), 2) << out;
+  EXPECT_EQ(Symembed("run c.yaml --shard 3/2", &out), 2) << out;
+  EXPECT_NE(out.find("--shard"), std::string::npos) << out;
+  EXPECT_EQ(Symembed("run c.yaml --jobs -1", &out), 2) << out;
+  EXPECT_EQ(Symembed("merge a b", &out), 2) << out;
+  EXPECT_NE(out.find("--out"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace symembed
