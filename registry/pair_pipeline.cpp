@@ -1,7 +1,10 @@
 #include "registry/pair_pipeline.h"
 
 #include <chrono>
+#include <cstdio>
 #include <limits>
+
+#include "registry/hash.h"
 
 namespace symembed {
 namespace {
@@ -31,6 +34,28 @@ void CheckMap(const MatchResult& result, int source_vertices, int target_vertice
 }
 
 }  // namespace
+
+uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
+                 const PairGroundTruth& ground_truth) {
+  Hasher h;
+  h.AddString("symembed-pair-cache-1").AddString(source.name).AddU64(source.key);
+  h.AddString(target.name).AddU64(target.key);
+  for (const Stage* stage : {static_cast<const Stage*>(pipeline.flip.get()),
+                             static_cast<const Stage*>(pipeline.matching.get()),
+                             static_cast<const Stage*>(pipeline.refine.get()),
+                             static_cast<const Stage*>(pipeline.evaluation_geodesics.get())}) {
+    h.AddString(OptionsText(*stage));
+  }
+  char numbers[128];
+  std::snprintf(numbers, sizeof numbers, "%.17g %.17g %d", pipeline.evaluation.max_error,
+                pipeline.evaluation.step, pipeline.evaluation.points);
+  h.AddString(numbers);
+  for (const std::vector<int>* ids : {&ground_truth.source_ids, &ground_truth.target_ids,
+                                      &ground_truth.target_sym_ids}) {
+    h.AddU64(ids->size()).AddBytes(ids->data(), ids->size() * sizeof(int));
+  }
+  return h.Digest();
+}
 
 PairGroundTruth ToPreprocessedIds(const PairGroundTruth& ground_truth, const ShapeOutcome& source,
                                   const ShapeOutcome& target) {

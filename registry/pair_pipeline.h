@@ -40,6 +40,11 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
                         const Pipeline& pipeline, const PairGroundTruth* ground_truth,
                         const MeanErrorFunction& mean_error, StageCounters* counters);
 
+// The cache key of a pair's map and evaluation record: both shapes' names and keys, the
+// per-pair stages' options, the evaluation options and the ground truth.
+uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
+                 const PairGroundTruth& ground_truth);
+
 // Ground truth in input ids -> preprocessed ids; lines whose source or target vertex was removed
 // are dropped (PairInput::ground_truth, used by the oracle flip scorer).
 PairGroundTruth ToPreprocessedIds(const PairGroundTruth& ground_truth, const ShapeOutcome& source,

@@ -31,6 +31,22 @@ std::string ShapeRecordPath(const std::string& dir, const std::string& shape) {
   return dir + "/shapes/" + shape + ".rec";
 }
 
+// A pair's cached result (the runner only caches pairs that succeeded).
+struct PairEntry {
+  std::vector<int> map;
+  std::string record;
+};
+
+void Write(ArchiveWriter& out, const PairEntry& entry) {
+  out.Ints(entry.map);
+  out.String(entry.record);
+}
+
+void Read(ArchiveReader& in, PairEntry* entry) {
+  entry->map = in.Ints();
+  entry->record = in.String();
+}
+
 bool PairLess(const DatasetPair& a, const DatasetPair& b) {
   return std::tie(a.source, a.target) < std::tie(b.source, b.target);
 }
@@ -93,7 +109,8 @@ class VariantRun {
         counters_(counters),
         stats_(stats),
         pipeline_(BuildPipeline(config, variant, registry)),
-        dir_(options.out_dir + "/" + variant.name) {}
+        dir_(options.out_dir + "/" + variant.name),
+        cache_(options.cache_dir) {}
 
   void Run() {
     const auto start = std::chrono::steady_clock::now();
@@ -166,8 +183,7 @@ class VariantRun {
     }
     std::vector<std::string> order(names.begin(), names.end());
     std::vector<std::unique_ptr<ShapeOutcome>> outcomes(order.size());
-    DiskCache cache(options_.cache_dir);
-    ShapeContext context{&cache, counters_, options_.load_mesh};
+    ShapeContext context{&cache_, counters_, options_.load_mesh};
     Progress progress(variant_.name + ": shapes", static_cast<int>(order.size()),
                       DefaultProgressMode(options_.quiet), std::cerr);
     ParallelFor(
@@ -228,6 +244,16 @@ class VariantRun {
     }
     const PairGroundTruth truth = PairLines(source->second->ground_truth,
                                             target->second->ground_truth);
+    const uint64_t key = PairKey(*source->second, *target->second, pipeline_, truth);
+    PairEntry cached;
+    if (cache_.Load("pair", key, &cached)) {
+      counters_->Hit("pair");
+      WriteFileAtomically(MapPath(dir_, pair), MapText(cached.map));
+      WriteFileAtomically(RecordPath(dir_, pair), cached.record);
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++stats_->pairs_done;
+      return cached.record;
+    }
     const PairContext context{*index_.Find(pair.source), *index_.Find(pair.target),
                               *source->second, *target->second, truth};
     const PairOutcome outcome = ComputePair(
@@ -243,6 +269,8 @@ class VariantRun {
     }
     SYMEMBED_CHECK(!record.empty(), "the evaluation returned an empty record");
     WriteFileAtomically(RecordPath(dir_, pair), record);
+    counters_->Executed("pair");
+    cache_.Store("pair", key, PairEntry{outcome.map, record});
     std::lock_guard<std::mutex> lock(mutex_);
     ++stats_->pairs_done;
     return record;
@@ -256,6 +284,7 @@ class VariantRun {
   RunStats* stats_;
   Pipeline pipeline_;
   std::string dir_;
+  DiskCache cache_;
   DatasetIndex index_;
   std::vector<DatasetPair> pairs_;
   std::vector<std::string> records_;

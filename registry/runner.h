@@ -10,6 +10,9 @@
 //   <variant>/shapes/NAME.rec       per-shape stage times and report (registry/run_outputs.h)
 //   <variant>/failures.csv          every failed shape and pair with its message
 //   + what RunEvaluation::WriteVariant / WriteExperiment write (summary, curves, comparison).
+// A pair that succeeded is cached too (its map and record, under PairKey: both shapes' keys,
+// the per-pair stages' and the evaluation's options, the ground truth), so a second identical
+// run recomputes nothing at all.
 // Pairs are processed in (source, target) order; shard i of N takes the pairs whose index in
 // that order is i modulo N. Whatever is in the variant folder depends only on the set of pair
 // records and failures, so shards merged (MergeRuns) and resumed runs equal a single run.

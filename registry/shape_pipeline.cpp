@@ -238,9 +238,11 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
       {"flip", pipeline.flip.get()},
       {"matching", pipeline.matching.get()},
       {"refine", pipeline.refine.get()}};
+  Hasher data_key(symz_key);
   for (const auto& [kind, stage] : pair_stages) {
     const std::string name = std::string("prepare_") + kind;
     const uint64_t key = StageKey(symz_key, name, *stage);
+    data_key.AddU64(key);
     AuxMap aux = Cached<AuxMap>(
         context, name, key,
         [&, stage = stage] {
@@ -253,6 +255,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
     for (auto& [entry, M] : aux) data->aux[entry] = std::move(M);
   }
   out.data = std::move(data);
+  out.key = data_key.Digest();
   return out;
 }
 

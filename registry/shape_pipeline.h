@@ -63,6 +63,7 @@ struct ShapeOutcome {
   ShapeGroundTruth ground_truth;      // input ids (empty when the dataset has none)
   std::vector<StageTime> times;
   Report report;                      // preprocess report, then stage measures
+  uint64_t key = 0;                   // cache key of `data` (all stages and aux entries)
 };
 
 struct ShapeContext {

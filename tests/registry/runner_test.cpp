@@ -83,7 +83,7 @@ TEST(Runner, WritesMapsRecordsAndSummaries) {
   EXPECT_EQ(ReadText(tmp.File("out/variants.txt")), "base\n");
 }
 
-TEST(Runner, SecondIdenticalRunRecomputesNothingPerShape) {
+TEST(Runner, SecondIdenticalRunRecomputesNothing) {
   TempDir tmp;
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
   const RunResult first = RunConfig(config, tmp.File("out"), tmp.File("cache"));
@@ -99,9 +99,14 @@ TEST(Runner, SecondIdenticalRunRecomputesNothingPerShape) {
     EXPECT_EQ(Get(second.calls, kind), 0) << kind;
     EXPECT_EQ(Get(second.stats.executed, kind), 0) << kind;
   }
-  // D is not even read: embedding, symmetry and symmetrize all come from the cache.
+  // Nothing runs at all: every per-shape output and every pair's map and record come from the
+  // cache, and D is not even read.
+  EXPECT_TRUE(second.calls.empty());
+  EXPECT_TRUE(second.stats.executed.empty());
   EXPECT_EQ(Get(second.stats.cache_hits, "geodesics"), 0);
   EXPECT_EQ(Get(second.stats.cache_hits, "symmetrize"), 3);
+  EXPECT_EQ(Get(second.stats.cache_hits, "pair"), 6);
+  EXPECT_EQ(second.stats.pairs_done, 6);
   EXPECT_EQ(Snapshot(tmp.File("out")), before);
   // With --resume as well, nothing at all runs.
   RunOptions resume;
@@ -150,6 +155,7 @@ TEST(Runner, ResumeAfterAnInterruptionGivesTheSameOutputs) {
     fs::remove(tmp.File("out/base/pairs/") + stem + ".rec");
   }
   fs::remove(tmp.File("out/base/maps/s2_s1.map"));
+  fs::remove_all(tmp.File("cache/pair"));  // so that the resumed pairs are computed again
   fs::remove(tmp.File("out/base/summary.txt"));
   fs::remove(tmp.File("out/base/failures.csv"));
   WriteText(tmp.File("out/base/pairs/s0_s2.rec.tmp.123.0"), "partial");
