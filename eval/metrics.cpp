@@ -79,6 +79,14 @@ void ComputePairStatistics(PairEvaluation& pair) {
       pair.has_sym ? std::min(pair.mean_direct, pair.mean_sym) : pair.mean_direct;
 }
 
+std::string PairEvaluation::RefineSide() const {
+  if (!refined || !has_sym) return "";
+  const bool before = initial_mean_sym < initial_mean_direct;
+  const bool after = mean_sym < mean_direct;
+  if (before == after) return "kept";
+  return after ? "to_symmetric" : "to_direct";
+}
+
 FlipClass ClassifyFlip(int chosen, int oracle, bool has_sym, double mean_direct,
                        double mean_sym) {
   if (chosen >= 0 && oracle >= 0 && chosen != oracle) {
@@ -185,6 +193,9 @@ VariantSummary Summarize(const std::string& variant, std::vector<PairEvaluation>
       case FlipClass::kUpDown: ++s.flipped_up_down; break;
       case FlipClass::kNone: break;
     }
+    const std::string side = p.RefineSide();
+    if (side == "to_symmetric") ++s.refine_to_symmetric;
+    if (side == "to_direct") ++s.refine_to_direct;
   }
   s.total_points = static_cast<long>(direct.size());
   s.mean_direct = Mean(direct);

@@ -46,6 +46,14 @@ struct PairEvaluation {
   std::vector<double> errors_direct;    // #points, in ground-truth line order
   std::vector<double> errors_sym;       // #points when has_sym, else empty
   std::map<std::string, double> stage_seconds;  // wall time per stage ("evaluation", ...)
+  // When a refine stage changed the map: the means of the map before refinement.
+  bool refined = false;
+  double initial_mean_direct = 0.0, initial_mean_sym = 0.0;
+
+  // Which ground truth the map is nearer to, before and after refinement: "" (not refined, or no
+  // symmetric ground truth), "kept", "to_symmetric" (refinement moved the map onto the mirrored
+  // solution: a flip it introduced) or "to_direct" (a flip it repaired).
+  std::string RefineSide() const;
 
   // The error vector of whichever ground truth gave the lower mean.
   const std::vector<double>& FlipTolerantErrors() const;
@@ -101,6 +109,8 @@ struct VariantSummary {
   // Unweighted mean over pairs of each pair's mean.
   double mean_of_pair_means_direct = 0.0, mean_of_pair_means_flip_tolerant = 0.0;
   int flipped_left_right = 0, flipped_front_back = 0, flipped_up_down = 0;
+  // Refined pairs whose map refinement moved to the symmetric / to the direct ground truth.
+  int refine_to_symmetric = 0, refine_to_direct = 0;
   int FlippedTotal() const { return flipped_left_right + flipped_front_back + flipped_up_down; }
   double time_total_s = 0.0, time_per_shape_s = 0.0, time_per_pair_s = 0.0;
   double peak_rss_mb = 0.0;

@@ -110,6 +110,10 @@ JsonValue SummaryToJson(const VariantSummary& s) {
   flips.Set("up_down", JsonValue::Number(s.flipped_up_down));
   flips.Set("total", JsonValue::Number(s.FlippedTotal()));
   j.Set("flipped_pairs", flips);
+  JsonValue refine = JsonValue::Object();
+  refine.Set("to_symmetric", JsonValue::Number(s.refine_to_symmetric));
+  refine.Set("to_direct", JsonValue::Number(s.refine_to_direct));
+  j.Set("refine_changed_side", refine);
   j.Set("evaluation_geodesics", JsonValue::String(s.evaluation_geodesics));
   j.Set("evaluation_points", s.points_option > 0 ? JsonValue::Number(s.points_option)
                                                  : JsonValue::String("all"));
@@ -143,6 +147,9 @@ VariantSummary SummaryFromJson(const JsonValue& j, const std::string& where) {
   s.flipped_left_right = static_cast<int>(RequireNumber(flips, "left_right", where));
   s.flipped_front_back = static_cast<int>(RequireNumber(flips, "front_back", where));
   s.flipped_up_down = static_cast<int>(RequireNumber(flips, "up_down", where));
+  const JsonValue& refine = j.Get("refine_changed_side");
+  s.refine_to_symmetric = static_cast<int>(refine.Get("to_symmetric").NumberOr(0.0));
+  s.refine_to_direct = static_cast<int>(refine.Get("to_direct").NumberOr(0.0));
   const JsonValue& geodesics = Require(j, "evaluation_geodesics", where);
   if (!geodesics.IsString()) throw InvalidInputError(where + ": evaluation_geodesics");
   s.evaluation_geodesics = geodesics.AsString();
@@ -169,7 +176,8 @@ std::string PairsCsv(std::vector<PairEvaluation> pairs) {
   std::ostringstream out;
   out << "source,target,status,points,mean_direct,median_direct,max_direct";
   for (const auto& key : ErrorThresholdKeys()) out << ",pct_direct_" << key;
-  out << ",mean_sym,mean_flip_tolerant,flip,chosen,oracle,message\n";
+  out << ",mean_sym,mean_flip_tolerant,flip,chosen,oracle,initial_mean_direct,refine_side,"
+         "message\n";
   for (const auto& p : pairs) {
     out << CsvField(p.source) << ',' << CsvField(p.target) << ',' << (p.ok ? "ok" : "failed");
     if (p.ok) {
@@ -181,7 +189,9 @@ std::string PairsCsv(std::vector<PairEvaluation> pairs) {
     } else {
       out << ",0,,,,,,,,,";
     }
-    out << ',' << p.chosen << ',' << p.oracle << ',' << CsvField(p.message) << '\n';
+    out << ',' << p.chosen << ',' << p.oracle << ','
+        << (p.ok && p.refined ? Num(p.initial_mean_direct) : "") << ',' << p.RefineSide() << ','
+        << CsvField(p.message) << '\n';
   }
   return out.str();
 }
@@ -315,6 +325,10 @@ std::string SerializePairRecord(const PairEvaluation& p) {
   j.Set("stage_seconds", stages);
   j.Set("errors_direct", NumberArray(p.errors_direct));
   j.Set("errors_sym", NumberArray(p.errors_sym));
+  if (p.refined) {
+    j.Set("initial_mean_direct", JsonValue::Number(p.initial_mean_direct));
+    j.Set("initial_mean_sym", JsonValue::Number(p.initial_mean_sym));
+  }
   return WriteJson(j, 0);
 }
 
@@ -339,6 +353,11 @@ PairEvaluation ParsePairRecord(const std::string& text, const std::string& where
     }
     ComputePairStatistics(p);
     p.flip = ParseFlipClass(Require(j, "flip", where).AsString());
+    if (j.Get("initial_mean_direct").IsNumber()) {
+      p.refined = true;
+      p.initial_mean_direct = RequireNumber(j, "initial_mean_direct", where);
+      p.initial_mean_sym = RequireNumber(j, "initial_mean_sym", where);
+    }
   }
   return p;
 }

@@ -61,6 +61,16 @@ class EvaluatorVariant : public VariantEvaluation {
       *failure = "evaluation: " + evaluation.message;
       return "";
     }
+    if (!outcome.initial_map.empty()) {
+      const PairEvaluation initial = shared_->evaluator->Evaluate(
+          pair.source.name, pair.target.name, shared_->Target(pair.target), outcome.initial_map,
+          pair.ground_truth, outcome.flip.chosen, outcome.oracle);
+      if (initial.ok) {
+        evaluation.refined = true;
+        evaluation.initial_mean_direct = initial.mean_direct;
+        evaluation.initial_mean_sym = initial.mean_sym;
+      }
+    }
     for (const StageTime& t : outcome.times) evaluation.stage_seconds[t.stage] = t.seconds;
     return SerializePairRecord(evaluation);
   }

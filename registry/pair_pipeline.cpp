@@ -38,7 +38,7 @@ void CheckMap(const MatchResult& result, int source_vertices, int target_vertice
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
                  const PairGroundTruth& ground_truth) {
   Hasher h;
-  h.AddString("symembed-pair-cache-1").AddString(source.name).AddU64(source.key);
+  h.AddString("symembed-pair-cache-2").AddString(source.name).AddU64(source.key);
   h.AddString(target.name).AddU64(target.key);
   for (const Stage* stage : {static_cast<const Stage*>(pipeline.flip.get()),
                              static_cast<const Stage*>(pipeline.matching.get()),
@@ -112,10 +112,13 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   CheckMap(refined, a.surface.NumVertices(), nb, "refine");
   out.refine_status = refined.status;
 
-  out.map.resize(source.nearest_kept.size());
-  for (size_t v = 0; v < out.map.size(); ++v) {
-    out.map[v] = b.input_ids[refined.map[source.nearest_kept[v]]];
-  }
+  auto to_input_ids = [&](const std::vector<int>& map) {
+    std::vector<int> ids(source.nearest_kept.size());
+    for (size_t v = 0; v < ids.size(); ++v) ids[v] = b.input_ids[map[source.nearest_kept[v]]];
+    return ids;
+  };
+  out.map = to_input_ids(refined.map);
+  if (refined.map != matched.map) out.initial_map = to_input_ids(matched.map);
 
   if (ground_truth && !ground_truth->source_ids.empty() && mean_error) {
     start = std::chrono::steady_clock::now();

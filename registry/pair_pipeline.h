@@ -22,6 +22,7 @@ namespace symembed {
 
 struct PairOutcome {
   std::vector<int> map;             // #V_source_input: 0-based target input id per source vertex
+  std::vector<int> initial_map;     // the same before refinement; empty when refine kept the map
   FlipResult flip;                  // scores and chosen candidate
   int oracle = -1;                  // candidate with the lowest ground-truth error; -1: unknown
   std::array<double, 4> oracle_errors{};  // mean error of each candidate (when oracle >= 0)

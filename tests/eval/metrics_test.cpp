@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "eval/json.h"
 #include "eval/report.h"
@@ -66,6 +67,28 @@ TEST(Metrics, FlipClassFromCandidates) {
   EXPECT_EQ(ClassifyFlip(2, 2, true, 0.3, 0.1), FlipClass::kLeftRight);
   EXPECT_EQ(ClassifyFlip(-1, 2, true, 0.1, 0.3), FlipClass::kNone);
   EXPECT_EQ(ClassifyFlip(-1, -1, false, 0.3, 0.0), FlipClass::kNone);
+}
+
+TEST(Metrics, RefineSideComparesTheNearerGroundTruthBeforeAndAfter) {
+  PairEvaluation p;
+  p.has_sym = true;
+  p.mean_direct = 0.05;
+  p.mean_sym = 0.4;
+  EXPECT_EQ(p.RefineSide(), "");  // not refined
+  p.refined = true;
+  p.initial_mean_direct = 0.1;
+  p.initial_mean_sym = 0.3;
+  EXPECT_EQ(p.RefineSide(), "kept");
+  p.initial_mean_direct = 0.5;
+  p.initial_mean_sym = 0.12;
+  EXPECT_EQ(p.RefineSide(), "to_direct");
+  std::swap(p.mean_direct, p.mean_sym);
+  EXPECT_EQ(p.RefineSide(), "kept");
+  p.initial_mean_direct = 0.1;
+  p.initial_mean_sym = 0.3;
+  EXPECT_EQ(p.RefineSide(), "to_symmetric");
+  p.has_sym = false;
+  EXPECT_EQ(p.RefineSide(), "");
 }
 
 TEST(Metrics, SummaryPoolsAllPointsAndIgnoresOrder) {

@@ -73,6 +73,27 @@ TEST(RunEvaluation, VariantsWithTheSameEvaluationShareItsDistances) {
   EXPECT_EQ(two, one);
 }
 
+TEST(RunEvaluation, ReportsWhenRefinementMovesAMapOntoTheMirroredSolution) {
+  TempDir tmp;
+  const std::string variants =
+      "variants:\n  - {name: mirrored, set: {pipeline.refine.mirror: true}}\n";
+  const std::string config = WriteTestDataset(tmp.File("data"), 3, variants);
+  RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  // The identity refinement leaves the map alone: nothing to report.
+  const VariantSummary base = ReadSummaryJson(tmp.File("out/base/summary.json"));
+  EXPECT_EQ(base.refine_to_symmetric, 0);
+  EXPECT_EQ(base.refine_to_direct, 0);
+  // The mirroring refinement takes every exact map onto the symmetric ground truth.
+  const VariantSummary mirrored = ReadSummaryJson(tmp.File("out/mirrored/summary.json"));
+  EXPECT_EQ(mirrored.refine_to_symmetric, 6);
+  EXPECT_EQ(mirrored.refine_to_direct, 0);
+  EXPECT_EQ(mirrored.flipped_left_right, 6);
+  const std::string csv = ReadText(tmp.File("out/mirrored/pairs.csv"));
+  EXPECT_NE(csv.find("initial_mean_direct,refine_side"), std::string::npos);
+  EXPECT_NE(csv.find(",0,to_symmetric,"), std::string::npos) << csv;
+  EXPECT_EQ(ReadText(tmp.File("out/base/pairs.csv")).find("to_symmetric"), std::string::npos);
+}
+
 TEST(RunEvaluation, ShardsMergedAndResumedRunsEqualASingleRun) {
   TempDir tmp;
   const std::string config = WriteTestDataset(

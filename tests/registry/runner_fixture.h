@@ -73,7 +73,11 @@ inline Surface ReadOff(const std::string& path) {
 }
 
 // Dataset `testset`: root/shapes/*.off (sorted), root/pairs.txt ("A B" lines), identity ground
-// truth (all shapes share connectivity) with the mirror x -> 1 - x as symmetric ground truth.
+// truth (all shapes share connectivity) with the mirror x -> 1 - x of the 5 x 4 grids
+// (GridMirror) as symmetric ground truth.
+// The vertex of a 5 x 4 grid (GridMesh(5, 4)) mirrored by x -> 1 - x.
+inline int GridMirror(int v) { return (v / 5) * 5 + (4 - v % 5); }
+
 class TestDataset : public Dataset {
  public:
   explicit TestDataset(std::string root) : root_(std::move(root)) {}
@@ -94,6 +98,9 @@ class TestDataset : public Dataset {
   ShapeGroundTruth GroundTruth(const DatasetShape&, int num_vertices) const override {
     ShapeGroundTruth gt;
     for (int i = 0; i < num_vertices; ++i) gt.ids.push_back(i);
+    if (num_vertices == 20) {
+      for (int i = 0; i < num_vertices; ++i) gt.sym_ids.push_back(GridMirror(i));
+    }
     return gt;
   }
 
@@ -221,14 +228,22 @@ class TestMatching : public MatchingStage {
   }
 };
 
+// Keeps the map, or with `mirror` composes it with GridMirror (a refinement that flips).
 class TestRefine : public RefineStage {
  public:
+  explicit TestRefine(bool mirror) : mirror_(mirror) {}
   MatchResult Run(const PairInput&, const std::vector<int>& map) const override {
     Count("refine");
     MatchResult r;
     r.map = map;
+    if (mirror_) {
+      for (int& t : r.map) t = GridMirror(t);
+    }
     return r;
   }
+
+ private:
+  bool mirror_;
 };
 
 template <typename T, typename... Args>
@@ -255,7 +270,9 @@ inline Registry TestRegistry() {
     return std::make_unique<TestFlip>(o.GetInt("choose", 0, 0, 3));
   });
   r.Add("matching", "test", "brute-force NN", Simple<TestMatching>());
-  r.Add("refine", "test", "identity", Simple<TestRefine>());
+  r.Add("refine", "test", "identity or mirror", [](OptionReader& o) {
+    return std::make_unique<TestRefine>(o.GetBool("mirror", false));
+  });
   return r;
 }
 
