@@ -172,6 +172,11 @@ class VariantRun {
       }
       pending_.push_back(static_cast<int>(i));
     }
+    // Pairs of one target run together: the evaluator computes and caches distances per target
+    // and evicts whole targets, so this order computes each target's distances about once.
+    // Outputs do not depend on the order.
+    std::stable_sort(pending_.begin(), pending_.end(),
+                     [&](int a, int b) { return pairs_[a].target < pairs_[b].target; });
     stats_->pairs_total += static_cast<int>(pairs_.size());
   }
 
