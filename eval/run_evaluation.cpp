@@ -3,16 +3,33 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <mutex>
 #include <sstream>
 
+#include "core/errors.h"
 #include "eval/evaluator.h"
 #include "eval/report.h"
 
 namespace symembed {
 namespace {
+
+// The evaluator's distance cache budget: $SYMEMBED_EVAL_CACHE_MB, default 2048. Every target of
+// TOSCA 5k with all ground-truth points needs about 100 MB; a budget that holds all of them lets
+// the variants of a run share the distances instead of recomputing them per variant.
+double EvaluationCacheBudgetMb() {
+  const char* env = std::getenv("SYMEMBED_EVAL_CACHE_MB");
+  if (env == nullptr || *env == '\0') return 2048.0;
+  char* end = nullptr;
+  const double mb = std::strtod(env, &end);
+  if (end == env || *end != '\0' || !(mb >= 0.0)) {
+    throw ConfigError(std::string("SYMEMBED_EVAL_CACHE_MB: expected a number of megabytes >= 0, "
+                                  "got '") + env + "'");
+  }
+  return mb;
+}
 
 }  // namespace
 
@@ -112,7 +129,8 @@ std::unique_ptr<VariantEvaluation> EvaluatorHooks::ForVariant(const Pipeline& pi
     shared->geodesics = registry_->CreateAs<GeodesicsStage>(
         "geodesics", YAML::Clone(pipeline.evaluation_geodesics->resolved_options()), "",
         "evaluation.geodesics");
-    shared->evaluator = std::make_unique<Evaluator>(e, *shared->geodesics);
+    shared->evaluator =
+        std::make_unique<Evaluator>(e, *shared->geodesics, EvaluationCacheBudgetMb());
   }
   return std::make_unique<EvaluatorVariant>(shared);
 }

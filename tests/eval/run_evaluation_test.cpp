@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 
+#include "core/errors.h"
 #include "eval/report.h"
 #include "registry/config.h"
 #include "tests/eval/run_outputs_fixture.h"
@@ -92,6 +94,20 @@ TEST(RunEvaluation, ReportsWhenRefinementMovesAMapOntoTheMirroredSolution) {
   EXPECT_NE(csv.find("initial_mean_direct,refine_side"), std::string::npos);
   EXPECT_NE(csv.find(",0,to_symmetric,"), std::string::npos) << csv;
   EXPECT_EQ(ReadText(tmp.File("out/base/pairs.csv")).find("to_symmetric"), std::string::npos);
+}
+
+TEST(RunEvaluation, RejectsAMalformedDistanceCacheBudget) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 2);
+  setenv("SYMEMBED_EVAL_CACHE_MB", "lots", 1);
+  EXPECT_THROW(RunConfig(config, tmp.File("bad"), tmp.File("cache")), ConfigError);
+  setenv("SYMEMBED_EVAL_CACHE_MB", "0.001", 1);  // a tiny budget changes no result
+  const RunStats tiny = RunConfig(config, tmp.File("tiny"), tmp.File("cache_tiny"));
+  unsetenv("SYMEMBED_EVAL_CACHE_MB");
+  const RunStats normal = RunConfig(config, tmp.File("normal"), tmp.File("cache_normal"));
+  EXPECT_TRUE(tiny.ok());
+  EXPECT_TRUE(normal.ok());
+  EXPECT_EQ(Outputs(tmp.File("tiny")), Outputs(tmp.File("normal")));
 }
 
 TEST(RunEvaluation, ShardsMergedAndResumedRunsEqualASingleRun) {
