@@ -13,6 +13,10 @@
 //              the differences of their mean curvedness / sigma;
 //   score_k  = local_weight * local_k + global_weight * global_k
 //              + chamfer_weight * symmetric Chamfer distance of the embeddings.
+// The stage `extrinsic` adds orientation_weight * (1 - o_k) / 2 (default weight 1), o_k the
+// orientation of candidate k's map after a short ZoomOut (stages/flip/orientation.h): the
+// features above cannot tell the right candidate from the one whose map lies near the
+// left-right mirrored correspondence (the human classes of TOSCA), orientation can.
 #pragma once
 
 #include <Eigen/Core>

@@ -7,6 +7,7 @@
 #include "stages/flip/flip_common.h"
 #include "stages/flip/hks.h"
 #include "stages/flip/oracle.h"
+#include "stages/flip/orientation.h"
 #include "stages/register.h"
 
 namespace symembed {
@@ -23,27 +24,49 @@ const Eigen::MatrixXd& AuxOf(const ShapeData& shape, const char* key, const char
 
 class ExtrinsicStage : public FlipStage {
  public:
-  explicit ExtrinsicStage(ExtrinsicFlipOptions options) : options_(options) {}
+  ExtrinsicStage(ExtrinsicFlipOptions options, double orientation_weight,
+                 OrientationOptions orientation)
+      : options_(options), orientation_weight_(orientation_weight), orientation_(orientation) {}
   void PrepareShape(ShapeData& shape) const override {
     shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
+    if (orientation_weight_ > 0.0) {
+      LaplaceBasisOptions basis;
+      basis.k = orientation_.k_end;
+      EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
+    }
   }
   FlipResult Run(const PairInput& pair) const override {
     CheckFlipPair(pair);
-    const ExtrinsicScores s = ExtrinsicFlipScores(
+    ExtrinsicScores s = ExtrinsicFlipScores(
         pair.source.Y, pair.target.Y, AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
         AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_);
+    std::array<double, 4> orientation{};
+    if (orientation_weight_ > 0.0) {
+      orientation = CandidateOrientations(
+          pair.source.surface, pair.target.surface, pair.source.Y, pair.target.Y,
+          GetLaplaceBasis(pair.source.aux, orientation_.k_end),
+          GetLaplaceBasis(pair.target.aux, orientation_.k_end), pair.source.samples,
+          orientation_, options_.threads);
+      for (int k = 0; k < 4; ++k) s.total[k] += orientation_weight_ * (1.0 - orientation[k]) / 2.0;
+    }
     FlipResult result = MakeFlipResult(s.total, "extrinsic");
     std::ostringstream detail;
     detail << "; local";
     for (double v : s.local) detail << " " << v;
     detail << "; global";
     for (double v : s.global) detail << " " << v;
+    if (orientation_weight_ > 0.0) {
+      detail << "; orientation";
+      for (double v : orientation) detail << " " << v;
+    }
     result.status.message += detail.str();
     return result;
   }
 
  private:
   ExtrinsicFlipOptions options_;
+  double orientation_weight_;
+  OrientationOptions orientation_;
 };
 
 class ChamferStage : public FlipStage {
@@ -94,7 +117,8 @@ class OracleStage : public FlipStage {
 void RegisterFlipStages(Registry& registry) {
   registry.Add("flip", "extrinsic",
                "curvature features of the original surfaces, compared locally through each "
-               "candidate's NN map and globally (front/back, top/bottom distributions)",
+               "candidate's NN map and globally (front/back, top/bottom distributions), plus "
+               "the orientation of each candidate's map after a short ZoomOut",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  ExtrinsicFlipOptions e;
                  e.local_weight = o.GetDouble("local_weight", e.local_weight, 0.0);
@@ -104,9 +128,16 @@ void RegisterFlipStages(Registry& registry) {
                  e.histogram_bins = o.GetInt("histogram_bins", e.histogram_bins, 1, 1000);
                  e.smoothing_rings = o.GetInt("smoothing_rings", e.smoothing_rings, 0, 100);
                  e.threads = o.GetInt("threads", e.threads, 0, 256);
+                 const double orientation_weight =
+                     o.GetDouble("orientation_weight", 1.0, 0.0);
+                 OrientationOptions r;
+                 r.k_start = o.GetInt("orientation_k_start", r.k_start, 1, 1000);
+                 r.k_end = o.GetInt("orientation_k_end", r.k_end, 1, 1000);
+                 r.samples = o.GetInt("orientation_samples", r.samples, 1, 100000);
                  std::string error;
                  if (!e.IsValid(&error)) o.Fail("", error);
-                 return std::make_unique<ExtrinsicStage>(e);
+                 if (!r.IsValid(&error)) o.Fail("", "orientation: " + error);
+                 return std::make_unique<ExtrinsicStage>(e, orientation_weight, r);
                });
   registry.Add("flip", "chamfer", "symmetric Chamfer distance of the embeddings only",
                [](OptionReader& o) -> std::unique_ptr<Stage> {

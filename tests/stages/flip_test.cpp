@@ -1,9 +1,17 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "core/canonical_frame.h"
 #include "core/errors.h"
 #include "registry/registry.h"
+#include "core/primitives.h"
+#include "core/spectral.h"
+#include "eval/synthetic/synthetic.h"
 #include "stages/flip/extrinsic.h"
+#include "stages/flip/orientation.h"
+#include "stages/refine/functional_map.h"
 #include "tests/test_util.h"
 
 namespace symembed {
@@ -14,6 +22,9 @@ ShapeData MakeShape(const std::string& name, const Surface& surface) {
   shape.name = name;
   shape.surface = surface;
   shape.Y = CanonicalFrame(surface.V);
+  // Well-spread samples, as the pipeline's farthest-point sampling gives (the orientation term
+  // refines and measures on them).
+  shape.samples = EuclideanFarthestPoints(surface.V, std::min(300, surface.NumVertices()));
   return shape;
 }
 
@@ -34,8 +45,8 @@ class FlipScorers : public ::testing::TestWithParam<std::string> {};
 TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
   Registry registry;
   RegisterBuiltinStages(registry);
-  auto stage = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: " + GetParam() + "}"),
-                                            "t.yaml", "pipeline.flip");
+  auto stage = registry.CreateAs<FlipStage>("flip", YAML::Load(GetParam()), "t.yaml",
+                                            "pipeline.flip");
   ShapeData source = MakeShape("rest", testing::SymmetricFigure());
   const ShapeData posed = MakeShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2));
   const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
@@ -54,7 +65,62 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, FlipScorers,
-                         ::testing::Values("extrinsic", "chamfer", "hks", "oracle"));
+                         ::testing::Values("{type: extrinsic}",
+                                           "{type: extrinsic, orientation_weight: 0}",
+                                           "{type: chamfer}", "{type: hks}", "{type: oracle}"));
+
+// The vertex of `surface` nearest to each vertex mirrored by x -> -x.
+std::vector<int> MirrorMap(const Surface& surface) {
+  std::vector<int> map(surface.NumVertices());
+  for (int v = 0; v < surface.NumVertices(); ++v) {
+    Eigen::RowVector3d p = surface.V.row(v);
+    p.x() = -p.x();
+    Eigen::Index best;
+    (surface.V.rowwise() - p).rowwise().squaredNorm().minCoeff(&best);
+    map[v] = static_cast<int>(best);
+  }
+  return map;
+}
+
+TEST(OrientationFlip, IdentityPreservesAndMirrorReversesOrientation) {
+  const Surface sphere = Icosphere(3);
+  std::vector<int> identity(sphere.NumVertices()), samples;
+  for (int v = 0; v < sphere.NumVertices(); ++v) identity[v] = v;
+  for (int v = 0; v < sphere.NumVertices(); v += 3) samples.push_back(v);
+  EXPECT_DOUBLE_EQ(MapOrientation(sphere, sphere, identity, samples, 6), 1.0);
+  // The icosphere is symmetric under x -> -x, so the mirror map is exact and reverses.
+  EXPECT_DOUBLE_EQ(MapOrientation(sphere, sphere, MirrorMap(sphere), samples, 6), -1.0);
+  EXPECT_THROW(MapOrientation(sphere, sphere, {0, 1}, samples, 6), InvalidInputError);
+}
+
+TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
+  // Two poses of the synthetic humanoid (connected, one vertex set: identity ground truth).
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = 1500;
+  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
+  ASSERT_EQ(figures.shapes.size(), 2u);
+  const ShapeData source = MakeShape("pose0", figures.shapes[0].shape.surface);
+  const ShapeData target = MakeShape("pose1", figures.shapes[1].shape.surface);
+  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
+  const int right = oracle->Run(PairInput{source, target, &gt}).chosen;
+  OrientationOptions options;
+  LaplaceBasisOptions basis;
+  basis.k = options.k_end;
+  const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
+  const LaplaceBasis bt = ComputeLaplaceBasis(target.surface, basis);
+  const std::array<double, 4> o = CandidateOrientations(source.surface, target.surface, source.Y,
+                                                        target.Y, bs, bt, source.samples, options);
+  EXPECT_GT(o[right], 0.5) << o[0] << " " << o[1] << " " << o[2] << " " << o[3];
+  for (int k = 0; k < 4; ++k) {
+    if (k != right) {
+      EXPECT_LT(o[k], o[right]) << "candidate " << k;
+    }
+  }
+}
 
 TEST(OracleFlip, RefusesWithoutGroundTruth) {
   Registry registry;

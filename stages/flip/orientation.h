@@ -1,0 +1,56 @@
+// Orientation term of the flip scorers: which candidate rotation leads to an orientation-
+// preserving correspondence once the map is refined intrinsically.
+//
+// On a shape whose symmetrized embedding is thin and nearly symmetric front-to-back (a human),
+// the rotation by pi about the vertical axis maps the embedding almost onto itself mirrored
+// left-right, so that candidate's map lies close to the left-right mirrored correspondence and
+// every descriptor invariant under the symmetry (curvature, HKS) scores it like the right one.
+// The two differ in orientation: the correct correspondence preserves the orientation of the
+// (consistently oriented) surfaces, the mirrored one reverses it. The nearest-neighbour map of a
+// proper rotation preserves orientation in either case, so each candidate's map is first
+// refined with a few ZoomOut iterations [Melzi et al. 2019], which pull it onto the nearest
+// near-isometry (the correct map or the mirrored one), and the orientation of the refined map is
+// measured on the source samples: for each sample i and pairs (j, k) of its nearest samples, the
+// sign of ((p_j - p_i) x (p_k - p_i)) . n_i on the source against the same triple product of the
+// image points and the image normal on the target, in the surfaces' own coordinates.
+// [Ren et al. 2018] Continuous and orientation-preserving correspondences via functional maps
+// (the orientation-preserving idea, here as a measurement rather than a term of the map).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/spectral.h"
+
+namespace symembed {
+
+struct OrientationOptions {
+  int k_start = 10;   // ZoomOut basis sizes (both bases need k_end eigenpairs)
+  int k_end = 40;
+  int step = 5;
+  int samples = 300;  // source samples the refinement and the measurement use
+  int neighbors = 6;  // nearest samples whose pairs form the triangles of a sample
+
+  bool IsValid(std::string* error) const;
+};
+
+// Mean over source samples and their neighbour pairs of sign(source triple product) *
+// sign(image triple product), in [-1, 1]: near 1 for an orientation-preserving map, near -1 for
+// a reversing one. map: #Vs target vertex per source vertex; samples: source vertex ids.
+double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
+                      const std::vector<int>& samples, int neighbors);
+
+// For each candidate rotation: the orientation of its nearest-neighbour map (Ys, Yt: canonical
+// embeddings) after ZoomOut in the given bases. samples: source vertex ids (the first
+// options.samples are used).
+std::array<double, 4> CandidateOrientations(const Surface& source, const Surface& target,
+                                            const Eigen::MatrixX3d& Ys,
+                                            const Eigen::MatrixX3d& Yt,
+                                            const LaplaceBasis& source_basis,
+                                            const LaplaceBasis& target_basis,
+                                            const std::vector<int>& samples,
+                                            const OrientationOptions& options, int threads = 1);
+
+}  // namespace symembed
