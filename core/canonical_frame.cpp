@@ -2,13 +2,15 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 
 #include "core/errors.h"
 
 namespace symembed {
 
 Eigen::MatrixX3d CanonicalFrame(const Eigen::MatrixX3d& Y, Eigen::Matrix3d* R_out,
-                                Eigen::Vector3d* t_out) {
+                                Eigen::Vector3d* t_out, double* axis_ratio) {
   if (Y.rows() < 3) throw InvalidInputError("CanonicalFrame: fewer than 3 points");
   if (!Y.allFinite()) throw InvalidInputError("CanonicalFrame: non-finite coordinates");
   Eigen::Vector3d centroid = Y.colwise().mean().transpose();
@@ -34,6 +36,10 @@ Eigen::MatrixX3d CanonicalFrame(const Eigen::MatrixX3d& Y, Eigen::Matrix3d* R_ou
   R.row(1) = axis_y.transpose();
   R.row(2) = axis_z.transpose();
   const Eigen::Vector3d t = -R * centroid;
+  if (axis_ratio) {
+    const double large = std::max(eig.eigenvalues()(1), 0.0);
+    *axis_ratio = large > 0.0 ? std::sqrt(std::max(eig.eigenvalues()(0), 0.0) / large) : 1.0;
+  }
   if (R_out) *R_out = R;
   if (t_out) *t_out = t;
   return (Y * R.transpose()).rowwise() + t.transpose();

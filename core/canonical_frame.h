@@ -18,9 +18,11 @@ namespace symembed {
 // The sign of y and of z is chosen so that the third moment of that coordinate is positive
 // (the longer tail of the distribution points to +), which is deterministic and consistent for
 // isometric shapes in most cases; the remaining ambiguity is the flip stage's job. x then
-// follows from y x z. R and t are returned through the pointers when given.
+// follows from y x z. R and t are returned through the pointers when given, and axis_ratio
+// = sqrt(variance along z / variance along y) in [0, 1]: near 1, which in-plane axis is y is
+// ill-determined, and shapes of one class may disagree on it.
 // Throws InvalidInputError for fewer than 3 rows or non-finite coordinates.
 Eigen::MatrixX3d CanonicalFrame(const Eigen::MatrixX3d& Y, Eigen::Matrix3d* R = nullptr,
-                                Eigen::Vector3d* t = nullptr);
+                                Eigen::Vector3d* t = nullptr, double* axis_ratio = nullptr);
 
 }  // namespace symembed

@@ -223,7 +223,8 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   distances.reset();
 
   start = std::chrono::steady_clock::now();
-  data->Y = CanonicalFrame(symmetrized.Y);
+  double axis_ratio = 0.0;
+  data->Y = CanonicalFrame(symmetrized.Y, nullptr, nullptr, &axis_ratio);
   out.times.push_back({"canonical_frame", Since(start), false});
 
   out.report.push_back({"samples", static_cast<double>(data->samples.size())});
@@ -233,6 +234,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   out.report.push_back({"symmetry_score", data->symmetry.score});
   out.report.push_back({"asymmetry_before", symmetrized.asymmetry_before});
   out.report.push_back({"asymmetry_after", symmetrized.asymmetry_after});
+  out.report.push_back({"frame_axis_ratio", axis_ratio});
 
   const std::pair<const char*, const PairStage*> pair_stages[] = {
       {"flip", pipeline.flip.get()},
