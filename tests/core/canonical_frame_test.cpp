@@ -33,6 +33,16 @@ TEST(CanonicalFrame, ProperRotationCentredPrincipalAxes) {
   EXPECT_GT(C.col(2).array().cube().sum(), 0.0);
 }
 
+TEST(CanonicalFrame, AxisRatioIsTheRatioOfTheInPlaneDeviations) {
+  // Four points in the plane x = 0: deviations 2 along one in-plane axis, 1 along the other,
+  // turned about x so the axes are not the coordinate axes.
+  Eigen::MatrixX3d Y(4, 3);
+  Y << 0, 2, 0, 0, -2, 0, 0, 0, 1, 0, 0, -1;
+  double ratio = 0.0;
+  CanonicalFrame(Y * RotX(0.3).transpose(), nullptr, nullptr, &ratio);
+  EXPECT_NEAR(ratio, 0.5, 1e-12);
+}
+
 TEST(CanonicalFrame, SameFrameWhateverTheRotationAboutTheNormal) {
   const Surface figure = testing::SymmetricFigure();
   const Eigen::MatrixX3d reference = CanonicalFrame(figure.V);
