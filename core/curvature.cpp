@@ -147,22 +147,14 @@ CurvatureFeatures ComputeCurvature(const Surface& s, const CurvatureOptions& opt
   if (!options.IsValid(&error)) throw ConfigError("curvature: " + error);
   const int n = s.NumVertices();
   CurvatureFeatures c;
-  c.normals = Eigen::MatrixX3d::Zero(n, 3);
+  c.normals = VertexNormals(s);
   Eigen::VectorXd angle_sum = Eigen::VectorXd::Zero(n);
   for (int f = 0; f < s.NumFaces(); ++f) {
     const Eigen::Vector3d p[3] = {s.V.row(s.F(f, 0)), s.V.row(s.F(f, 1)), s.V.row(s.F(f, 2))};
-    // |cross| is twice the area, so the sum is area-weighted.
-    c.normals.row(s.F(f, 0)) += (p[1] - p[0]).cross(p[2] - p[0]).transpose();
-    c.normals.row(s.F(f, 1)) += (p[1] - p[0]).cross(p[2] - p[0]).transpose();
-    c.normals.row(s.F(f, 2)) += (p[1] - p[0]).cross(p[2] - p[0]).transpose();
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
       angle_sum(s.F(f, k)) += std::atan2(u.cross(w).norm(), u.dot(w));
     }
-  }
-  for (int v = 0; v < n; ++v) {
-    const double len = c.normals.row(v).norm();
-    if (len > 0.0) c.normals.row(v) /= len;
   }
   // Boundary vertices: endpoints of edges used by exactly one face.
   std::vector<char> boundary(n, 0);

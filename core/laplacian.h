@@ -24,4 +24,8 @@ Eigen::SparseMatrix<double> MassMatrix(const Surface& surface, MassType type = M
 // Per-vertex lumped areas (diagonal of the lumped mass matrix), #V.
 Eigen::VectorXd VertexAreas(const Surface& surface);
 
+// Unit vertex normals, #V x 3: area-weighted sums of the face normals (outward for
+// counter-clockwise faces seen from outside); zero rows for vertices in no face.
+Eigen::MatrixX3d VertexNormals(const Surface& surface);
+
 }  // namespace symembed

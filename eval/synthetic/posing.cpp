@@ -79,18 +79,4 @@ Eigen::MatrixX3d SkinVertices(const RestFigure& rest, const Pose& pose) {
   return out;
 }
 
-Eigen::MatrixX3d VertexNormals(const Surface& s) {
-  Eigen::MatrixX3d N = Eigen::MatrixX3d::Zero(s.V.rows(), 3);
-  for (int f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    const Eigen::RowVector3d n = (b - a).cross(c - a).transpose();  // length = 2 * area
-    for (int k = 0; k < 3; ++k) N.row(s.F(f, k)) += n;
-  }
-  for (int i = 0; i < N.rows(); ++i) {
-    const double len = N.row(i).norm();
-    if (len > 0.0) N.row(i) /= len;
-  }
-  return N;
-}
-
 }  // namespace symembed

@@ -34,7 +34,4 @@ Pose RandomPose(const std::vector<Bone>& bones, uint32_t angle_seed, double noni
 // Returns #V x 3 posed positions of rest.surface's vertices.
 Eigen::MatrixX3d SkinVertices(const RestFigure& rest, const Pose& pose);
 
-// Unit vertex normals: area-weighted sums of face normals (zero for isolated vertices).
-Eigen::MatrixX3d VertexNormals(const Surface& surface);
-
 }  // namespace symembed

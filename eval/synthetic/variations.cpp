@@ -5,6 +5,7 @@
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 
 #include "core/errors.h"
+#include "core/laplacian.h"
 #include "eval/synthetic/posing.h"
 #include "eval/synthetic/random.h"
 

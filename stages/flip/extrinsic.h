@@ -24,6 +24,7 @@
 #include <string>
 
 #include "core/mesh.h"
+#include "stages/flip/flip_common.h"
 
 namespace symembed {
 
@@ -52,10 +53,12 @@ struct ExtrinsicScores {
 };
 
 // Ys, Yt: #Vs x 3, #Vt x 3 canonical embeddings; Fs, Ft: #V x 3 features (kExtrinsicFeaturesKey
-// layout). Throws InvalidInputError on mismatched shapes.
+// layout); maps: ComputeCandidateMaps(Ys, Yt) when the caller has it already (else computed).
+// Throws InvalidInputError on mismatched shapes.
 ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                     const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
-                                    const ExtrinsicFlipOptions& options);
+                                    const ExtrinsicFlipOptions& options,
+                                    const CandidateMaps* maps = nullptr);
 
 // The features of `surface` in the kExtrinsicFeaturesKey layout from core/curvature.h, with
 // curvatures averaged over smoothing_rings rings. Curvedness sqrt((k1^2 + k2^2) / 2)

@@ -21,14 +21,10 @@ CandidateMaps ComputeCandidateMaps(const Eigen::MatrixX3d& Ys, const Eigen::Matr
   return out;
 }
 
-namespace {
-
 double RmsRadius(const Eigen::MatrixX3d& Y) {
   const Eigen::RowVector3d c = Y.colwise().mean();
   return std::sqrt((Y.rowwise() - c).rowwise().squaredNorm().mean());
 }
-
-}  // namespace
 
 std::array<double, 4> ChamferScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                     int threads) {

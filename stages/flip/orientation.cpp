@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "core/knn.h"
+#include "core/laplacian.h"
 #include "stages/flip/flip_common.h"
 #include "stages/refine/zoomout.h"
 
@@ -24,39 +25,39 @@ bool OrientationOptions::IsValid(std::string* error) const {
 
 namespace {
 
-// Area-weighted vertex normals (not normalised).
-Eigen::MatrixX3d VertexNormals(const Surface& s) {
-  Eigen::MatrixX3d N = Eigen::MatrixX3d::Zero(s.NumVertices(), 3);
-  for (int f = 0; f < s.NumFaces(); ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    const Eigen::RowVector3d n = (b - a).cross(c - a).transpose();
-    for (int k = 0; k < 3; ++k) N.row(s.F(f, k)) += n;
-  }
-  return N;
-}
-
 double Sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
 
-}  // namespace
+// |a x b| >= 0.2 |a| |b|: not nearly collinear.
+bool Spread(const Eigen::Vector3d& cross, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return cross.norm() >= 0.2 * a.norm() * b.norm();
+}
 
-double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
-                      const std::vector<int>& samples, int neighbors) {
+// |c . n| >= 0.5 |c| |n|: the triangle is near tangent to the surface at its apex.
+bool NearTangent(const Eigen::Vector3d& cross, const Eigen::Vector3d& normal) {
+  return std::abs(cross.dot(normal)) >= 0.5 * cross.norm() * normal.norm();
+}
+
+// The source side of the measurement, independent of the map: triangles (apex sample i and two
+// of its nearest samples j, k) that are spread and near tangent, with the sign of their
+// orientation against the source normal at i.
+struct SourceTriangles {
+  std::vector<std::array<int, 3>> vertices;  // source vertex ids (i, j, k)
+  std::vector<double> sign;
+};
+
+SourceTriangles MakeSourceTriangles(const Surface& source, const std::vector<int>& samples,
+                                    int neighbors) {
   const int n = static_cast<int>(samples.size());
-  if (n < 3 || static_cast<int>(map.size()) != source.NumVertices()) {
-    throw InvalidInputError("flip orientation: need >= 3 samples and a map of every source vertex");
-  }
-  const Eigen::MatrixX3d Ns = VertexNormals(source), Nt = VertexNormals(target);
+  const Eigen::MatrixX3d normals = VertexNormals(source);
   Eigen::MatrixX3d P(n, 3);
   for (int i = 0; i < n; ++i) P.row(i) = source.V.row(samples[i]);
   const int kk = std::min(neighbors + 1, n);
   Eigen::MatrixXi nn;
   KnnIndex(P).Query(P, kk, &nn, nullptr, 1);
-  double sum = 0.0;
-  int count = 0;
+  SourceTriangles out;
   for (int i = 0; i < n; ++i) {
     const int vi = samples[i];
-    const Eigen::Vector3d pi = source.V.row(vi), ni = Ns.row(vi);
-    const Eigen::Vector3d qi = target.V.row(map[vi]), mi = Nt.row(map[vi]);
+    const Eigen::Vector3d pi = source.V.row(vi);
     for (int a = 1; a < kk; ++a) {
       for (int b = a + 1; b < kk; ++b) {
         const int vj = samples[nn(i, a)], vk = samples[nn(i, b)];
@@ -65,28 +66,56 @@ double MapOrientation(const Surface& source, const Surface& target, const std::v
         const Eigen::Vector3d cs = ej.cross(ek);
         // Nearly collinear triangles, or triangles far from tangent to the surface, say nothing
         // reliable about orientation.
-        if (cs.norm() < 0.2 * ej.norm() * ek.norm()) continue;
-        if (std::abs(cs.dot(ni)) < 0.5 * cs.norm() * ni.norm()) continue;
-        const Eigen::Vector3d fj = target.V.row(map[vj]).transpose() - qi;
-        const Eigen::Vector3d fk = target.V.row(map[vk]).transpose() - qi;
-        const Eigen::Vector3d ct = fj.cross(fk);
-        if (ct.norm() < 0.2 * fj.norm() * fk.norm() || ct.norm() == 0.0) continue;
-        if (std::abs(ct.dot(mi)) < 0.5 * ct.norm() * mi.norm()) continue;
-        sum += Sign(cs.dot(ni)) * Sign(ct.dot(mi));
-        ++count;
+        if (!Spread(cs, ej, ek) || !NearTangent(cs, normals.row(vi).transpose())) continue;
+        out.vertices.push_back({vi, vj, vk});
+        out.sign.push_back(Sign(cs.dot(normals.row(vi).transpose())));
       }
     }
+  }
+  return out;
+}
+
+// Mean of source sign * image sign over the triangles whose image is spread and near tangent.
+double Orientation(const SourceTriangles& triangles, const Surface& target,
+                   const Eigen::MatrixX3d& target_normals, const std::vector<int>& map) {
+  double sum = 0.0;
+  int count = 0;
+  for (size_t t = 0; t < triangles.vertices.size(); ++t) {
+    const auto& [vi, vj, vk] = triangles.vertices[t];
+    const Eigen::Vector3d qi = target.V.row(map[vi]);
+    const Eigen::Vector3d fj = target.V.row(map[vj]).transpose() - qi;
+    const Eigen::Vector3d fk = target.V.row(map[vk]).transpose() - qi;
+    const Eigen::Vector3d ct = fj.cross(fk);
+    const Eigen::Vector3d mi = target_normals.row(map[vi]);
+    if (ct.norm() == 0.0 || !Spread(ct, fj, fk) || !NearTangent(ct, mi)) continue;
+    sum += triangles.sign[t] * Sign(ct.dot(mi));
+    ++count;
   }
   return count > 0 ? sum / count : 0.0;
 }
 
+void CheckOrientationInput(const Surface& source, const std::vector<int>& map,
+                           const std::vector<int>& samples) {
+  if (samples.size() < 3 || static_cast<int>(map.size()) != source.NumVertices()) {
+    throw InvalidInputError("flip orientation: need >= 3 samples and a map of every source vertex");
+  }
+}
+
+}  // namespace
+
+double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
+                      const std::vector<int>& samples, int neighbors) {
+  CheckOrientationInput(source, map, samples);
+  return Orientation(MakeSourceTriangles(source, samples, neighbors), target,
+                     VertexNormals(target), map);
+}
+
 std::array<double, 4> CandidateOrientations(const Surface& source, const Surface& target,
-                                            const Eigen::MatrixX3d& Ys,
-                                            const Eigen::MatrixX3d& Yt,
+                                            const CandidateMaps& maps,
                                             const LaplaceBasis& source_basis,
                                             const LaplaceBasis& target_basis,
                                             const std::vector<int>& samples_in,
-                                            const OrientationOptions& options, int threads) {
+                                            const OrientationOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
   const std::vector<int> samples(
@@ -100,12 +129,15 @@ std::array<double, 4> CandidateOrientations(const Surface& source, const Surface
   zoomout.k_start = options.k_start;
   zoomout.k_end = options.k_end;
   zoomout.step = options.step;
-  const CandidateMaps maps = ComputeCandidateMaps(Ys, Yt, threads);
+  // The source triangles and the target normals do not depend on the candidate.
+  const SourceTriangles triangles = MakeSourceTriangles(source, samples, options.neighbors);
+  const Eigen::MatrixX3d target_normals = VertexNormals(target);
   std::array<double, 4> out{};
   for (int k = 0; k < 4; ++k) {
+    CheckOrientationInput(source, maps.map[k], samples);
     const ZoomOutResult refined =
         ZoomOut(source_basis, target_basis, maps.map[k], samples, zoomout);
-    out[k] = MapOrientation(source, target, refined.map, samples, options.neighbors);
+    out[k] = Orientation(triangles, target, target_normals, refined.map);
   }
   return out;
 }

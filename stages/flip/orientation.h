@@ -23,6 +23,7 @@
 
 #include "core/mesh.h"
 #include "core/spectral.h"
+#include "stages/flip/flip_common.h"
 
 namespace symembed {
 
@@ -42,15 +43,14 @@ struct OrientationOptions {
 double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
                       const std::vector<int>& samples, int neighbors);
 
-// For each candidate rotation: the orientation of its nearest-neighbour map (Ys, Yt: canonical
-// embeddings) after ZoomOut in the given bases. samples: source vertex ids (the first
-// options.samples are used).
+// For each candidate rotation: the orientation of its nearest-neighbour map (maps, from
+// ComputeCandidateMaps of the canonical embeddings) after ZoomOut in the given bases.
+// samples: source vertex ids (the first options.samples are used).
 std::array<double, 4> CandidateOrientations(const Surface& source, const Surface& target,
-                                            const Eigen::MatrixX3d& Ys,
-                                            const Eigen::MatrixX3d& Yt,
+                                            const CandidateMaps& maps,
                                             const LaplaceBasis& source_basis,
                                             const LaplaceBasis& target_basis,
                                             const std::vector<int>& samples,
-                                            const OrientationOptions& options, int threads = 1);
+                                            const OrientationOptions& options);
 
 }  // namespace symembed

@@ -37,16 +37,18 @@ class ExtrinsicStage : public FlipStage {
   }
   FlipResult Run(const PairInput& pair) const override {
     CheckFlipPair(pair);
+    // One set of candidate maps for both terms.
+    const CandidateMaps maps = ComputeCandidateMaps(pair.source.Y, pair.target.Y, options_.threads);
     ExtrinsicScores s = ExtrinsicFlipScores(
         pair.source.Y, pair.target.Y, AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
-        AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_);
+        AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_, &maps);
     std::array<double, 4> orientation{};
     if (orientation_weight_ > 0.0) {
       orientation = CandidateOrientations(
-          pair.source.surface, pair.target.surface, pair.source.Y, pair.target.Y,
+          pair.source.surface, pair.target.surface, maps,
           GetLaplaceBasis(pair.source.aux, orientation_.k_end),
           GetLaplaceBasis(pair.target.aux, orientation_.k_end), pair.source.samples,
-          orientation_, options_.threads);
+          orientation_);
       for (int k = 0; k < 4; ++k) s.total[k] += orientation_weight_ * (1.0 - orientation[k]) / 2.0;
     }
     FlipResult result = MakeFlipResult(s.total, "extrinsic");

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "core/errors.h"
+#include "core/laplacian.h"
 #include "core/validation.h"
 #include "eval/datasets/pairs_vts.h"
 #include "eval/synthetic/posing.h"

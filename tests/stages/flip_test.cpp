@@ -112,8 +112,9 @@ TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
   basis.k = options.k_end;
   const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
   const LaplaceBasis bt = ComputeLaplaceBasis(target.surface, basis);
-  const std::array<double, 4> o = CandidateOrientations(source.surface, target.surface, source.Y,
-                                                        target.Y, bs, bt, source.samples, options);
+  const std::array<double, 4> o =
+      CandidateOrientations(source.surface, target.surface, ComputeCandidateMaps(source.Y, target.Y),
+                            bs, bt, source.samples, options);
   EXPECT_GT(o[right], 0.5) << o[0] << " " << o[1] << " " << o[2] << " " << o[3];
   for (int k = 0; k < 4; ++k) {
     if (k != right) {
