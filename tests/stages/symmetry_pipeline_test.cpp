@@ -9,20 +9,14 @@
 
 #include "core/canonical_frame.h"
 #include "eval/synthetic/synthetic.h"
+#include "registry/config.h"
 #include "registry/registry.h"
 
 namespace symembed {
 namespace {
 
-struct Chain {
-  std::unique_ptr<SamplingStage> sampling;
-  std::unique_ptr<GeodesicsStage> geodesics;
-  std::unique_ptr<EmbeddingStage> embedding;
-  std::unique_ptr<SymmetryStage> symmetry;
-  std::unique_ptr<SymmetrizeStage> symmetrize;
-  std::unique_ptr<FlipStage> flip;
-  std::unique_ptr<MatchingStage> matching;
-};
+// The stages from sampling to matching of a Pipeline (the others stay empty).
+using Chain = Pipeline;
 
 template <typename T>
 std::unique_ptr<T> Make(const Registry& r, const std::string& kind, const std::string& yaml) {
