@@ -19,6 +19,7 @@ bool OrientationOptions::IsValid(std::string* error) const {
   else if (step < 1) out << "step must be >= 1, got " << step;
   else if (samples < k_end) out << "samples must be >= k_end (" << k_end << "), got " << samples;
   else if (neighbors < 2) out << "neighbors must be >= 2, got " << neighbors;
+  else if (target_samples < 0) out << "target_samples must be >= 0, got " << target_samples;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -115,6 +116,7 @@ std::array<double, 4> CandidateOrientations(const Surface& source, const Surface
                                             const LaplaceBasis& source_basis,
                                             const LaplaceBasis& target_basis,
                                             const std::vector<int>& samples_in,
+                                            const std::vector<int>& target_samples_in,
                                             const OrientationOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
@@ -125,10 +127,23 @@ std::array<double, 4> CandidateOrientations(const Surface& source, const Surface
     throw InvalidInputError("flip orientation: the source has " +
                             std::to_string(samples_in.size()) + " samples, fewer than k_end");
   }
+  std::vector<int> target_samples;
+  if (options.target_samples > 0) {
+    if (static_cast<int>(target_samples_in.size()) < options.k_end) {
+      throw InvalidInputError("flip orientation: the target has " +
+                              std::to_string(target_samples_in.size()) +
+                              " samples, fewer than k_end");
+    }
+    target_samples.assign(target_samples_in.begin(),
+                          target_samples_in.begin() +
+                              std::min<size_t>(target_samples_in.size(), options.target_samples));
+  }
   ZoomOutOptions zoomout;
   zoomout.k_start = options.k_start;
   zoomout.k_end = options.k_end;
   zoomout.step = options.step;
+  // The triangles are made of samples only: the map of the other vertices is not needed.
+  zoomout.dense_result = false;
   // The source triangles and the target normals do not depend on the candidate.
   const SourceTriangles triangles = MakeSourceTriangles(source, samples, options.neighbors);
   const Eigen::MatrixX3d target_normals = VertexNormals(target);
@@ -136,7 +151,7 @@ std::array<double, 4> CandidateOrientations(const Surface& source, const Surface
   for (int k = 0; k < 4; ++k) {
     CheckOrientationInput(source, maps.map[k], samples);
     const ZoomOutResult refined =
-        ZoomOut(source_basis, target_basis, maps.map[k], samples, zoomout);
+        ZoomOut(source_basis, target_basis, maps.map[k], samples, zoomout, target_samples);
     out[k] = Orientation(triangles, target, target_normals, refined.map);
   }
   return out;

@@ -32,6 +32,9 @@ struct OrientationOptions {
   int k_end = 40;
   int step = 5;
   int samples = 300;  // source samples the refinement and the measurement use
+  // Target samples the refined maps land on (0: every target vertex). Matching only onto a
+  // prefix of the target's farthest-point samples makes each ZoomOut step a few times cheaper.
+  int target_samples = 0;
   int neighbors = 6;  // nearest samples whose pairs form the triangles of a sample
 
   bool IsValid(std::string* error) const;
@@ -45,12 +48,14 @@ double MapOrientation(const Surface& source, const Surface& target, const std::v
 
 // For each candidate rotation: the orientation of its nearest-neighbour map (maps, from
 // ComputeCandidateMaps of the canonical embeddings) after ZoomOut in the given bases.
-// samples: source vertex ids (the first options.samples are used).
+// samples: source vertex ids (the first options.samples are used); target_samples: target
+// vertex ids (the first options.target_samples are used; all target vertices when that is 0).
 std::array<double, 4> CandidateOrientations(const Surface& source, const Surface& target,
                                             const CandidateMaps& maps,
                                             const LaplaceBasis& source_basis,
                                             const LaplaceBasis& target_basis,
                                             const std::vector<int>& samples,
+                                            const std::vector<int>& target_samples,
                                             const OrientationOptions& options);
 
 }  // namespace symembed

@@ -48,7 +48,7 @@ class ExtrinsicStage : public FlipStage {
           pair.source.surface, pair.target.surface, maps,
           GetLaplaceBasis(pair.source.aux, orientation_.k_end),
           GetLaplaceBasis(pair.target.aux, orientation_.k_end), pair.source.samples,
-          orientation_);
+          pair.target.samples, orientation_);
       for (int k = 0; k < 4; ++k) s.total[k] += orientation_weight_ * (1.0 - orientation[k]) / 2.0;
     }
     FlipResult result = MakeFlipResult(s.total, "extrinsic");
@@ -136,6 +136,8 @@ void RegisterFlipStages(Registry& registry) {
                  r.k_start = o.GetInt("orientation_k_start", r.k_start, 1, 1000);
                  r.k_end = o.GetInt("orientation_k_end", r.k_end, 1, 1000);
                  r.samples = o.GetInt("orientation_samples", r.samples, 1, 100000);
+                 r.target_samples =
+                     o.GetInt("orientation_target_samples", r.target_samples, 0, 100000);
                  std::string error;
                  if (!e.IsValid(&error)) o.Fail("", error);
                  if (!r.IsValid(&error)) o.Fail("", "orientation: " + error);

@@ -81,15 +81,23 @@ std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s,
                                            const Eigen::MatrixXd& Phi_t,
                                            const Eigen::VectorXd& mass_t, const Eigen::MatrixXd& C,
                                            const std::vector<int>& source_ids,
-                                           std::vector<double>* sq_dist) {
+                                           std::vector<double>* sq_dist,
+                                           const std::vector<int>& target_ids) {
   const int ks = static_cast<int>(C.rows()), kt = static_cast<int>(C.cols());
   SYMEMBED_CHECK(ks <= Phi_s.cols() && kt <= Phi_t.cols(),
                  "C is " << ks << " x " << kt << " for bases of " << Phi_s.cols() << " and "
                          << Phi_t.cols() << " columns");
   SYMEMBED_CHECK(mass_t.size() == Phi_t.rows(), "mass_t must have one entry per target vertex");
   std::vector<int> ids;
-  for (int j = 0; j < Phi_t.rows(); ++j) {
-    if (mass_t(j) > 0.0) ids.push_back(j);
+  if (target_ids.empty()) {
+    for (int j = 0; j < Phi_t.rows(); ++j) {
+      if (mass_t(j) > 0.0) ids.push_back(j);
+    }
+  } else {
+    for (int j : target_ids) {
+      SYMEMBED_CHECK(j >= 0 && j < Phi_t.rows(), "target id " << j << " out of range");
+      if (mass_t(j) > 0.0) ids.push_back(j);
+    }
   }
   if (ids.empty()) throw InvalidInputError("target surface has no vertex with positive area");
   Eigen::MatrixXd points(ids.size(), kt);

@@ -45,12 +45,14 @@ Eigen::MatrixXd FitOrthogonalFunctionalMap(const Eigen::MatrixXd& Phi_s,
 // The point-to-point map of C (ks x kt, ks <= Phi_s.cols(), kt <= Phi_t.cols()) for the
 // source vertices source_ids: for each, the target vertex whose row of Phi_t(:, :kt) C^T is
 // nearest to its row of Phi_s(:, :ks). Target vertices with zero mass_t are never a match.
-// sq_dist (optional): squared spectral distances of the matches.
+// sq_dist (optional): squared spectral distances of the matches. target_ids (optional): the
+// target vertices that may be matched (empty: all).
 std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s,
                                            const Eigen::MatrixXd& Phi_t,
                                            const Eigen::VectorXd& mass_t, const Eigen::MatrixXd& C,
                                            const std::vector<int>& source_ids,
-                                           std::vector<double>* sq_dist = nullptr);
+                                           std::vector<double>* sq_dist = nullptr,
+                                           const std::vector<int>& target_ids = {});
 
 // ||C^T C - I||_F^2 / k for a k x k functional map: the per-scale term of the ZoomOut energy,
 // 0 for an area-preserving (orthogonal) map.

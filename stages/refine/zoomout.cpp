@@ -24,7 +24,7 @@ bool ZoomOutOptions::IsValid(std::string* error) const {
 
 ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
                       const std::vector<int>& initial_map, const std::vector<int>& samples,
-                      const ZoomOutOptions& options) {
+                      const ZoomOutOptions& options, const std::vector<int>& target_samples) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("zoomout: " + error);
   const int ns = source.NumVertices(), nt = target.NumVertices();
@@ -46,6 +46,9 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
     for (int i : active) {
       if (i < 0 || i >= ns) throw InvalidInputError("zoomout: sample id out of range");
     }
+    for (int j : target_samples) {
+      if (j < 0 || j >= nt) throw InvalidInputError("zoomout: target sample id out of range");
+    }
     weights.setOnes();
   }
   std::vector<int> all(ns);
@@ -65,17 +68,23 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
     const Eigen::MatrixXd C = FitFunctionalMap(source.evecs.leftCols(k), target.evecs.leftCols(k),
                                                active, active_map, weights);
     std::vector<double> sq_dist;
-    // The last query maps every source vertex (the dense map of the sampled variant).
-    const std::vector<int>& query = (last && sampled) ? all : active;
+    // The last query maps every source vertex (the dense map of the sampled variant) unless
+    // only the samples are asked for.
+    const bool dense_query = last && sampled && options.dense_result;
+    const std::vector<int>& query = dense_query ? all : active;
     std::vector<int> mapped =
-        PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C, query, &sq_dist);
+        PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C, query, &sq_dist,
+                                  dense_query || !sampled ? std::vector<int>{} : target_samples);
     result.k.push_back(k);
     result.orthogonality.push_back(OrthogonalityDefect(C));
     result.spectral_residual.push_back(
         sq_dist.empty() ? 0.0
                         : std::accumulate(sq_dist.begin(), sq_dist.end(), 0.0) / sq_dist.size());
-    if (last) {
+    if (last && (!sampled || options.dense_result)) {
       result.map = std::move(mapped);
+    } else if (last) {
+      result.map = initial_map;
+      for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = mapped[r];
     } else {
       active_map = std::move(mapped);
     }

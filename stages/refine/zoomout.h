@@ -21,6 +21,9 @@ struct ZoomOutOptions {
   int k_start = 20;  // basis size of the first functional map (>= 1)
   int k_end = 120;   // basis size of the last one (>= k_start; both bases need k_end pairs)
   int step = 5;      // increment of k per iteration (>= 1); k_end is always the last size
+  // With samples: true maps every source vertex in the last iteration; false maps only the
+  // samples (the other entries of the result keep the initial map).
+  bool dense_result = true;
 
   bool IsValid(std::string* error) const;
 };
@@ -38,9 +41,11 @@ struct ZoomOutResult {
 // entries in [0, #Vt). samples: source vertex ids to iterate on (empty: every vertex, with the
 // lumped mass as least-squares weights; else uniform weights, and enough well-spread vertices to
 // determine k_end coefficients, in practice a few times k_end). Throws ConfigError for invalid
-// options, InvalidInputError for inconsistent inputs.
+// options, InvalidInputError for inconsistent inputs. target_samples (optional, with samples):
+// the target vertices the sampled iterations map to (empty: all); the dense last query of
+// dense_result maps to every target vertex.
 ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
                       const std::vector<int>& initial_map, const std::vector<int>& samples,
-                      const ZoomOutOptions& options);
+                      const ZoomOutOptions& options, const std::vector<int>& target_samples = {});
 
 }  // namespace symembed

@@ -8,6 +8,7 @@
 #include "core/errors.h"
 #include "core/knn.h"
 #include "stages/symmetrize/symmetrize_common.h"
+#include "stages/symmetrize/stress_majorization.h"
 #include "stages/symmetrize/symmetrize_costs.h"
 
 namespace symembed {
@@ -24,6 +25,10 @@ bool CeresSymmetrizeOptions::IsValid(std::string* error) const {
   else if (!(function_tolerance > 0.0))
     out << "function_tolerance must be > 0, got " << function_tolerance;
   else if (threads < 1) out << "threads must be >= 1, got " << threads;
+  else if (warm_start_iterations < 0)
+    out << "warm_start_iterations must be >= 0, got " << warm_start_iterations;
+  else if (!(warm_start_tolerance >= 0.0))
+    out << "warm_start_tolerance must be >= 0, got " << warm_start_tolerance;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -128,27 +133,53 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
   if (!(size > 0.0)) throw InvalidInputError("symmetrize ceres: all samples coincide");
   const double inv_s = 1.0 / size;
 
+  // The energy's terms, shared by the warm start and the Ceres problem.
+  SymmetrizeEnergy energy;
+  energy.edges = KnnGraphEdges(P, options.graph_neighbors);
+  for (const auto& [i, j] : energy.edges) energy.lengths.push_back((P.row(i) - P.row(j)).norm());
+  energy.mirror = MirrorWeights(P, sigma, options.mirror_neighbors);
+  energy.symmetry_weight = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    const double c = symmetry.confidence.size() == n ? symmetry.confidence(i) : 1.0;
+    if (options.symmetry_weight > 0.0 && c > 0.0) energy.symmetry_weight(i) = options.symmetry_weight * c;
+    if (options.mirror_neighbors == 1 && sigma[i] == i && options.plane_weight > 0.0) {
+      energy.on_plane.push_back(i);
+    }
+  }
+  energy.plane_weight = options.plane_weight;
+  energy.anchor_weight = options.anchor_weight;
+  energy.anchor = P;
+  const auto& mirror = energy.mirror;
+
+  MajorizationResult warm;
+  warm.X = P;
+  if (options.warm_start_iterations > 0) {
+    warm = MajorizeSymmetrizeEnergy(energy, P, options.warm_start_iterations,
+                                    options.warm_start_tolerance);
+  }
+
   // Unknowns: one 3-vector per sample, stored contiguously.
   std::vector<double> x(3 * static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) x[3 * i + c] = P(i, c);
+    for (int c = 0; c < 3; ++c) x[3 * i + c] = warm.X(i, c);
   }
   auto block = [&](int i) { return x.data() + 3 * static_cast<size_t>(i); };
   ceres::Problem problem;
   for (int i = 0; i < n; ++i) problem.AddParameterBlock(block(i), 3);
-  for (const auto& [i, j] : KnnGraphEdges(P, options.graph_neighbors)) {
-    const double d0 = (P.row(i) - P.row(j)).norm();
-    problem.AddResidualBlock(new EdgeStressCost(d0, inv_s), nullptr, block(i), block(j));
+  for (size_t e = 0; e < energy.edges.size(); ++e) {
+    const auto [i, j] = energy.edges[e];
+    problem.AddResidualBlock(new EdgeStressCost(energy.lengths[e], inv_s), nullptr, block(i),
+                             block(j));
   }
-  const auto mirror = MirrorWeights(P, sigma, options.mirror_neighbors);
   const Eigen::Matrix3d M = MirrorX(), I = Eigen::Matrix3d::Identity();
+  std::vector<bool> on_plane(n, false);
+  for (int i : energy.on_plane) on_plane[i] = true;
   for (int i = 0; i < n; ++i) {
-    const double c = symmetry.confidence.size() == n ? symmetry.confidence(i) : 1.0;
-    if (options.mirror_neighbors == 1 && sigma[i] == i && options.plane_weight > 0.0) {
+    if (on_plane[i]) {
       problem.AddResidualBlock(new OnPlaneCost(std::sqrt(options.plane_weight) * inv_s), nullptr,
                                block(i));
     }
-    if (options.symmetry_weight > 0.0 && c > 0.0) {
+    if (energy.symmetry_weight(i) > 0.0) {
       // M x_i - sum_j w_ij x_j, with x_i's own coefficient merged (blocks must be distinct).
       std::vector<Eigen::Matrix3d> A = {M};
       std::vector<double*> blocks = {block(i)};
@@ -161,7 +192,7 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
         }
       }
       problem.AddResidualBlock(
-          new LinearResidualCost(std::move(A), std::sqrt(options.symmetry_weight * c) * inv_s),
+          new LinearResidualCost(std::move(A), std::sqrt(energy.symmetry_weight(i)) * inv_s),
           nullptr, blocks);
     }
     if (options.anchor_weight > 0.0) {
@@ -206,8 +237,12 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
   std::ostringstream message;
   message << "asymmetry " << result.asymmetry_before << " -> " << result.asymmetry_after
           << ", mirror residual " << MirrorResidual(P, mirror) << " -> " << MirrorResidual(X, mirror)
-          << ", graph stress " << GraphStress(P, X, options.graph_neighbors) << "; "
-          << summary.BriefReport();
+          << ", graph stress " << GraphStress(P, X, options.graph_neighbors) << "; ";
+  if (options.warm_start_iterations > 0) {
+    message << "warm start: " << warm.iterations << " majorization iterations, energy "
+            << warm.energy_before << " -> " << warm.energy_after << "; ";
+  }
+  message << summary.BriefReport();
   result.status.message = message.str();
   return result;
 }

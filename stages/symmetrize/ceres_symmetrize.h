@@ -51,6 +51,10 @@ struct CeresSymmetrizeOptions {
   int mirror_neighbors = 1;
   // Nearest samples whose displacements a dense vertex follows.
   int follow_neighbors = 8;
+  // Stress-majorization iterations started from y before the Ceres solve (0: none), and their
+  // stop: an iteration lowering the energy by less than this fraction (stress_majorization.h).
+  int warm_start_iterations = 0;
+  double warm_start_tolerance = 1e-5;
   // Ceres limits.
   int max_iterations = 100;
   double function_tolerance = 1e-7;

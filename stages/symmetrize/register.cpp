@@ -60,6 +60,10 @@ void RegisterSymmetrizeStages(Registry& registry) {
                  c.function_tolerance =
                      o.GetDouble("function_tolerance", c.function_tolerance, 0.0);
                  c.threads = o.GetInt("threads", c.threads, 1, 256);
+                 c.warm_start_iterations =
+                     o.GetInt("warm_start_iterations", c.warm_start_iterations, 0);
+                 c.warm_start_tolerance =
+                     o.GetDouble("warm_start_tolerance", c.warm_start_tolerance, 0.0);
                  std::string error;
                  if (!c.IsValid(&error)) o.Fail("", error);
                  return std::make_unique<CeresStage>(c);

@@ -7,7 +7,8 @@
 //   BM_FlipPrepare/<scorer>     FlipStage::PrepareShape on one shape
 //   BM_Matching/<matcher>       MatchingStage::Run on one pair
 //   BM_Symmetry/<stage>         SymmetryStage::Run, 1,000 samples (Euclidean distances)
-//   BM_Symmetrize/<stage>       SymmetrizeStage::Run, 1,000 samples
+//   BM_Symmetrize/<stage>       SymmetrizeStage::Run, 1,000 samples (ceres_warm_start_N: with
+//                               N stress-majorization iterations first)
 //   BM_CanonicalFrame           CanonicalFrame of one shape
 #include <benchmark/benchmark.h>
 
@@ -17,6 +18,7 @@
 
 #include "core/canonical_frame.h"
 #include "registry/registry.h"
+#include "stages/refine/functional_map.h"
 #include "tests/test_util.h"
 
 namespace symembed {
@@ -48,6 +50,10 @@ const Pair& TestPair() {
       p.gt.target_ids.push_back(i);
     }
     for (int s = 0; s < kSamples; ++s) p.samples.push_back(static_cast<int>(1LL * s * n / kSamples));
+    // The extrinsic scorer's orientation term runs on the shapes' own samples, which are
+    // farthest-point samples in the pipeline (a prefix of them covers the surface).
+    p.source.samples = EuclideanFarthestPoints(p.source.surface.V, kSamples);
+    p.target.samples = EuclideanFarthestPoints(p.target.surface.V, kSamples);
     const Eigen::MatrixX3d& V = p.source.surface.V;
     p.D.resize(kSamples, n);
     for (int s = 0; s < kSamples; ++s) {
@@ -104,13 +110,14 @@ void BM_Symmetry(benchmark::State& state, const Registry* registry, std::string 
   }
 }
 
-void BM_Symmetrize(benchmark::State& state, const Registry* registry, std::string name) {
+void BM_Symmetrize(benchmark::State& state, const Registry* registry, std::string yaml) {
   const Pair& p = TestPair();
   EmbeddingResult embedding;
   embedding.Y = p.source.surface.V;
   const SymmetryInput input{p.source.surface, p.samples, p.D, embedding};
   const SymmetryResult symmetry = Make<SymmetryStage>(*registry, "symmetry", "plane3d")->Run(input);
-  const auto stage = Make<SymmetrizeStage>(*registry, "symmetrize", name);
+  const auto stage = registry->CreateAs<SymmetrizeStage>("symmetrize", YAML::Load(yaml), "bench",
+                                                          "symmetrize");
   for (auto _ : state) {
     SymmetrizeResult r = stage->Run(input, symmetry);
     benchmark::DoNotOptimize(r.Y.data());
@@ -150,7 +157,13 @@ int main(int argc, char** argv) {
   }
   for (const std::string& name : registry.Names("symmetrize")) {
     benchmark::RegisterBenchmark(("BM_Symmetrize/" + name).c_str(), BM_Symmetrize, &registry,
-                                 name)
+                                 "{type: " + name + "}")
+        ->Unit(benchmark::kMillisecond);
+  }
+  for (const int warm : {100, 300, 1000}) {
+    benchmark::RegisterBenchmark(("BM_Symmetrize/ceres_warm_start_" + std::to_string(warm)).c_str(),
+                                 BM_Symmetrize, &registry,
+                                 "{type: ceres, warm_start_iterations: " + std::to_string(warm) + "}")
         ->Unit(benchmark::kMillisecond);
   }
   benchmark::Initialize(&argc, argv);

@@ -114,7 +114,7 @@ TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
   const LaplaceBasis bt = ComputeLaplaceBasis(target.surface, basis);
   const std::array<double, 4> o =
       CandidateOrientations(source.surface, target.surface, ComputeCandidateMaps(source.Y, target.Y),
-                            bs, bt, source.samples, options);
+                            bs, bt, source.samples, target.samples, options);
   EXPECT_GT(o[right], 0.5) << o[0] << " " << o[1] << " " << o[2] << " " << o[3];
   for (int k = 0; k < 4; ++k) {
     if (k != right) {

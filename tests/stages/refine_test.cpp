@@ -145,6 +145,44 @@ TEST_F(RefineTest, ZoomOutLowersTheErrorOfANoisyTruth) {
   }
 }
 
+TEST_F(RefineTest, ZoomOutOnSamplesOnlyMapsTheSamplesOntoTheTargetSamples) {
+  const LaplaceBasis s = GetLaplaceBasis(pair_->source.aux, 60);
+  const LaplaceBasis t = GetLaplaceBasis(pair_->target.aux, 60);
+  const std::vector<int> noisy = PerturbedTruth(*pair_, 0.5, 3, 7);
+  const std::vector<int> samples = EuclideanFarthestPoints(pair_->source.surface.V, 400);
+  const std::vector<int> target_samples = EuclideanFarthestPoints(pair_->target.surface.V, 800);
+  ZoomOutOptions options;
+  options.k_start = 10;
+  options.k_end = 60;
+  const ZoomOutResult dense = ZoomOut(s, t, noisy, samples, options);
+  options.dense_result = false;
+  const ZoomOutResult sparse = ZoomOut(s, t, noisy, samples, options);
+  const ZoomOutResult restricted = ZoomOut(s, t, noisy, samples, options, target_samples);
+  const std::set<int> sample_set(samples.begin(), samples.end());
+  const std::set<int> target_set(target_samples.begin(), target_samples.end());
+  double err_noisy = 0.0, err_restricted = 0.0;
+  const Surface& ts = pair_->target.surface;
+  for (int i = 0; i < pair_->source.surface.NumVertices(); ++i) {
+    if (sample_set.count(i) == 0) {
+      // Vertices outside the sample keep the initial map.
+      EXPECT_EQ(sparse.map[i], noisy[i]);
+      EXPECT_EQ(restricted.map[i], noisy[i]);
+      continue;
+    }
+    // On the samples the sparse result is the dense one.
+    EXPECT_EQ(sparse.map[i], dense.map[i]);
+    EXPECT_EQ(target_set.count(restricted.map[i]), 1u) << "sample " << i;
+    err_noisy += (ts.V.row(noisy[i]) - ts.V.row(pair_->truth[i])).norm();
+    err_restricted += (ts.V.row(restricted.map[i]) - ts.V.row(pair_->truth[i])).norm();
+  }
+  // Restricted to 800 of 1538 target vertices the samples still land near the truth: the
+  // error is bounded by the target sample spacing, below that of the noisy map.
+  EXPECT_LT(err_restricted, err_noisy);
+  std::vector<int> bad = target_samples;
+  bad.push_back(ts.NumVertices());
+  EXPECT_THROW(ZoomOut(s, t, noisy, samples, options, bad), InvalidInputError);
+}
+
 TEST_F(RefineTest, IcpFromTruthStaysAndLowersTheErrorOfANoisyTruth) {
   const auto stage = MakeStage("{type: icp, k: 30}");
   const MatchResult from_truth = stage->Run({pair_->source, pair_->target}, pair_->truth);

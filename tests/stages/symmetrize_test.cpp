@@ -7,6 +7,7 @@
 #include "registry/registry.h"
 #include "stages/symmetrize/ceres_symmetrize.h"
 #include "stages/symmetrize/simple_symmetrize.h"
+#include "stages/symmetrize/stress_majorization.h"
 #include "stages/symmetrize/symmetrize_common.h"
 #include "stages/symmetrize/symmetrize_costs.h"
 #include "tests/test_util.h"
@@ -185,6 +186,68 @@ TEST(CeresSymmetrize, CombinedMirrorCounterpartsKeepTheShapeUnderCoarseSampling)
   hard.symmetry_weight = 10.0;
   const SymmetrizeResult r = SymmetrizeCeres(f.Y, samples, sym, hard);
   EXPECT_GT(GraphStress(before, r.Y, 10), 2.0 * GraphStress(before, soft.Y, 10));
+}
+
+// The energy of the asymmetric figure's samples, as the ceres stage builds it.
+SymmetrizeEnergy FigureEnergy(const Eigen::MatrixX3d& P, const std::vector<int>& sigma,
+                              double symmetry_weight) {
+  SymmetrizeEnergy e;
+  e.edges = KnnGraphEdges(P, 16);
+  for (const auto& [i, j] : e.edges) e.lengths.push_back((P.row(i) - P.row(j)).norm());
+  e.mirror = MirrorWeights(P, sigma, 1);
+  e.symmetry_weight = Eigen::VectorXd::Constant(P.rows(), symmetry_weight);
+  for (int i = 0; i < P.rows(); ++i) {
+    if (sigma[i] == i) e.on_plane.push_back(i);
+  }
+  e.plane_weight = 10.0;
+  return e;
+}
+
+TEST(StressMajorization, NeverRaisesTheEnergyAndApproachesTheCeresMinimum) {
+  const AsymmetricFigure f = MakeAsymmetricFigure();
+  const Eigen::MatrixX3d P = MovePlaneToX0(f.Y, f.symmetry.normal, f.symmetry.offset);
+  const SymmetrizeEnergy energy = FigureEnergy(P, f.sigma, 10.0);
+  double previous = energy.Evaluate(P);
+  Eigen::MatrixX3d X = P;
+  for (int step = 0; step < 20; ++step) {
+    const MajorizationResult r = MajorizeSymmetrizeEnergy(energy, X, 1, 0.0);
+    EXPECT_EQ(r.iterations, 1);
+    EXPECT_LE(r.energy_after, previous * (1.0 + 1e-12)) << "step " << step;
+    EXPECT_NEAR(r.energy_after, energy.Evaluate(r.X), 1e-12 * previous);
+    previous = r.energy_after;
+    X = r.X;
+  }
+  // Many iterations end near the energy Ceres reaches from the same start (Ceres's cost is
+  // half the energy divided by the squared size of the sample set).
+  const MajorizationResult many = MajorizeSymmetrizeEnergy(energy, P, 2000, 1e-9);
+  EXPECT_LT(many.energy_after, 0.05 * many.energy_before);
+  CeresSymmetrizeOptions options;
+  options.symmetry_weight = 10.0;
+  const std::vector<int> samples = AllVertices(f.surface.NumVertices());
+  const SymmetrizeResult ceres = SymmetrizeCeres(f.Y, samples, f.symmetry, options);
+  const Eigen::RowVector3d c = P.colwise().mean();
+  const double size2 = (P.rowwise() - c).rowwise().squaredNorm().mean();
+  const double ceres_energy = 2.0 * ceres.status.residual * size2;
+  EXPECT_NEAR(many.energy_after, ceres_energy, 0.02 * ceres_energy);
+}
+
+TEST(CeresSymmetrize, WarmStartReachesTheSameResult) {
+  const AsymmetricFigure f = MakeAsymmetricFigure();
+  const std::vector<int> samples = AllVertices(f.surface.NumVertices());
+  CeresSymmetrizeOptions cold;
+  cold.symmetry_weight = 10.0;
+  CeresSymmetrizeOptions warm = cold;
+  warm.warm_start_iterations = 300;
+  const SymmetrizeResult a = SymmetrizeCeres(f.Y, samples, f.symmetry, cold);
+  const SymmetrizeResult b = SymmetrizeCeres(f.Y, samples, f.symmetry, warm);
+  EXPECT_NE(b.status.message.find("majorization iterations"), std::string::npos)
+      << b.status.message;
+  EXPECT_LE(b.status.iterations, a.status.iterations) << a.status.message << "\n"
+                                                      << b.status.message;
+  EXPECT_NEAR(b.status.residual, a.status.residual, 1e-3 * a.status.residual);
+  // The energy does not change under translations within the plane and rotations about its
+  // normal, which the two starts leave differently: compare the shapes by their edge lengths.
+  EXPECT_LT(GraphStress(a.Y, b.Y, 10), 1e-3);
 }
 
 TEST(AverageSymmetrize, ExactlySymmetricForAnInvolution) {
