@@ -135,6 +135,7 @@ void RegisterFlipStages(Registry& registry) {
                  OrientationOptions r;
                  r.k_start = o.GetInt("orientation_k_start", r.k_start, 1, 1000);
                  r.k_end = o.GetInt("orientation_k_end", r.k_end, 1, 1000);
+                 r.step = o.GetInt("orientation_step", r.step, 1, 1000);
                  r.samples = o.GetInt("orientation_samples", r.samples, 1, 100000);
                  r.target_samples =
                      o.GetInt("orientation_target_samples", r.target_samples, 0, 100000);

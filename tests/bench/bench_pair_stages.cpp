@@ -69,8 +69,9 @@ std::unique_ptr<T> Make(const Registry& registry, const std::string& kind, const
   return registry.CreateAs<T>(kind, YAML::Load("{type: " + name + "}"), "bench", kind);
 }
 
-void BM_Flip(benchmark::State& state, const Registry* registry, std::string name) {
-  const auto stage = Make<FlipStage>(*registry, "flip", name);
+void BM_Flip(benchmark::State& state, const Registry* registry, std::string yaml) {
+  const auto stage =
+      registry->CreateAs<FlipStage>("flip", YAML::Load(yaml), "bench", "flip");
   Pair p = TestPair();
   stage->PrepareShape(p.source);
   stage->PrepareShape(p.target);
@@ -141,12 +142,20 @@ int main(int argc, char** argv) {
   static Registry registry;
   RegisterBuiltinStages(registry);
   for (const std::string& name : registry.Names("flip")) {
-    benchmark::RegisterBenchmark(("BM_Flip/" + name).c_str(), BM_Flip, &registry, name)
+    benchmark::RegisterBenchmark(("BM_Flip/" + name).c_str(), BM_Flip, &registry,
+                                 "{type: " + name + "}")
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("BM_FlipPrepare/" + name).c_str(), BM_FlipPrepare, &registry,
                                  name)
         ->Unit(benchmark::kMillisecond);
   }
+  // The orientation term on every target vertex instead of the target's samples.
+  benchmark::RegisterBenchmark("BM_Flip/extrinsic_all_target_vertices", BM_Flip, &registry,
+                               "{type: extrinsic, orientation_target_samples: 0}")
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("BM_Flip/extrinsic_300_samples", BM_Flip, &registry,
+                               "{type: extrinsic, orientation_samples: 300}")
+      ->Unit(benchmark::kMillisecond);
   for (const std::string& name : registry.Names("matching")) {
     benchmark::RegisterBenchmark(("BM_Matching/" + name).c_str(), BM_Matching, &registry, name)
         ->Unit(benchmark::kMillisecond);

@@ -223,6 +223,8 @@ TEST(StressMajorization, NeverRaisesTheEnergyAndApproachesTheCeresMinimum) {
   EXPECT_LT(many.energy_after, 0.05 * many.energy_before);
   CeresSymmetrizeOptions options;
   options.symmetry_weight = 10.0;
+  options.warm_start_iterations = 0;  // Ceres alone
+  options.max_iterations = 100;
   const std::vector<int> samples = AllVertices(f.surface.NumVertices());
   const SymmetrizeResult ceres = SymmetrizeCeres(f.Y, samples, f.symmetry, options);
   const Eigen::RowVector3d c = P.colwise().mean();
@@ -236,6 +238,8 @@ TEST(CeresSymmetrize, WarmStartReachesTheSameResult) {
   const std::vector<int> samples = AllVertices(f.surface.NumVertices());
   CeresSymmetrizeOptions cold;
   cold.symmetry_weight = 10.0;
+  cold.warm_start_iterations = 0;
+  cold.max_iterations = 100;
   CeresSymmetrizeOptions warm = cold;
   warm.warm_start_iterations = 300;
   const SymmetrizeResult a = SymmetrizeCeres(f.Y, samples, f.symmetry, cold);
