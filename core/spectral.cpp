@@ -194,6 +194,26 @@ LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k) {
   return basis;
 }
 
+namespace {
+
+// Eigenpairs of the consistent basis in aux, or 0 when it holds none.
+int StoredBasisSize(const AuxMap& aux) {
+  const auto evecs = aux.find(kLbEvecsKey);
+  if (evecs == aux.end()) return 0;
+  const int nv = static_cast<int>(evecs->second.rows());
+  return HasLaplaceBasis(aux, 0, nv) ? static_cast<int>(evecs->second.cols()) : 0;
+}
+
+}  // namespace
+
+void MergeAux(AuxMap from, AuxMap* into) {
+  SYMEMBED_CHECK(into != nullptr, "into is null");
+  if (StoredBasisSize(*into) >= StoredBasisSize(from) && StoredBasisSize(from) > 0) {
+    for (const char* key : {kLbEvalsKey, kLbEvecsKey, kLbMassKey}) from.erase(key);
+  }
+  for (auto& [key, value] : from) (*into)[key] = std::move(value);
+}
+
 bool EnsureLaplaceBasis(const Surface& surface, const LaplaceBasisOptions& options, AuxMap* aux) {
   SYMEMBED_CHECK(aux != nullptr, "aux is null");
   if (HasLaplaceBasis(*aux, options.k, surface.NumVertices())) return false;

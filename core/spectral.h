@@ -80,4 +80,10 @@ LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k = -1);
 // eigenpairs for this surface. Returns true when it computed.
 bool EnsureLaplaceBasis(const Surface& surface, const LaplaceBasisOptions& options, AuxMap* aux);
 
+// Merges per-shape data that stages prepared separately: entries of `from` replace those of
+// `into`, except the Laplace-Beltrami basis, of which the one with more eigenpairs is kept (its
+// leading eigenpairs serve every stage that asked for fewer, so a stage preparing a small basis
+// never takes away the larger one another stage needs).
+void MergeAux(AuxMap from, AuxMap* into);
+
 }  // namespace symembed

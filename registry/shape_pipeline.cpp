@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/canonical_frame.h"
+#include "core/spectral.h"
 #include "registry/hash.h"
 
 namespace symembed {
@@ -255,7 +256,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
           return copy.aux;
         },
         &out.times);
-    for (auto& [entry, M] : aux) data->aux[entry] = std::move(M);
+    MergeAux(std::move(aux), &data->aux);
   }
   out.data = std::move(data);
   out.key = data_key.Digest();

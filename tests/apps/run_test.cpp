@@ -150,6 +150,14 @@ TEST_F(RunCommandTest, BadMeshIsRecordedAndTheExitCodeIs1) {
   EXPECT_TRUE(fs::exists(tmp_.File("out/base/summary.json")));
 }
 
+// The flip scorer's orientation term needs 60 eigenpairs, the icp refinement asks for 20: each
+// prepares its own basis and the larger one must survive for both.
+TEST_F(RunCommandTest, StagesPreparingBasesOfDifferentSizesShareTheLargerOne) {
+  Run(tmp_.File("out"), "--set pipeline.refine.type=icp --set pipeline.refine.k=20");
+  EXPECT_EQ(ReadText(tmp_.File("out/base/failures.csv")), "kind,source,target,message\n");
+  EXPECT_EQ(CountFiles(tmp_.File("out/base/pairs"), ".rec"), 10);
+}
+
 TEST(RunCommand, UsageErrorsExit2) {
   std::string out;
   EXPECT_EQ(Symembed("run", &out), 2) << out;

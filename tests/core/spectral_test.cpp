@@ -159,5 +159,33 @@ TEST(LaplaceBasis, AuxRoundTripAndReuse) {
   EXPECT_EQ(GetLaplaceBasis(aux).NumEigenpairs(), 12);
 }
 
+TEST(LaplaceBasis, MergeAuxKeepsTheLargerBasis) {
+  const Surface s = testing::BumpyBlob(6);
+  AuxMap small, large;
+  LaplaceBasisOptions options;
+  options.k = 8;
+  EnsureLaplaceBasis(s, options, &small);
+  small["features"] = Eigen::MatrixXd::Ones(2, 2);
+  options.k = 12;
+  EnsureLaplaceBasis(s, options, &large);
+  large["other"] = Eigen::MatrixXd::Zero(1, 1);
+  // A stage that prepared a small basis after one that prepared a large one (the order of the
+  // pipeline's prepare steps) leaves the large one, and either way the other entries merge.
+  AuxMap merged = large;
+  MergeAux(small, &merged);
+  EXPECT_EQ(GetLaplaceBasis(merged).NumEigenpairs(), 12);
+  EXPECT_EQ(merged.at(kLbEvecsKey), large.at(kLbEvecsKey));
+  EXPECT_EQ(merged.count("features"), 1u);
+  EXPECT_EQ(merged.count("other"), 1u);
+  merged = small;
+  MergeAux(large, &merged);
+  EXPECT_EQ(GetLaplaceBasis(merged).NumEigenpairs(), 12);
+  EXPECT_EQ(merged.count("features"), 1u);
+  // Without a basis on either side, entries of `from` replace those of `into`.
+  AuxMap plain = {{"features", Eigen::MatrixXd::Zero(2, 2)}};
+  MergeAux({{"features", Eigen::MatrixXd::Ones(2, 2)}}, &plain);
+  EXPECT_EQ(plain.at("features"), Eigen::MatrixXd::Ones(2, 2));
+}
+
 }  // namespace
 }  // namespace symembed
