@@ -46,6 +46,11 @@ struct PairEvaluation {
   std::vector<double> errors_direct;    // #points, in ground-truth line order
   std::vector<double> errors_sym;       // #points when has_sym, else empty
   std::map<std::string, double> stage_seconds;  // wall time per stage ("evaluation", ...)
+  // Status message of each pair stage that reported one ("flip": its scores and terms,
+  // "refine": e.g. ZoomOut's energy per basis size).
+  std::map<std::string, std::string> stage_messages;
+  // Mean direct error of each candidate rotation (the oracle's measure), when it was computed.
+  std::vector<double> candidate_errors;
   // When a refine stage changed the map: the means of the map before refinement.
   bool refined = false;
   double initial_mean_direct = 0.0, initial_mean_sym = 0.0;

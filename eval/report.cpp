@@ -177,7 +177,7 @@ std::string PairsCsv(std::vector<PairEvaluation> pairs) {
   out << "source,target,status,points,mean_direct,median_direct,max_direct";
   for (const auto& key : ErrorThresholdKeys()) out << ",pct_direct_" << key;
   out << ",mean_sym,mean_flip_tolerant,flip,chosen,oracle,initial_mean_direct,refine_side,"
-         "message\n";
+         "candidate_errors,flip_message,refine_message,message\n";
   for (const auto& p : pairs) {
     out << CsvField(p.source) << ',' << CsvField(p.target) << ',' << (p.ok ? "ok" : "failed");
     if (p.ok) {
@@ -190,7 +190,15 @@ std::string PairsCsv(std::vector<PairEvaluation> pairs) {
       out << ",0,,,,,,,,,";
     }
     out << ',' << p.chosen << ',' << p.oracle << ','
-        << (p.ok && p.refined ? Num(p.initial_mean_direct) : "") << ',' << p.RefineSide() << ','
+        << (p.ok && p.refined ? Num(p.initial_mean_direct) : "") << ',' << p.RefineSide() << ',';
+    for (size_t k = 0; k < p.candidate_errors.size(); ++k) {
+      out << (k ? " " : "") << Num(p.candidate_errors[k]);
+    }
+    const auto message_of = [&](const char* stage) {
+      const auto it = p.stage_messages.find(stage);
+      return it == p.stage_messages.end() ? std::string() : it->second;
+    };
+    out << ',' << CsvField(message_of("flip")) << ',' << CsvField(message_of("refine")) << ','
         << CsvField(p.message) << '\n';
   }
   return out.str();
@@ -323,6 +331,14 @@ std::string SerializePairRecord(const PairEvaluation& p) {
     stages.Set(stage, JsonValue::Number(seconds));
   }
   j.Set("stage_seconds", stages);
+  if (!p.stage_messages.empty()) {
+    JsonValue messages = JsonValue::Object();
+    for (const auto& [stage, message] : p.stage_messages) {
+      messages.Set(stage, JsonValue::String(message));
+    }
+    j.Set("stage_messages", messages);
+  }
+  if (!p.candidate_errors.empty()) j.Set("candidate_errors", NumberArray(p.candidate_errors));
   j.Set("errors_direct", NumberArray(p.errors_direct));
   j.Set("errors_sym", NumberArray(p.errors_sym));
   if (p.refined) {
@@ -344,6 +360,15 @@ PairEvaluation ParsePairRecord(const std::string& text, const std::string& where
   p.oracle = static_cast<int>(RequireNumber(j, "oracle", where));
   for (const auto& [stage, seconds] : Require(j, "stage_seconds", where).members()) {
     p.stage_seconds[stage] = seconds.NumberOr(kNaN);
+  }
+  // Optional (records written before they existed have neither).
+  if (j.Get("stage_messages").IsObject()) {
+    for (const auto& [stage, message] : j.Get("stage_messages").members()) {
+      p.stage_messages[stage] = message.AsString();
+    }
+  }
+  if (j.Get("candidate_errors").IsArray()) {
+    p.candidate_errors = ReadNumberArray(j.Get("candidate_errors"), where);
   }
   if (p.ok) {
     p.errors_direct = ReadNumberArray(Require(j, "errors_direct", where), where);

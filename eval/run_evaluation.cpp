@@ -89,6 +89,16 @@ class EvaluatorVariant : public VariantEvaluation {
       }
     }
     for (const StageTime& t : outcome.times) evaluation.stage_seconds[t.stage] = t.seconds;
+    const std::pair<const char*, const StageStatus*> statuses[] = {
+        {"flip", &outcome.flip.status},
+        {"matching", &outcome.matching_status},
+        {"refine", &outcome.refine_status}};
+    for (const auto& [stage, status] : statuses) {
+      if (!status->message.empty()) evaluation.stage_messages[stage] = status->message;
+    }
+    if (outcome.oracle >= 0) {
+      evaluation.candidate_errors.assign(outcome.oracle_errors.begin(), outcome.oracle_errors.end());
+    }
     return SerializePairRecord(evaluation);
   }
 

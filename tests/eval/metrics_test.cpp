@@ -158,11 +158,16 @@ TEST(Metrics, PairRecordRoundTripIsExact) {
   p.oracle = 0;
   p.flip = FlipClass::kFrontBack;
   p.stage_seconds = {{"evaluation", 0.123456789}, {"flip", 1.0 / 7}};
+  p.stage_messages = {{"flip", "extrinsic scores [I, Rx, Ry, Rz]: 1 2 \"3\" 4"},
+                      {"refine", "zoomout k 20..120\nline two"}};
+  p.candidate_errors = {0.1, 0.7, 0.3, 1.0 / 3};
   const PairEvaluation r = ParsePairRecord(SerializePairRecord(p));
   EXPECT_EQ(SerializePairRecord(r), SerializePairRecord(p));
   EXPECT_EQ(r.errors_direct, p.errors_direct);
   EXPECT_EQ(r.errors_sym, p.errors_sym);
   EXPECT_EQ(r.stage_seconds, p.stage_seconds);
+  EXPECT_EQ(r.stage_messages, p.stage_messages);
+  EXPECT_EQ(r.candidate_errors, p.candidate_errors);
   EXPECT_EQ(r.mean_direct, p.mean_direct);
   EXPECT_EQ(r.flip, FlipClass::kFrontBack);
   EXPECT_EQ(r.target, p.target);
@@ -175,6 +180,9 @@ TEST(Metrics, PairRecordRoundTripIsExact) {
   const PairEvaluation rf = ParsePairRecord(SerializePairRecord(failed));
   EXPECT_FALSE(rf.ok);
   EXPECT_EQ(rf.message, failed.message);
+  // Records written before stage messages and candidate errors existed still parse.
+  EXPECT_TRUE(rf.stage_messages.empty());
+  EXPECT_TRUE(rf.candidate_errors.empty());
 }
 
 TEST(Report, ComparisonAndCurvePlots) {

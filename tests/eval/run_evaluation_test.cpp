@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -94,6 +95,23 @@ TEST(RunEvaluation, ReportsWhenRefinementMovesAMapOntoTheMirroredSolution) {
   EXPECT_NE(csv.find("initial_mean_direct,refine_side"), std::string::npos);
   EXPECT_NE(csv.find(",0,to_symmetric,"), std::string::npos) << csv;
   EXPECT_EQ(ReadText(tmp.File("out/base/pairs.csv")).find("to_symmetric"), std::string::npos);
+}
+
+TEST(RunEvaluation, PairRecordsKeepTheStageMessagesAndTheCandidatesErrors) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  const std::string csv = ReadText(tmp.File("out/base/pairs.csv"));
+  EXPECT_NE(csv.find(",candidate_errors,flip_message,refine_message,message\n"),
+            std::string::npos) << csv;
+  EXPECT_NE(csv.find(",test flip chose 0,"), std::string::npos) << csv;
+  const PairEvaluation record = ParsePairRecord(ReadText(tmp.File("out/base/pairs/s0_s1.rec")));
+  EXPECT_EQ(record.stage_messages.at("flip"), "test flip chose 0");
+  // The oracle's four candidate errors: the identity (the bent grid's truth) is the lowest.
+  ASSERT_EQ(record.candidate_errors.size(), 4u);
+  EXPECT_EQ(*std::min_element(record.candidate_errors.begin(), record.candidate_errors.end()),
+            record.candidate_errors[0]);
+  EXPECT_EQ(record.oracle, 0);
 }
 
 TEST(RunEvaluation, RejectsAMalformedDistanceCacheBudget) {

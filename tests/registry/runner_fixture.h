@@ -207,6 +207,7 @@ class TestFlip : public FlipStage {
     SYMEMBED_CHECK(pair.source.aux.count("test_feature"), "missing aux");
     FlipResult r;
     r.chosen = choose_;
+    r.status.message = "test flip chose " + std::to_string(choose_);
     return r;
   }
 
