@@ -208,7 +208,8 @@ int StoredBasisSize(const AuxMap& aux) {
 
 void MergeAux(AuxMap from, AuxMap* into) {
   SYMEMBED_CHECK(into != nullptr, "into is null");
-  if (StoredBasisSize(*into) >= StoredBasisSize(from) && StoredBasisSize(from) > 0) {
+  const int incoming = StoredBasisSize(from);
+  if (incoming > 0 && StoredBasisSize(*into) >= incoming) {
     for (const char* key : {kLbEvalsKey, kLbEvecsKey, kLbMassKey}) from.erase(key);
   }
   for (auto& [key, value] : from) (*into)[key] = std::move(value);

@@ -97,7 +97,8 @@ class EvaluatorVariant : public VariantEvaluation {
       if (!status->message.empty()) evaluation.stage_messages[stage] = status->message;
     }
     if (outcome.oracle >= 0) {
-      evaluation.candidate_errors.assign(outcome.oracle_errors.begin(), outcome.oracle_errors.end());
+      evaluation.candidate_errors.assign(outcome.oracle_errors.begin(),
+                                         outcome.oracle_errors.end());
     }
     return SerializePairRecord(evaluation);
   }

@@ -235,7 +235,8 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   out.report.push_back({"symmetry_score", data->symmetry.score});
   out.report.push_back({"asymmetry_before", symmetrized.asymmetry_before});
   out.report.push_back({"asymmetry_after", symmetrized.asymmetry_after});
-  out.report.push_back({"symmetrize_iterations", static_cast<double>(symmetrized.status.iterations)});
+  out.report.push_back(
+      {"symmetrize_iterations", static_cast<double>(symmetrized.status.iterations)});
   out.report.push_back({"frame_axis_ratio", axis_ratio});
 
   const std::pair<const char*, const PairStage*> pair_stages[] = {

@@ -78,7 +78,7 @@ AxisDescriptor Describe(const Eigen::VectorXd& u_raw, const Eigen::MatrixXd& F, 
 ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                     const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                                     const ExtrinsicFlipOptions& options,
-                                    const CandidateMaps* maps_in) {
+                                    const CandidateMaps& maps) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip extrinsic: " + error);
   if (Fs.rows() != Ys.rows() || Ft.rows() != Yt.rows() || Fs.cols() != 3 || Ft.cols() != 3) {
@@ -89,9 +89,6 @@ ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::Mat
     sigma[f] = std::max(0.5 * (WeightedStd(Fs, f) + WeightedStd(Ft, f)), 1e-6);
   }
   ExtrinsicScores out;
-  CandidateMaps computed;
-  if (maps_in == nullptr) computed = ComputeCandidateMaps(Ys, Yt, options.threads);
-  const CandidateMaps& maps = maps_in != nullptr ? *maps_in : computed;
   const Eigen::VectorXd as = Fs.col(kArea) / std::max(Fs.col(kArea).sum(), 1e-300);
   const double rs = std::max(RmsRadius(Ys), 1e-300), rt = std::max(RmsRadius(Yt), 1e-300);
   AxisDescriptor source_axes[2];

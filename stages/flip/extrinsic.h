@@ -53,12 +53,12 @@ struct ExtrinsicScores {
 };
 
 // Ys, Yt: #Vs x 3, #Vt x 3 canonical embeddings; Fs, Ft: #V x 3 features (kExtrinsicFeaturesKey
-// layout); maps: ComputeCandidateMaps(Ys, Yt) when the caller has it already (else computed).
-// Throws InvalidInputError on mismatched shapes.
+// layout); maps: ComputeCandidateMaps(Ys, Yt) (the stage shares them with the orientation
+// term). Throws InvalidInputError on mismatched shapes.
 ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                     const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                                     const ExtrinsicFlipOptions& options,
-                                    const CandidateMaps* maps = nullptr);
+                                    const CandidateMaps& maps);
 
 // The features of `surface` in the kExtrinsicFeaturesKey layout from core/curvature.h, with
 // curvatures averaged over smoothing_rings rings. Curvedness sqrt((k1^2 + k2^2) / 2)

@@ -95,6 +95,16 @@ double Orientation(const SourceTriangles& triangles, const Surface& target,
   return count > 0 ? sum / count : 0.0;
 }
 
+// The first `count` of a shape's samples; throws unless they determine k_end coefficients.
+std::vector<int> SamplePrefix(const std::vector<int>& samples, int count, int k_end,
+                              const char* shape) {
+  if (static_cast<int>(samples.size()) < k_end) {
+    throw InvalidInputError(std::string("flip orientation: the ") + shape + " has " +
+                            std::to_string(samples.size()) + " samples, fewer than k_end");
+  }
+  return {samples.begin(), samples.begin() + std::min<size_t>(samples.size(), count)};
+}
+
 void CheckOrientationInput(const Surface& source, const std::vector<int>& map,
                            const std::vector<int>& samples) {
   if (samples.size() < 3 || static_cast<int>(map.size()) != source.NumVertices()) {
@@ -120,24 +130,12 @@ std::array<double, 4> CandidateOrientations(const Surface& source, const Surface
                                             const OrientationOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
-  const std::vector<int> samples(
-      samples_in.begin(),
-      samples_in.begin() + std::min<size_t>(samples_in.size(), options.samples));
-  if (static_cast<int>(samples.size()) < options.k_end) {
-    throw InvalidInputError("flip orientation: the source has " +
-                            std::to_string(samples_in.size()) + " samples, fewer than k_end");
-  }
-  std::vector<int> target_samples;
-  if (options.target_samples > 0) {
-    if (static_cast<int>(target_samples_in.size()) < options.k_end) {
-      throw InvalidInputError("flip orientation: the target has " +
-                              std::to_string(target_samples_in.size()) +
-                              " samples, fewer than k_end");
-    }
-    target_samples.assign(target_samples_in.begin(),
-                          target_samples_in.begin() +
-                              std::min<size_t>(target_samples_in.size(), options.target_samples));
-  }
+  const std::vector<int> samples =
+      SamplePrefix(samples_in, options.samples, options.k_end, "source");
+  const std::vector<int> target_samples =
+      options.target_samples > 0
+          ? SamplePrefix(target_samples_in, options.target_samples, options.k_end, "target")
+          : std::vector<int>{};
   ZoomOutOptions zoomout;
   zoomout.k_start = options.k_start;
   zoomout.k_end = options.k_end;

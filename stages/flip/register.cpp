@@ -41,7 +41,7 @@ class ExtrinsicStage : public FlipStage {
     const CandidateMaps maps = ComputeCandidateMaps(pair.source.Y, pair.target.Y, options_.threads);
     ExtrinsicScores s = ExtrinsicFlipScores(
         pair.source.Y, pair.target.Y, AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
-        AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_, &maps);
+        AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_, maps);
     std::array<double, 4> orientation{};
     if (orientation_weight_ > 0.0) {
       orientation = CandidateOrientations(

@@ -141,7 +141,9 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
   energy.symmetry_weight = Eigen::VectorXd::Zero(n);
   for (int i = 0; i < n; ++i) {
     const double c = symmetry.confidence.size() == n ? symmetry.confidence(i) : 1.0;
-    if (options.symmetry_weight > 0.0 && c > 0.0) energy.symmetry_weight(i) = options.symmetry_weight * c;
+    if (options.symmetry_weight > 0.0 && c > 0.0) {
+      energy.symmetry_weight(i) = options.symmetry_weight * c;
+    }
     if (options.mirror_neighbors == 1 && sigma[i] == i && options.plane_weight > 0.0) {
       energy.on_plane.push_back(i);
     }

@@ -66,14 +66,17 @@ const Pair& TestPair() {
   return pair;
 }
 
+// A stage from its options, e.g. "{type: extrinsic, orientation_samples: 300}".
 template <typename T>
-std::unique_ptr<T> Make(const Registry& registry, const std::string& kind, const std::string& name) {
-  return registry.CreateAs<T>(kind, YAML::Load("{type: " + name + "}"), "bench", kind);
+std::unique_ptr<T> Make(const Registry& registry, const std::string& kind,
+                        const std::string& yaml) {
+  return registry.CreateAs<T>(kind, YAML::Load(yaml), "bench", kind);
 }
 
+std::string Type(const std::string& name) { return "{type: " + name + "}"; }
+
 void BM_Flip(benchmark::State& state, const Registry* registry, std::string yaml) {
-  const auto stage =
-      registry->CreateAs<FlipStage>("flip", YAML::Load(yaml), "bench", "flip");
+  const auto stage = Make<FlipStage>(*registry, "flip", yaml);
   Pair p = TestPair();
   stage->PrepareShape(p.source);
   stage->PrepareShape(p.target);
@@ -85,7 +88,7 @@ void BM_Flip(benchmark::State& state, const Registry* registry, std::string yaml
 }
 
 void BM_FlipPrepare(benchmark::State& state, const Registry* registry, std::string name) {
-  const auto stage = Make<FlipStage>(*registry, "flip", name);
+  const auto stage = Make<FlipStage>(*registry, "flip", Type(name));
   for (auto _ : state) {
     ShapeData shape = TestPair().source;
     stage->PrepareShape(shape);
@@ -94,7 +97,7 @@ void BM_FlipPrepare(benchmark::State& state, const Registry* registry, std::stri
 }
 
 void BM_Matching(benchmark::State& state, const Registry* registry, std::string name) {
-  const auto stage = Make<MatchingStage>(*registry, "matching", name);
+  const auto stage = Make<MatchingStage>(*registry, "matching", Type(name));
   const Pair& p = TestPair();
   for (auto _ : state) {
     MatchResult r = stage->Run(p.source.Y, p.target.Y);
@@ -103,7 +106,7 @@ void BM_Matching(benchmark::State& state, const Registry* registry, std::string 
 }
 
 void BM_Symmetry(benchmark::State& state, const Registry* registry, std::string name) {
-  const auto stage = Make<SymmetryStage>(*registry, "symmetry", name);
+  const auto stage = Make<SymmetryStage>(*registry, "symmetry", Type(name));
   const Pair& p = TestPair();
   EmbeddingResult embedding;
   embedding.Y = p.source.surface.V;
@@ -118,9 +121,9 @@ void BM_Symmetrize(benchmark::State& state, const Registry* registry, std::strin
   EmbeddingResult embedding;
   embedding.Y = p.source.surface.V;
   const SymmetryInput input{p.source.surface, p.samples, p.D, embedding};
-  const SymmetryResult symmetry = Make<SymmetryStage>(*registry, "symmetry", "plane3d")->Run(input);
-  const auto stage = registry->CreateAs<SymmetrizeStage>("symmetrize", YAML::Load(yaml), "bench",
-                                                          "symmetrize");
+  const SymmetryResult symmetry =
+      Make<SymmetryStage>(*registry, "symmetry", Type("plane3d"))->Run(input);
+  const auto stage = Make<SymmetrizeStage>(*registry, "symmetrize", yaml);
   for (auto _ : state) {
     SymmetrizeResult r = stage->Run(input, symmetry);
     benchmark::DoNotOptimize(r.Y.data());
@@ -145,7 +148,7 @@ int main(int argc, char** argv) {
   RegisterBuiltinStages(registry);
   for (const std::string& name : registry.Names("flip")) {
     benchmark::RegisterBenchmark(("BM_Flip/" + name).c_str(), BM_Flip, &registry,
-                                 "{type: " + name + "}")
+                                 Type(name))
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("BM_FlipPrepare/" + name).c_str(), BM_FlipPrepare, &registry,
                                  name)
@@ -168,7 +171,7 @@ int main(int argc, char** argv) {
   }
   for (const std::string& name : registry.Names("symmetrize")) {
     benchmark::RegisterBenchmark(("BM_Symmetrize/" + name).c_str(), BM_Symmetrize, &registry,
-                                 "{type: " + name + "}")
+                                 Type(name))
         ->Unit(benchmark::kMillisecond);
   }
   // Levenberg-Marquardt alone, as before the warm start became the default.
