@@ -15,7 +15,7 @@ namespace {
 
 // Gathers A (rows source_ids of Phi_s), B (rows target_ids of Phi_t) and the weights W, and
 // returns A^T W A and A^T W B.
-void NormalEquations(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& Phi_t,
+void NormalEquations(const BasisRef& Phi_s, const BasisRef& Phi_t,
                      const std::vector<int>& source_ids, const std::vector<int>& target_ids,
                      const Eigen::VectorXd& weights, Eigen::MatrixXd* AtWA, Eigen::MatrixXd* AtWB) {
   const int m = static_cast<int>(source_ids.size());
@@ -45,7 +45,7 @@ void NormalEquations(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& Phi_t,
 
 }  // namespace
 
-Eigen::MatrixXd FitFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& Phi_t,
+Eigen::MatrixXd FitFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
                                  const std::vector<int>& source_ids,
                                  const std::vector<int>& target_ids,
                                  const Eigen::VectorXd& weights) {
@@ -64,8 +64,7 @@ Eigen::MatrixXd FitFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::Matr
   return ldlt.solve(AtWB);
 }
 
-Eigen::MatrixXd FitOrthogonalFunctionalMap(const Eigen::MatrixXd& Phi_s,
-                                           const Eigen::MatrixXd& Phi_t,
+Eigen::MatrixXd FitOrthogonalFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
                                            const std::vector<int>& source_ids,
                                            const std::vector<int>& target_ids,
                                            const Eigen::VectorXd& weights) {

@@ -23,12 +23,15 @@
 
 namespace symembed {
 
+// A basis matrix (#V x k) or its first columns (evecs.leftCols(k)) without a copy.
+using BasisRef = Eigen::Ref<const Eigen::MatrixXd>;
+
 // Weighted least-squares functional map
 //   C = argmin sum_r w(source_ids[r]) || Phi_s(source_ids[r], :) C - Phi_t(target_ids[r], :) ||^2,
 // i.e. C = (A^T W A)^{-1} A^T W B. Phi_s: #Vs x ks, Phi_t: #Vt x kt, weights: #Vs (the lumped
 // mass for the dense map, ones for a uniform sample). Returns ks x kt. Throws InvalidInputError
 // when the ids are out of range or A^T W A is singular (too few points for ks).
-Eigen::MatrixXd FitFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::MatrixXd& Phi_t,
+Eigen::MatrixXd FitFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
                                  const std::vector<int>& source_ids,
                                  const std::vector<int>& target_ids,
                                  const Eigen::VectorXd& weights);
@@ -36,8 +39,7 @@ Eigen::MatrixXd FitFunctionalMap(const Eigen::MatrixXd& Phi_s, const Eigen::Matr
 // The orthogonal C (ks == kt) minimising the same weighted energy: the Procrustes solution
 // C = U V^T of A^T W B = U S V^T [Ovsjanikov et al. 2012] Functional maps: a flexible
 // representation of maps between shapes.
-Eigen::MatrixXd FitOrthogonalFunctionalMap(const Eigen::MatrixXd& Phi_s,
-                                           const Eigen::MatrixXd& Phi_t,
+Eigen::MatrixXd FitOrthogonalFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
                                            const std::vector<int>& source_ids,
                                            const std::vector<int>& target_ids,
                                            const Eigen::VectorXd& weights);
