@@ -105,6 +105,35 @@ std::vector<Failure> ParseFailuresCsv(const std::string& text, const std::string
   return out;
 }
 
+std::string ShapesCsv(const std::vector<ShapeRecord>& shapes) {
+  std::vector<std::string> columns;
+  for (const ShapeRecord& shape : shapes) {
+    for (const auto& entry : shape.report) {
+      if (std::find(columns.begin(), columns.end(), entry.first) == columns.end()) {
+        columns.push_back(entry.first);
+      }
+    }
+  }
+  std::string out = "shape";
+  for (const std::string& c : columns) out += "," + CsvField(c);
+  out += "\n";
+  char number[64];
+  for (const ShapeRecord& shape : shapes) {
+    out += CsvField(shape.name);
+    for (const std::string& c : columns) {
+      out += ",";
+      for (const auto& [name, value] : shape.report) {
+        if (name != c) continue;
+        std::snprintf(number, sizeof number, "%.9g", value);
+        out += number;
+        break;
+      }
+    }
+    out += "\n";
+  }
+  return out;
+}
+
 std::string FormatShapeRecord(const ShapeRecord& record) {
   std::ostringstream out;
   char number[64];

@@ -4,6 +4,8 @@
 //                      shape); sorted, no duplicates, so shards merged equal a single run
 //   shapes/NAME.rec    per shape: "time<TAB>stage<TAB>seconds<TAB>cached" and
 //                      "report<TAB>name<TAB>value" lines
+//   shapes.csv         one row per shape record: shape, then every report entry (columns in
+//                      order of first appearance; empty where a shape lacks one)
 //   variants.txt       in the experiment folder: the config's variant names, in order
 #pragma once
 
@@ -38,6 +40,9 @@ std::string FormatShapeRecord(const ShapeRecord& record);
 // Throws InvalidInputError naming `where` and the line.
 ShapeRecord ParseShapeRecord(const std::string& name, const std::string& text,
                              const std::string& where);
+
+// The shapes.csv table of the records' report entries.
+std::string ShapesCsv(const std::vector<ShapeRecord>& shapes);
 
 // "A_B": the file stem of a pair's record and map.
 std::string PairStem(const std::string& source, const std::string& target);

@@ -93,6 +93,7 @@ void FinishVariant(VariantResults results, RunEvaluation& evaluation) {
                          results.failures.end());
   WriteFileAtomically(results.dir + "/failures.csv", FailuresCsv(results.failures));
   results.shapes = ReadShapeRecords(results.dir, results.pairs, results.records);
+  WriteFileAtomically(results.dir + "/shapes.csv", ShapesCsv(results.shapes));
   evaluation.WriteVariant(results);
 }
 

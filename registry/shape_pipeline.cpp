@@ -1,10 +1,12 @@
 #include "registry/shape_pipeline.h"
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 
 #include "core/canonical_frame.h"
+#include "core/errors.h"
 #include "core/spectral.h"
 #include "registry/hash.h"
 
@@ -148,6 +150,26 @@ void InputToKept(const Eigen::MatrixX3d& input_V, const std::vector<int>& input_
   }
 }
 
+double SymmetryGroundTruthError(const Eigen::MatrixX3d& Y, const std::vector<int>& ids,
+                                const std::vector<int>& sym_ids) {
+  SYMEMBED_CHECK(ids.size() == sym_ids.size(), "ground truth lines differ in length");
+  const Eigen::RowVector3d centroid = Y.colwise().mean();
+  const double size = std::sqrt((Y.rowwise() - centroid).rowwise().squaredNorm().mean());
+  double sum = 0.0;
+  int lines = 0;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const int a = ids[i], b = sym_ids[i];
+    if (a < 0 || b < 0) continue;
+    SYMEMBED_CHECK(a < Y.rows() && b < Y.rows(), "ground truth id out of range");
+    Eigen::RowVector3d mirrored = Y.row(a);
+    mirrored(0) = -mirrored(0);
+    sum += (mirrored - Y.row(b)).norm();
+    ++lines;
+  }
+  if (lines == 0 || !(size > 0.0)) return -1.0;
+  return sum / lines / size;
+}
+
 ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
                           const ShapeContext& context) {
   ShapeOutcome out;
@@ -238,6 +260,20 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   out.report.push_back(
       {"symmetrize_iterations", static_cast<double>(symmetrized.status.iterations)});
   out.report.push_back({"frame_axis_ratio", axis_ratio});
+  if (!out.ground_truth.sym_ids.empty()) {
+    // Ground truth in input ids; a removed vertex stands for its nearest kept one.
+    const auto kept = [&](const std::vector<int>& input) {
+      std::vector<int> ids(input.size(), -1);
+      for (size_t i = 0; i < input.size(); ++i) {
+        const int v = input[i];
+        if (v >= 0 && v < static_cast<int>(out.nearest_kept.size())) ids[i] = out.nearest_kept[v];
+      }
+      return ids;
+    };
+    const double error = SymmetryGroundTruthError(data->Y, kept(out.ground_truth.ids),
+                                                  kept(out.ground_truth.sym_ids));
+    if (error >= 0.0) out.report.push_back({"symmetry_gt_error", error});
+  }
 
   const std::pair<const char*, const PairStage*> pair_stages[] = {
       {"flip", pipeline.flip.get()},

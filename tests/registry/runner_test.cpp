@@ -5,12 +5,36 @@
 #include <filesystem>
 
 #include "registry/config.h"
+#include "registry/shape_pipeline.h"
 #include "tests/registry/runner_fixture.h"
 
 namespace symembed {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Points mirrored across x = 0 in pairs (a_i, b_i), plus two points on the plane.
+Eigen::MatrixX3d MirroredPairs(std::vector<int>* a, std::vector<int>* b) {
+  Eigen::MatrixX3d Y(8, 3);
+  Y << 1, 0, 0, -1, 0, 0, 2, 1, 0, -2, 1, 0, 0.5, -1, 1, -0.5, -1, 1, 0, 2, 0, 0, -2, 1;
+  *a = {0, 2, 4, 6, 7};
+  *b = {1, 3, 5, 6, 7};
+  return Y;
+}
+
+TEST(SymmetryGroundTruthError, ZeroForTheTrueMirrorLargeForAnotherPlaneAndMinusOneWithoutLines) {
+  std::vector<int> a, b;
+  const Eigen::MatrixX3d Y = MirroredPairs(&a, &b);
+  EXPECT_NEAR(SymmetryGroundTruthError(Y, a, b), 0.0, 1e-12);
+  // The same points with the symmetry plane turned to z = 0 (x and z swapped): the partners
+  // are no longer mirror images across x = 0.
+  Eigen::MatrixX3d turned = Y;
+  turned.col(0).swap(turned.col(2));
+  EXPECT_GT(SymmetryGroundTruthError(turned, a, b), 0.5);
+  // Lines without both ids are skipped; none left gives -1.
+  EXPECT_NEAR(SymmetryGroundTruthError(Y, {0, -1}, {1, 3}), 0.0, 1e-12);
+  EXPECT_EQ(SymmetryGroundTruthError(Y, {-1, 2}, {1, -1}), -1.0);
+}
 using testing::ReadText;
 using testing::TempDir;
 using testing::WriteText;
