@@ -6,8 +6,18 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 namespace symembed {
+
+// Root mean square distance of the rows of P (points as rows) from their centroid; 0 without
+// rows. The size that makes point-set measures scale-free.
+template <typename Derived>
+double RmsRadius(const Eigen::MatrixBase<Derived>& P) {
+  if (P.rows() == 0) return 0.0;
+  const Eigen::Matrix<double, 1, Derived::ColsAtCompileTime> c = P.colwise().mean();
+  return std::sqrt((P.rowwise() - c).rowwise().squaredNorm().mean());
+}
 
 struct ProcrustesOptions {
   // Allow improper orthogonal matrices (det -1). When false, R is a proper rotation.

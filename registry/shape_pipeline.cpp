@@ -7,8 +7,10 @@
 
 #include "core/canonical_frame.h"
 #include "core/errors.h"
+#include "core/procrustes.h"
 #include "core/spectral.h"
 #include "registry/hash.h"
+#include "registry/pair_pipeline.h"
 
 namespace symembed {
 namespace {
@@ -153,8 +155,7 @@ void InputToKept(const Eigen::MatrixX3d& input_V, const std::vector<int>& input_
 double SymmetryGroundTruthError(const Eigen::MatrixX3d& Y, const std::vector<int>& ids,
                                 const std::vector<int>& sym_ids) {
   SYMEMBED_CHECK(ids.size() == sym_ids.size(), "ground truth lines differ in length");
-  const Eigen::RowVector3d centroid = Y.colwise().mean();
-  const double size = std::sqrt((Y.rowwise() - centroid).rowwise().squaredNorm().mean());
+  const double size = RmsRadius(Y);
   double sum = 0.0;
   int lines = 0;
   for (size_t i = 0; i < ids.size(); ++i) {
@@ -261,17 +262,11 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
       {"symmetrize_iterations", static_cast<double>(symmetrized.status.iterations)});
   out.report.push_back({"frame_axis_ratio", axis_ratio});
   if (!out.ground_truth.sym_ids.empty()) {
-    // Ground truth in input ids; a removed vertex stands for its nearest kept one.
-    const auto kept = [&](const std::vector<int>& input) {
-      std::vector<int> ids(input.size(), -1);
-      for (size_t i = 0; i < input.size(); ++i) {
-        const int v = input[i];
-        if (v >= 0 && v < static_cast<int>(out.nearest_kept.size())) ids[i] = out.nearest_kept[v];
-      }
-      return ids;
-    };
-    const double error = SymmetryGroundTruthError(data->Y, kept(out.ground_truth.ids),
-                                                  kept(out.ground_truth.sym_ids));
+    // The shape's lines against themselves: target_sym_ids are the symmetric partners, in
+    // preprocessed ids like the pairs' ground truth (lines of removed vertices dropped).
+    const PairGroundTruth self =
+        ToPreprocessedIds(PairLines(out.ground_truth, out.ground_truth), out, out);
+    const double error = SymmetryGroundTruthError(data->Y, self.source_ids, self.target_sym_ids);
     if (error >= 0.0) out.report.push_back({"symmetry_gt_error", error});
   }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/procrustes.h"
 #include "registry/types.h"
 #include "stages/flip/flip_common.h"
 

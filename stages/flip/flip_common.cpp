@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "core/knn.h"
+#include "core/procrustes.h"
 
 namespace symembed {
 
@@ -19,11 +20,6 @@ CandidateMaps ComputeCandidateMaps(const Eigen::MatrixX3d& Ys, const Eigen::Matr
     out.map[k] = index.Nearest(Q, &out.dist[k], threads);
   }
   return out;
-}
-
-double RmsRadius(const Eigen::MatrixX3d& Y) {
-  const Eigen::RowVector3d c = Y.colwise().mean();
-  return std::sqrt((Y.rowwise() - c).rowwise().squaredNorm().mean());
 }
 
 std::array<double, 4> ChamferScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,

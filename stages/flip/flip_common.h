@@ -20,9 +20,6 @@ struct CandidateMaps {
 CandidateMaps ComputeCandidateMaps(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                    int threads = 1);
 
-// Root mean square distance of the rows of Y (#N x 3) from their centroid.
-double RmsRadius(const Eigen::MatrixX3d& Y);
-
 // Symmetric Chamfer distance between Ys and each rotated target, divided by the mean RMS radius
 // of the two sets: mean NN distance source -> target plus target -> source.
 std::array<double, 4> ChamferScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,

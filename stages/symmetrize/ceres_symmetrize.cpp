@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "core/knn.h"
+#include "core/procrustes.h"
 #include "stages/symmetrize/symmetrize_common.h"
 #include "stages/symmetrize/stress_majorization.h"
 #include "stages/symmetrize/symmetrize_costs.h"
@@ -95,8 +96,7 @@ std::vector<std::vector<std::pair<int, double>>> MirrorWeights(const Eigen::Matr
 double MirrorResidual(const Eigen::MatrixX3d& X,
                       const std::vector<std::vector<std::pair<int, double>>>& weights) {
   if (X.rows() == 0) return 0.0;
-  const Eigen::RowVector3d c = X.colwise().mean();
-  const double size = std::sqrt((X.rowwise() - c).rowwise().squaredNorm().mean());
+  const double size = RmsRadius(X);
   double sum = 0.0;
   for (int i = 0; i < X.rows(); ++i) {
     Eigen::RowVector3d m = Eigen::RowVector3d::Zero();
@@ -128,8 +128,7 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
   const Eigen::MatrixX3d P = SampleRows3(Y, samples);
   const int n = static_cast<int>(samples.size());
   const std::vector<int>& sigma = symmetry.sigma;
-  const Eigen::RowVector3d centroid = P.colwise().mean();
-  const double size = std::sqrt((P.rowwise() - centroid).rowwise().squaredNorm().mean());
+  const double size = RmsRadius(P);
   if (!(size > 0.0)) throw InvalidInputError("symmetrize ceres: all samples coincide");
   const double inv_s = 1.0 / size;
 

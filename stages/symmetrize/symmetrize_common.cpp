@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "core/knn.h"
+#include "core/procrustes.h"
 
 namespace symembed {
 
@@ -25,8 +26,7 @@ Eigen::MatrixX3d MovePlaneToX0(const Eigen::MatrixXd& Y, const Eigen::Vector3d& 
 
 double Asymmetry(const Eigen::MatrixX3d& P, const std::vector<int>& sigma) {
   if (P.rows() == 0) return 0.0;
-  const Eigen::RowVector3d c = P.colwise().mean();
-  const double size = std::sqrt((P.rowwise() - c).rowwise().squaredNorm().mean());
+  const double size = RmsRadius(P);
   const Eigen::Matrix3d M = MirrorX();
   double sum = 0.0;
   for (int i = 0; i < P.rows(); ++i) {

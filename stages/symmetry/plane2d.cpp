@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/procrustes.h"
 #include "stages/embedding/classical_mds.h"
 #include "stages/embedding/smacof.h"
 #include "stages/symmetry/plane3d.h"
@@ -72,7 +73,7 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
     P.row(i) = Y.row(samples[i]);
   }
   const KnnIndex index3(P);
-  const double size2 = PointSetSize(X), size3 = PointSetSize(P);
+  const double size2 = RmsRadius(X), size3 = RmsRadius(P);
   auto intrinsic = [&](const std::vector<int>& sigma) {
     return options.intrinsic_weight > 0.0
                ? IntrinsicDistortion(Dss, sigma, options.search.trim_fraction,

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/procrustes.h"
 
 namespace symembed {
 
@@ -22,12 +23,6 @@ bool ReflectionSearchOptions::IsValid(std::string* error) const {
   else if (!(tolerance > 0.0)) out << "tolerance must be > 0, got " << tolerance;
   if (error) *error = out.str();
   return out.str().empty();
-}
-
-double PointSetSize(const Eigen::MatrixXd& P) {
-  if (P.rows() == 0) return 0.0;
-  const Eigen::RowVectorXd c = P.colwise().mean();
-  return std::sqrt((P.rowwise() - c).rowwise().squaredNorm().mean());
 }
 
 Eigen::MatrixXd Reflect(const Eigen::MatrixXd& P, const Eigen::VectorXd& normal, double offset) {
@@ -92,7 +87,7 @@ ReflectionFit EvaluateReflection(const Eigen::MatrixXd& P, const KnnIndex& index
   ReflectionFit fit;
   fit.normal = normal.normalized();
   fit.offset = offset;
-  Score(P, index, PointSetSize(P), options, &fit);
+  Score(P, index, RmsRadius(P), options, &fit);
   return fit;
 }
 
@@ -102,7 +97,7 @@ ReflectionFit RefineReflection(const Eigen::MatrixXd& P, const KnnIndex& index,
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("reflection search: " + error);
   SYMEMBED_CHECK(P.rows() == index.size() && P.cols() == index.dims(), "index does not match P");
-  const double size = PointSetSize(P);
+  const double size = RmsRadius(P);
   ReflectionFit fit;
   fit.normal = normal.normalized();
   fit.offset = offset;
@@ -197,7 +192,7 @@ SymmetryResult MakeSymmetryResult(const Eigen::MatrixXd& Y3s, const KnnIndex& in
   result.normal = fit.normal;
   result.offset = fit.offset;
   result.sigma = fit.sigma;
-  result.confidence = SymmetryConfidence(fit.residual, fit.sigma, PointSetSize(Y3s));
+  result.confidence = SymmetryConfidence(fit.residual, fit.sigma, RmsRadius(Y3s));
   result.score = fit.score;
   result.status.converged = fit.converged || iterations_3d == 0;
   result.status.iterations = fit.iterations;

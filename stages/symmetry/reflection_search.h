@@ -48,9 +48,6 @@ struct ReflectionFit {
   bool converged = false;
 };
 
-// RMS distance of the rows of P (#N x d) to their centroid.
-double PointSetSize(const Eigen::MatrixXd& P);
-
 // Rows of P reflected about the plane normal . p = offset.
 Eigen::MatrixXd Reflect(const Eigen::MatrixXd& P, const Eigen::VectorXd& normal, double offset);
 
