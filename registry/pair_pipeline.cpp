@@ -38,7 +38,7 @@ void CheckMap(const MatchResult& result, int source_vertices, int target_vertice
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
                  const PairGroundTruth& ground_truth) {
   Hasher h;
-  h.AddString("symembed-pair-cache-3").AddString(source.name).AddU64(source.key);
+  h.AddString("symembed-pair-cache-4").AddString(source.name).AddU64(source.key);
   h.AddString(target.name).AddU64(target.key);
   for (const Stage* stage : {static_cast<const Stage*>(pipeline.flip.get()),
                              static_cast<const Stage*>(pipeline.matching.get()),

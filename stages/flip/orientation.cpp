@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "core/errors.h"
@@ -121,36 +122,93 @@ double MapOrientation(const Surface& source, const Surface& target, const std::v
                      VertexNormals(target), map);
 }
 
+namespace {
+
+// The per-pair parts of the measurement that do not depend on the candidate (sample prefixes,
+// source triangles, target normals), and the ZoomOut + orientation of one candidate's map.
+class CandidateOrientation {
+ public:
+  CandidateOrientation(const Surface& source, const Surface& target,
+                       const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,
+                       const std::vector<int>& samples_in,
+                       const std::vector<int>& target_samples_in, const OrientationOptions& options)
+      : source_(source), target_(target), source_basis_(source_basis),
+        target_basis_(target_basis) {
+    std::string error;
+    if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
+    samples_ = SamplePrefix(samples_in, options.samples, options.k_end, "source");
+    if (options.target_samples > 0) {
+      target_samples_ =
+          SamplePrefix(target_samples_in, options.target_samples, options.k_end, "target");
+    }
+    zoomout_.k_start = options.k_start;
+    zoomout_.k_end = options.k_end;
+    zoomout_.step = options.step;
+    // The triangles are made of samples only: the map of the other vertices is not needed.
+    zoomout_.dense_result = false;
+    triangles_ = MakeSourceTriangles(source, samples_, options.neighbors);
+    target_normals_ = VertexNormals(target);
+  }
+
+  double operator()(const std::vector<int>& map) const {
+    CheckOrientationInput(source_, map, samples_);
+    const ZoomOutResult refined =
+        ZoomOut(source_basis_, target_basis_, map, samples_, zoomout_, target_samples_);
+    return Orientation(triangles_, target_, target_normals_, refined.map);
+  }
+
+ private:
+  const Surface& source_;
+  const Surface& target_;
+  const LaplaceBasis& source_basis_;
+  const LaplaceBasis& target_basis_;
+  std::vector<int> samples_, target_samples_;
+  ZoomOutOptions zoomout_;
+  SourceTriangles triangles_;
+  Eigen::MatrixX3d target_normals_;
+};
+
+}  // namespace
+
 std::array<double, 4> CandidateOrientations(const Surface& source, const Surface& target,
                                             const CandidateMaps& maps,
                                             const LaplaceBasis& source_basis,
                                             const LaplaceBasis& target_basis,
-                                            const std::vector<int>& samples_in,
-                                            const std::vector<int>& target_samples_in,
+                                            const std::vector<int>& samples,
+                                            const std::vector<int>& target_samples,
                                             const OrientationOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
-  const std::vector<int> samples =
-      SamplePrefix(samples_in, options.samples, options.k_end, "source");
-  const std::vector<int> target_samples =
-      options.target_samples > 0
-          ? SamplePrefix(target_samples_in, options.target_samples, options.k_end, "target")
-          : std::vector<int>{};
-  ZoomOutOptions zoomout;
-  zoomout.k_start = options.k_start;
-  zoomout.k_end = options.k_end;
-  zoomout.step = options.step;
-  // The triangles are made of samples only: the map of the other vertices is not needed.
-  zoomout.dense_result = false;
-  // The source triangles and the target normals do not depend on the candidate.
-  const SourceTriangles triangles = MakeSourceTriangles(source, samples, options.neighbors);
-  const Eigen::MatrixX3d target_normals = VertexNormals(target);
+  const CandidateOrientation measure(source, target, source_basis, target_basis, samples,
+                                     target_samples, options);
   std::array<double, 4> out{};
-  for (int k = 0; k < 4; ++k) {
-    CheckOrientationInput(source, maps.map[k], samples);
-    const ZoomOutResult refined =
-        ZoomOut(source_basis, target_basis, maps.map[k], samples, zoomout, target_samples);
-    out[k] = Orientation(triangles, target, target_normals, refined.map);
+  for (int k = 0; k < 4; ++k) out[k] = measure(maps.map[k]);
+  return out;
+}
+
+OrientationScores AddOrientationTerm(const std::array<double, 4>& scores, double weight,
+                                     const Surface& source, const Surface& target,
+                                     const CandidateMaps& maps, const LaplaceBasis& source_basis,
+                                     const LaplaceBasis& target_basis,
+                                     const std::vector<int>& samples,
+                                     const std::vector<int>& target_samples,
+                                     const OrientationOptions& options) {
+  if (!(weight >= 0.0)) throw ConfigError("flip orientation: weight must be >= 0");
+  const CandidateOrientation measure(source, target, source_basis, target_basis, samples,
+                                     target_samples, options);
+  std::array<int, 4> order{0, 1, 2, 3};
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return scores[a] < scores[b]; });
+  OrientationScores out;
+  out.total = scores;
+  out.orientation.fill(std::numeric_limits<double>::quiet_NaN());
+  double best = std::numeric_limits<double>::infinity();
+  for (int k : order) {
+    // total_k >= scores[k]: a candidate whose score already exceeds the lowest total cannot be
+    // the lowest (ties are measured, so the choice is the one of measuring all four).
+    if (scores[k] > best) continue;
+    out.orientation[k] = measure(maps.map[k]);
+    out.total[k] = scores[k] + weight * (1.0 - out.orientation[k]) / 2.0;
+    best = std::min(best, out.total[k]);
+    ++out.measured;
   }
   return out;
 }

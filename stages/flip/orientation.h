@@ -67,4 +67,23 @@ std::array<double, 4> CandidateOrientations(const Surface& source, const Surface
                                             const std::vector<int>& target_samples,
                                             const OrientationOptions& options);
 
+// The orientation term added to per-candidate scores (lower is better):
+// total_k = scores[k] + weight * (1 - o_k) / 2, o_k as in CandidateOrientations. Since
+// total_k >= scores[k], o_k is only measured for candidates that can still have the lowest
+// total: they are visited by increasing scores[k], and one whose score exceeds the lowest total
+// so far is skipped (orientation NaN, total left at its lower bound scores[k]). The candidate
+// with the lowest total is the one that measuring all four would give.
+struct OrientationScores {
+  std::array<double, 4> total{};
+  std::array<double, 4> orientation{};  // NaN for skipped candidates
+  int measured = 0;                     // candidates whose ZoomOut ran
+};
+OrientationScores AddOrientationTerm(const std::array<double, 4>& scores, double weight,
+                                     const Surface& source, const Surface& target,
+                                     const CandidateMaps& maps, const LaplaceBasis& source_basis,
+                                     const LaplaceBasis& target_basis,
+                                     const std::vector<int>& samples,
+                                     const std::vector<int>& target_samples,
+                                     const OrientationOptions& options);
+
 }  // namespace symembed

@@ -1,4 +1,5 @@
 // The flip stages: thin adapters around the scorers (extrinsic, chamfer, hks, oracle).
+#include <cmath>
 #include <memory>
 #include <sstream>
 
@@ -42,14 +43,14 @@ class ExtrinsicStage : public FlipStage {
     ExtrinsicScores s = ExtrinsicFlipScores(
         pair.source.Y, pair.target.Y, AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
         AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_, maps);
-    std::array<double, 4> orientation{};
+    OrientationScores orientation;
     if (orientation_weight_ > 0.0) {
-      orientation = CandidateOrientations(
-          pair.source.surface, pair.target.surface, maps,
+      orientation = AddOrientationTerm(
+          s.total, orientation_weight_, pair.source.surface, pair.target.surface, maps,
           GetLaplaceBasis(pair.source.aux, orientation_.k_end),
           GetLaplaceBasis(pair.target.aux, orientation_.k_end), pair.source.samples,
           pair.target.samples, orientation_);
-      for (int k = 0; k < 4; ++k) s.total[k] += orientation_weight_ * (1.0 - orientation[k]) / 2.0;
+      s.total = orientation.total;
     }
     FlipResult result = MakeFlipResult(s.total, "extrinsic");
     std::ostringstream detail;
@@ -58,8 +59,12 @@ class ExtrinsicStage : public FlipStage {
     detail << "; global";
     for (double v : s.global) detail << " " << v;
     if (orientation_weight_ > 0.0) {
+      // Candidates that could not have the lowest total are not measured ("-").
       detail << "; orientation";
-      for (double v : orientation) detail << " " << v;
+      for (double v : orientation.orientation) {
+        if (std::isnan(v)) detail << " -";
+        else detail << " " << v;
+      }
     }
     result.status.message += detail.str();
     return result;

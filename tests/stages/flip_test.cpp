@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/canonical_frame.h"
@@ -119,6 +120,54 @@ TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
   for (int k = 0; k < 4; ++k) {
     if (k != right) {
       EXPECT_LT(o[k], o[right]) << "candidate " << k;
+    }
+  }
+}
+
+TEST(OrientationFlip, PrunedTermChoosesLikeTheFullOne) {
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = 1200;
+  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
+  const ShapeData source = MakeShape("pose0", figures.shapes[0].shape.surface);
+  const ShapeData target = MakeShape("pose1", figures.shapes[1].shape.surface);
+  OrientationOptions options;
+  LaplaceBasisOptions basis;
+  basis.k = options.k_end;
+  const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
+  const LaplaceBasis bt = ComputeLaplaceBasis(target.surface, basis);
+  const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
+  const std::array<double, 4> o = CandidateOrientations(
+      source.surface, target.surface, maps, bs, bt, source.samples, target.samples, options);
+  auto argmin = [](const std::array<double, 4>& v) {
+    return static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
+  };
+  // Score spreads from none (every candidate measured) to one that leaves only the best
+  // candidate measured; with every weight the pruned choice is the full one.
+  for (double spread : {0.0, 0.3, 5.0}) {
+    for (int first = 0; first < 4; ++first) {
+      std::array<double, 4> scores{};
+      for (int k = 0; k < 4; ++k) scores[k] = spread * ((k - first + 4) % 4);
+      std::array<double, 4> full{};
+      for (int k = 0; k < 4; ++k) full[k] = scores[k] + (1.0 - o[k]) / 2.0;
+      const OrientationScores pruned = AddOrientationTerm(
+          scores, 1.0, source.surface, target.surface, maps, bs, bt, source.samples,
+          target.samples, options);
+      EXPECT_EQ(argmin(pruned.total), argmin(full)) << "spread " << spread << " first " << first;
+      for (int k = 0; k < 4; ++k) {
+        if (std::isnan(pruned.orientation[k])) {
+          EXPECT_EQ(pruned.total[k], scores[k]);
+          EXPECT_GT(scores[k], full[argmin(full)]);
+        } else {
+          EXPECT_EQ(pruned.orientation[k], o[k]);
+          EXPECT_EQ(pruned.total[k], full[k]);
+        }
+      }
+      if (spread == 0.0) {
+        EXPECT_EQ(pruned.measured, 4);
+      } else if (spread == 5.0) {
+        EXPECT_EQ(pruned.measured, 1);
+      }
     }
   }
 }
