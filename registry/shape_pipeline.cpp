@@ -1,7 +1,6 @@
 #include "registry/shape_pipeline.h"
 
 #include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <limits>
 

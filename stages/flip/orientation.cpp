@@ -39,14 +39,6 @@ bool NearTangent(const Eigen::Vector3d& cross, const Eigen::Vector3d& normal) {
   return std::abs(cross.dot(normal)) >= 0.5 * cross.norm() * normal.norm();
 }
 
-// The source side of the measurement, independent of the map: triangles (apex sample i and two
-// of its nearest samples j, k) that are spread and near tangent, with the sign of their
-// orientation against the source normal at i.
-struct SourceTriangles {
-  std::vector<std::array<int, 3>> vertices;  // source vertex ids (i, j, k)
-  std::vector<double> sign;
-};
-
 SourceTriangles MakeSourceTriangles(const Surface& source, const std::vector<int>& samples,
                                     int neighbors) {
   const int n = static_cast<int>(samples.size());
@@ -122,78 +114,48 @@ double MapOrientation(const Surface& source, const Surface& target, const std::v
                      VertexNormals(target), map);
 }
 
-namespace {
-
-// The per-pair parts of the measurement that do not depend on the candidate (sample prefixes,
-// source triangles, target normals), and the ZoomOut + orientation of one candidate's map.
-class CandidateOrientation {
- public:
-  CandidateOrientation(const Surface& source, const Surface& target,
-                       const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,
-                       const std::vector<int>& samples_in,
-                       const std::vector<int>& target_samples_in, const OrientationOptions& options)
-      : source_(source), target_(target), source_basis_(source_basis),
-        target_basis_(target_basis) {
-    std::string error;
-    if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
-    samples_ = SamplePrefix(samples_in, options.samples, options.k_end, "source");
-    if (options.target_samples > 0) {
-      target_samples_ =
-          SamplePrefix(target_samples_in, options.target_samples, options.k_end, "target");
-    }
-    zoomout_.k_start = options.k_start;
-    zoomout_.k_end = options.k_end;
-    zoomout_.step = options.step;
-    // The triangles are made of samples only: the map of the other vertices is not needed.
-    zoomout_.dense_result = false;
-    triangles_ = MakeSourceTriangles(source, samples_, options.neighbors);
-    target_normals_ = VertexNormals(target);
+CandidateOrientation::CandidateOrientation(const Surface& source, const Surface& target,
+                                           const LaplaceBasis& source_basis,
+                                           const LaplaceBasis& target_basis,
+                                           const std::vector<int>& samples,
+                                           const std::vector<int>& target_samples,
+                                           const OrientationOptions& options)
+    : source_(source), target_(target), source_basis_(source_basis),
+      target_basis_(target_basis) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
+  samples_ = SamplePrefix(samples, options.samples, options.k_end, "source");
+  if (options.target_samples > 0) {
+    target_samples_ =
+        SamplePrefix(target_samples, options.target_samples, options.k_end, "target");
   }
+  zoomout_.k_start = options.k_start;
+  zoomout_.k_end = options.k_end;
+  zoomout_.step = options.step;
+  // The triangles are made of samples only: the map of the other vertices is not needed.
+  zoomout_.dense_result = false;
+  triangles_ = MakeSourceTriangles(source, samples_, options.neighbors);
+  target_normals_ = VertexNormals(target);
+}
 
-  double operator()(const std::vector<int>& map) const {
-    CheckOrientationInput(source_, map, samples_);
-    const ZoomOutResult refined =
-        ZoomOut(source_basis_, target_basis_, map, samples_, zoomout_, target_samples_);
-    return Orientation(triangles_, target_, target_normals_, refined.map);
-  }
+double CandidateOrientation::operator()(const std::vector<int>& map) const {
+  CheckOrientationInput(source_, map, samples_);
+  const ZoomOutResult refined =
+      ZoomOut(source_basis_, target_basis_, map, samples_, zoomout_, target_samples_);
+  return Orientation(triangles_, target_, target_normals_, refined.map);
+}
 
- private:
-  const Surface& source_;
-  const Surface& target_;
-  const LaplaceBasis& source_basis_;
-  const LaplaceBasis& target_basis_;
-  std::vector<int> samples_, target_samples_;
-  ZoomOutOptions zoomout_;
-  SourceTriangles triangles_;
-  Eigen::MatrixX3d target_normals_;
-};
-
-}  // namespace
-
-std::array<double, 4> CandidateOrientations(const Surface& source, const Surface& target,
-                                            const CandidateMaps& maps,
-                                            const LaplaceBasis& source_basis,
-                                            const LaplaceBasis& target_basis,
-                                            const std::vector<int>& samples,
-                                            const std::vector<int>& target_samples,
-                                            const OrientationOptions& options) {
-  const CandidateOrientation measure(source, target, source_basis, target_basis, samples,
-                                     target_samples, options);
+std::array<double, 4> CandidateOrientations(const CandidateOrientation& measure,
+                                            const CandidateMaps& maps) {
   std::array<double, 4> out{};
   for (int k = 0; k < 4; ++k) out[k] = measure(maps.map[k]);
   return out;
 }
 
 OrientationScores AddOrientationTerm(const std::array<double, 4>& scores, double weight,
-                                     const Surface& source, const Surface& target,
-                                     const CandidateMaps& maps, const LaplaceBasis& source_basis,
-                                     const LaplaceBasis& target_basis,
-                                     const std::vector<int>& samples,
-                                     const std::vector<int>& target_samples,
-                                     const OrientationOptions& options) {
+                                     const CandidateMaps& maps,
+                                     const CandidateOrientation& measure) {
   if (!(weight >= 0.0)) throw ConfigError("flip orientation: weight must be >= 0");
-  const CandidateOrientation measure(source, target, source_basis, target_basis, samples,
-                                     target_samples, options);
   std::array<int, 4> order{0, 1, 2, 3};
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return scores[a] < scores[b]; });

@@ -24,6 +24,7 @@
 #include "core/mesh.h"
 #include "core/spectral.h"
 #include "stages/flip/flip_common.h"
+#include "stages/refine/zoomout.h"
 
 namespace symembed {
 
@@ -55,20 +56,47 @@ struct OrientationOptions {
 double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
                       const std::vector<int>& samples, int neighbors);
 
-// For each candidate rotation: the orientation of its nearest-neighbour map (maps, from
-// ComputeCandidateMaps of the canonical embeddings) after ZoomOut in the given bases.
-// samples: source vertex ids (the first options.samples are used); target_samples: target
-// vertex ids (the first options.target_samples are used; all target vertices when that is 0).
-std::array<double, 4> CandidateOrientations(const Surface& source, const Surface& target,
-                                            const CandidateMaps& maps,
-                                            const LaplaceBasis& source_basis,
-                                            const LaplaceBasis& target_basis,
-                                            const std::vector<int>& samples,
-                                            const std::vector<int>& target_samples,
-                                            const OrientationOptions& options);
+// The orientation of a candidate's nearest-neighbour map (from ComputeCandidateMaps of the
+// canonical embeddings) after ZoomOut in the given bases. Built once per pair: it holds what does
+// not depend on the candidate (sample prefixes, source triangles, target normals). samples:
+// source vertex ids (the first options.samples are used); target_samples: target vertex ids (the
+// first options.target_samples are used; all target vertices when that is 0). The surfaces and
+// bases are referenced, not copied: they must outlive it. Throws ConfigError for invalid options, InvalidInputError
+// for too few samples.
+// The source side of the measurement, independent of the map: triangles (apex sample i and two
+// of its nearest samples j, k) that are spread and near tangent to the surface at i.
+struct SourceTriangles {
+  std::vector<std::array<int, 3>> vertices;  // source vertex ids (i, j, k)
+  std::vector<double> sign;                  // sign of their orientation against the normal at i
+};
+
+class CandidateOrientation {
+ public:
+  CandidateOrientation(const Surface& source, const Surface& target,
+                       const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,
+                       const std::vector<int>& samples, const std::vector<int>& target_samples,
+                       const OrientationOptions& options);
+
+  // The orientation of one candidate's map (#Vs target vertex per source vertex).
+  double operator()(const std::vector<int>& map) const;
+
+ private:
+  const Surface& source_;
+  const Surface& target_;
+  const LaplaceBasis& source_basis_;
+  const LaplaceBasis& target_basis_;
+  std::vector<int> samples_, target_samples_;
+  ZoomOutOptions zoomout_;
+  SourceTriangles triangles_;
+  Eigen::MatrixX3d target_normals_;
+};
+
+// The orientation of each of the four candidates' maps.
+std::array<double, 4> CandidateOrientations(const CandidateOrientation& measure,
+                                            const CandidateMaps& maps);
 
 // The orientation term added to per-candidate scores (lower is better):
-// total_k = scores[k] + weight * (1 - o_k) / 2, o_k as in CandidateOrientations. Since
+// total_k = scores[k] + weight * (1 - o_k) / 2, o_k = measure(maps.map[k]). Since
 // total_k >= scores[k], o_k is only measured for candidates that can still have the lowest
 // total: they are visited by increasing scores[k], and one whose score exceeds the lowest total
 // so far is skipped (orientation NaN, total left at its lower bound scores[k]). The candidate
@@ -79,11 +107,7 @@ struct OrientationScores {
   int measured = 0;                     // candidates whose ZoomOut ran
 };
 OrientationScores AddOrientationTerm(const std::array<double, 4>& scores, double weight,
-                                     const Surface& source, const Surface& target,
-                                     const CandidateMaps& maps, const LaplaceBasis& source_basis,
-                                     const LaplaceBasis& target_basis,
-                                     const std::vector<int>& samples,
-                                     const std::vector<int>& target_samples,
-                                     const OrientationOptions& options);
+                                     const CandidateMaps& maps,
+                                     const CandidateOrientation& measure);
 
 }  // namespace symembed

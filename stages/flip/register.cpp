@@ -45,11 +45,12 @@ class ExtrinsicStage : public FlipStage {
         AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_, maps);
     OrientationScores orientation;
     if (orientation_weight_ > 0.0) {
-      orientation = AddOrientationTerm(
-          s.total, orientation_weight_, pair.source.surface, pair.target.surface, maps,
-          GetLaplaceBasis(pair.source.aux, orientation_.k_end),
-          GetLaplaceBasis(pair.target.aux, orientation_.k_end), pair.source.samples,
-          pair.target.samples, orientation_);
+      const LaplaceBasis source_basis = GetLaplaceBasis(pair.source.aux, orientation_.k_end);
+      const LaplaceBasis target_basis = GetLaplaceBasis(pair.target.aux, orientation_.k_end);
+      const CandidateOrientation measure(pair.source.surface, pair.target.surface, source_basis,
+                                         target_basis, pair.source.samples, pair.target.samples,
+                                         orientation_);
+      orientation = AddOrientationTerm(s.total, orientation_weight_, maps, measure);
       s.total = orientation.total;
     }
     FlipResult result = MakeFlipResult(s.total, "extrinsic");

@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include "core/errors.h"
@@ -87,16 +88,15 @@ std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s,
                  "C is " << ks << " x " << kt << " for bases of " << Phi_s.cols() << " and "
                          << Phi_t.cols() << " columns");
   SYMEMBED_CHECK(mass_t.size() == Phi_t.rows(), "mass_t must have one entry per target vertex");
+  std::vector<int> candidates = target_ids;
+  if (candidates.empty()) {
+    candidates.resize(Phi_t.rows());
+    std::iota(candidates.begin(), candidates.end(), 0);
+  }
   std::vector<int> ids;
-  if (target_ids.empty()) {
-    for (int j = 0; j < Phi_t.rows(); ++j) {
-      if (mass_t(j) > 0.0) ids.push_back(j);
-    }
-  } else {
-    for (int j : target_ids) {
-      SYMEMBED_CHECK(j >= 0 && j < Phi_t.rows(), "target id " << j << " out of range");
-      if (mass_t(j) > 0.0) ids.push_back(j);
-    }
+  for (int j : candidates) {
+    SYMEMBED_CHECK(j >= 0 && j < Phi_t.rows(), "target id " << j << " out of range");
+    if (mass_t(j) > 0.0) ids.push_back(j);
   }
   if (ids.empty()) throw InvalidInputError("target surface has no vertex with positive area");
   Eigen::MatrixXd points(ids.size(), kt);

@@ -68,19 +68,20 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
     const Eigen::MatrixXd C = FitFunctionalMap(source.evecs.leftCols(k), target.evecs.leftCols(k),
                                                active, active_map, weights);
     std::vector<double> sq_dist;
-    // The last query maps every source vertex (the dense map of the sampled variant) unless
-    // only the samples are asked for.
-    const bool dense_query = last && sampled && options.dense_result;
-    const std::vector<int>& query = dense_query ? all : active;
+    // The query covers every source vertex without samples, and in the last iteration of the
+    // sampled variant (its dense map) unless only the samples are asked for; a query on the
+    // samples lands on the target samples.
+    const bool every_vertex = !sampled || (last && options.dense_result);
+    const std::vector<int>& query = every_vertex ? all : active;
     std::vector<int> mapped =
         PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C, query, &sq_dist,
-                                  dense_query || !sampled ? std::vector<int>{} : target_samples);
+                                  every_vertex ? std::vector<int>{} : target_samples);
     result.k.push_back(k);
     result.orthogonality.push_back(OrthogonalityDefect(C));
     result.spectral_residual.push_back(
         sq_dist.empty() ? 0.0
                         : std::accumulate(sq_dist.begin(), sq_dist.end(), 0.0) / sq_dist.size());
-    if (last && (!sampled || options.dense_result)) {
+    if (last && every_vertex) {
       result.map = std::move(mapped);
     } else if (last) {
       result.map = initial_map;

@@ -9,7 +9,6 @@
 #include "core/knn.h"
 #include "core/procrustes.h"
 #include "stages/symmetrize/symmetrize_common.h"
-#include "stages/symmetrize/stress_majorization.h"
 #include "stages/symmetrize/symmetrize_costs.h"
 
 namespace symembed {
@@ -119,20 +118,10 @@ double GraphStress(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& X, int k) 
   return den > 0.0 ? std::sqrt(num / den) : 0.0;
 }
 
-SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<int>& samples,
-                                 const SymmetryResult& symmetry,
-                                 const CeresSymmetrizeOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) throw ConfigError("symmetrize ceres: " + error);
-  const Eigen::MatrixX3d Y = MovePlaneToX0(Y_in, symmetry.normal, symmetry.offset);
-  const Eigen::MatrixX3d P = SampleRows3(Y, samples);
-  const int n = static_cast<int>(samples.size());
+SymmetrizeEnergy CeresSymmetrizeEnergy(const Eigen::MatrixX3d& P, const SymmetryResult& symmetry,
+                                       const CeresSymmetrizeOptions& options) {
+  const int n = static_cast<int>(P.rows());
   const std::vector<int>& sigma = symmetry.sigma;
-  const double size = RmsRadius(P);
-  if (!(size > 0.0)) throw InvalidInputError("symmetrize ceres: all samples coincide");
-  const double inv_s = 1.0 / size;
-
-  // The energy's terms, shared by the warm start and the Ceres problem.
   SymmetrizeEnergy energy;
   energy.edges = KnnGraphEdges(P, options.graph_neighbors);
   for (const auto& [i, j] : energy.edges) energy.lengths.push_back((P.row(i) - P.row(j)).norm());
@@ -150,6 +139,24 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
   energy.plane_weight = options.plane_weight;
   energy.anchor_weight = options.anchor_weight;
   energy.anchor = P;
+  return energy;
+}
+
+SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<int>& samples,
+                                 const SymmetryResult& symmetry,
+                                 const CeresSymmetrizeOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("symmetrize ceres: " + error);
+  const Eigen::MatrixX3d Y = MovePlaneToX0(Y_in, symmetry.normal, symmetry.offset);
+  const Eigen::MatrixX3d P = SampleRows3(Y, samples);
+  const int n = static_cast<int>(samples.size());
+  const std::vector<int>& sigma = symmetry.sigma;
+  const double size = RmsRadius(P);
+  if (!(size > 0.0)) throw InvalidInputError("symmetrize ceres: all samples coincide");
+  const double inv_s = 1.0 / size;
+
+  // The energy's terms, shared by the warm start and the Ceres problem.
+  const SymmetrizeEnergy energy = CeresSymmetrizeEnergy(P, symmetry, options);
   const auto& mirror = energy.mirror;
 
   MajorizationResult warm;

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "registry/types.h"
+#include "stages/symmetrize/stress_majorization.h"
 
 namespace symembed {
 
@@ -74,6 +75,12 @@ struct CeresSymmetrizeOptions {
 SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y, const std::vector<int>& samples,
                                  const SymmetryResult& symmetry,
                                  const CeresSymmetrizeOptions& options);
+
+// The stage's energy (above, before the common 1 / size^2 factor) of the samples P (#S x 3,
+// plane x = 0) with symmetry's sigma and confidence (#S, or empty = all 1): the terms the warm
+// start minimises and the Ceres problem is built from.
+SymmetrizeEnergy CeresSymmetrizeEnergy(const Eigen::MatrixX3d& P, const SymmetryResult& symmetry,
+                                       const CeresSymmetrizeOptions& options);
 
 // Relative stress of sample positions X against the reference P on P's symmetric k-NN graph:
 // sqrt(sum (||x_i - x_j|| - ||p_i - p_j||)^2 / sum ||p_i - p_j||^2). P, X: #S x 3.

@@ -113,9 +113,10 @@ TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
   basis.k = options.k_end;
   const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
   const LaplaceBasis bt = ComputeLaplaceBasis(target.surface, basis);
+  const CandidateOrientation measure(source.surface, target.surface, bs, bt, source.samples,
+                                     target.samples, options);
   const std::array<double, 4> o =
-      CandidateOrientations(source.surface, target.surface, ComputeCandidateMaps(source.Y, target.Y),
-                            bs, bt, source.samples, target.samples, options);
+      CandidateOrientations(measure, ComputeCandidateMaps(source.Y, target.Y));
   EXPECT_GT(o[right], 0.5) << o[0] << " " << o[1] << " " << o[2] << " " << o[3];
   for (int k = 0; k < 4; ++k) {
     if (k != right) {
@@ -137,8 +138,9 @@ TEST(OrientationFlip, PrunedTermChoosesLikeTheFullOne) {
   const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
   const LaplaceBasis bt = ComputeLaplaceBasis(target.surface, basis);
   const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
-  const std::array<double, 4> o = CandidateOrientations(
-      source.surface, target.surface, maps, bs, bt, source.samples, target.samples, options);
+  const CandidateOrientation measure(source.surface, target.surface, bs, bt, source.samples,
+                                     target.samples, options);
+  const std::array<double, 4> o = CandidateOrientations(measure, maps);
   auto argmin = [](const std::array<double, 4>& v) {
     return static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
   };
@@ -150,9 +152,7 @@ TEST(OrientationFlip, PrunedTermChoosesLikeTheFullOne) {
       for (int k = 0; k < 4; ++k) scores[k] = spread * ((k - first + 4) % 4);
       std::array<double, 4> full{};
       for (int k = 0; k < 4; ++k) full[k] = scores[k] + (1.0 - o[k]) / 2.0;
-      const OrientationScores pruned = AddOrientationTerm(
-          scores, 1.0, source.surface, target.surface, maps, bs, bt, source.samples,
-          target.samples, options);
+      const OrientationScores pruned = AddOrientationTerm(scores, 1.0, maps, measure);
       EXPECT_EQ(argmin(pruned.total), argmin(full)) << "spread " << spread << " first " << first;
       for (int k = 0; k < 4; ++k) {
         if (std::isnan(pruned.orientation[k])) {

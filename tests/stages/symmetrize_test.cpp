@@ -4,6 +4,7 @@
 #include <random>
 
 #include "core/knn.h"
+#include "core/procrustes.h"
 #include "registry/registry.h"
 #include "stages/symmetrize/ceres_symmetrize.h"
 #include "stages/symmetrize/simple_symmetrize.h"
@@ -188,25 +189,12 @@ TEST(CeresSymmetrize, CombinedMirrorCounterpartsKeepTheShapeUnderCoarseSampling)
   EXPECT_GT(GraphStress(before, r.Y, 10), 2.0 * GraphStress(before, soft.Y, 10));
 }
 
-// The energy of the asymmetric figure's samples, as the ceres stage builds it.
-SymmetrizeEnergy FigureEnergy(const Eigen::MatrixX3d& P, const std::vector<int>& sigma,
-                              double symmetry_weight) {
-  SymmetrizeEnergy e;
-  e.edges = KnnGraphEdges(P, 16);
-  for (const auto& [i, j] : e.edges) e.lengths.push_back((P.row(i) - P.row(j)).norm());
-  e.mirror = MirrorWeights(P, sigma, 1);
-  e.symmetry_weight = Eigen::VectorXd::Constant(P.rows(), symmetry_weight);
-  for (int i = 0; i < P.rows(); ++i) {
-    if (sigma[i] == i) e.on_plane.push_back(i);
-  }
-  e.plane_weight = 10.0;
-  return e;
-}
-
 TEST(StressMajorization, NeverRaisesTheEnergyAndApproachesTheCeresMinimum) {
   const AsymmetricFigure f = MakeAsymmetricFigure();
   const Eigen::MatrixX3d P = MovePlaneToX0(f.Y, f.symmetry.normal, f.symmetry.offset);
-  const SymmetrizeEnergy energy = FigureEnergy(P, f.sigma, 10.0);
+  CeresSymmetrizeOptions options;
+  options.symmetry_weight = 10.0;
+  const SymmetrizeEnergy energy = CeresSymmetrizeEnergy(P, f.symmetry, options);
   double previous = energy.Evaluate(P);
   Eigen::MatrixX3d X = P;
   for (int step = 0; step < 20; ++step) {
@@ -221,15 +209,11 @@ TEST(StressMajorization, NeverRaisesTheEnergyAndApproachesTheCeresMinimum) {
   // half the energy divided by the squared size of the sample set).
   const MajorizationResult many = MajorizeSymmetrizeEnergy(energy, P, 2000, 1e-9);
   EXPECT_LT(many.energy_after, 0.05 * many.energy_before);
-  CeresSymmetrizeOptions options;
-  options.symmetry_weight = 10.0;
   options.warm_start_iterations = 0;  // Ceres alone
   options.max_iterations = 100;
   const std::vector<int> samples = AllVertices(f.surface.NumVertices());
   const SymmetrizeResult ceres = SymmetrizeCeres(f.Y, samples, f.symmetry, options);
-  const Eigen::RowVector3d c = P.colwise().mean();
-  const double size2 = (P.rowwise() - c).rowwise().squaredNorm().mean();
-  const double ceres_energy = 2.0 * ceres.status.residual * size2;
+  const double ceres_energy = 2.0 * ceres.status.residual * RmsRadius(P) * RmsRadius(P);
   EXPECT_NEAR(many.energy_after, ceres_energy, 0.02 * ceres_energy);
 }
 
