@@ -29,12 +29,14 @@ Eigen::SparseMatrix<double> CotanStiffness(const Surface& s) {
   return L;
 }
 
-Eigen::MatrixX3d VertexNormals(const Surface& s) {
-  Eigen::MatrixX3d N = Eigen::MatrixX3d::Zero(s.V.rows(), 3);
-  for (int f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+Eigen::MatrixX3d VertexNormals(const Surface& s) { return VertexNormals(s.V, s.F); }
+
+Eigen::MatrixX3d VertexNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  Eigen::MatrixX3d N = Eigen::MatrixX3d::Zero(V.rows(), 3);
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
     const Eigen::RowVector3d n = (b - a).cross(c - a).transpose();  // length = 2 * area
-    for (int k = 0; k < 3; ++k) N.row(s.F(f, k)) += n;
+    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n;
   }
   for (int i = 0; i < N.rows(); ++i) {
     const double len = N.row(i).norm();

@@ -27,5 +27,8 @@ Eigen::VectorXd VertexAreas(const Surface& surface);
 // Unit vertex normals, #V x 3: area-weighted sums of the face normals (outward for
 // counter-clockwise faces seen from outside); zero rows for vertices in no face.
 Eigen::MatrixX3d VertexNormals(const Surface& surface);
+// The same for positions V (#V x 3) other than the surface's own, e.g. an embedding of its
+// vertices: the normals of the embedded surface.
+Eigen::MatrixX3d VertexNormals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
 
 }  // namespace symembed

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/laplacian.h"
 #include "registry/hash.h"
 
 namespace symembed {
@@ -17,6 +18,7 @@ double Since(std::chrono::steady_clock::time_point start) {
 Eigen::MatrixX3d Rotated(const Eigen::MatrixX3d& Y, const Eigen::Matrix3d& R) {
   return Y * R.transpose();
 }
+
 
 void CheckMap(const MatchResult& result, int source_vertices, int target_vertices,
               const char* stage) {
@@ -34,6 +36,10 @@ void CheckMap(const MatchResult& result, int source_vertices, int target_vertice
 }
 
 }  // namespace
+
+EmbeddedPoints EmbeddedShape(const ShapeData& shape, const Eigen::Matrix3d& R) {
+  return {Rotated(shape.Y, R), Rotated(VertexNormals(shape.Y, shape.surface.F), R)};
+}
 
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
                  const PairGroundTruth& ground_truth) {
@@ -99,7 +105,9 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   const auto rotations = CandidateRotations();
 
   start = std::chrono::steady_clock::now();
-  MatchResult matched = pipeline.matching->Run(a.Y, Rotated(b.Y, rotations[out.flip.chosen]));
+  const EmbeddedPoints source_points = EmbeddedShape(a);
+  MatchResult matched =
+      pipeline.matching->Run(source_points, EmbeddedShape(b, rotations[out.flip.chosen]));
   out.times.push_back({"matching", Since(start), false});
   counters->Executed("matching");
   CheckMap(matched, a.surface.NumVertices(), nb, "matching");
@@ -122,7 +130,9 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
 
   if (ground_truth && !ground_truth->source_ids.empty() && mean_error) {
     start = std::chrono::steady_clock::now();
-    Eigen::MatrixX3d points(ground_truth->source_ids.size(), 3);
+    EmbeddedPoints points;
+    points.Y.resize(ground_truth->source_ids.size(), 3);
+    points.N.resize(ground_truth->source_ids.size(), 3);
     for (size_t i = 0; i < ground_truth->source_ids.size(); ++i) {
       const int v = ground_truth->source_ids[i];
       if (v < 0 || v >= static_cast<int>(source.nearest_kept.size())) {
@@ -130,12 +140,13 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
                                 " of a mesh with " +
                                 std::to_string(source.nearest_kept.size()) + " vertices");
       }
-      points.row(i) = a.Y.row(source.nearest_kept[v]);
+      points.Y.row(i) = source_points.Y.row(source.nearest_kept[v]);
+      points.N.row(i) = source_points.N.row(source.nearest_kept[v]);
     }
     double best = std::numeric_limits<double>::infinity();
     for (int c = 0; c < 4; ++c) {
-      MatchResult m = pipeline.matching->Run(points, Rotated(b.Y, rotations[c]));
-      CheckMap(m, static_cast<int>(points.rows()), nb, "matching");
+      MatchResult m = pipeline.matching->Run(points, EmbeddedShape(b, rotations[c]));
+      CheckMap(m, static_cast<int>(points.Y.rows()), nb, "matching");
       std::vector<int> predicted(m.map.size());
       for (size_t i = 0; i < m.map.size(); ++i) predicted[i] = b.input_ids[m.map[i]];
       out.oracle_errors[c] = mean_error(predicted);

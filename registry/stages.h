@@ -89,10 +89,17 @@ class FlipStage : public PairStage {
   virtual FlipResult Run(const PairInput& pair) const = 0;
 };
 
+// Points of an embedding to match: positions Y (#P x 3) and the unit normals N of the embedded
+// surface at them (#P x 3, rotated with Y; empty when not available).
+struct EmbeddedPoints {
+  Eigen::MatrixX3d Y;
+  Eigen::MatrixX3d N;
+};
+
 class MatchingStage : public PairStage {
  public:
-  // Ys: #Vs x 3 source embedding; Yt: #Vt x 3 target embedding, already rotated.
-  virtual MatchResult Run(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt) const = 0;
+  // source: points of the source embedding; target: the target embedding, already rotated.
+  virtual MatchResult Run(const EmbeddedPoints& source, const EmbeddedPoints& target) const = 0;
 };
 
 class RefineStage : public PairStage {

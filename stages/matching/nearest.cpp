@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "core/knn.h"
+#include "core/procrustes.h"
 
 namespace symembed {
 
@@ -30,11 +31,44 @@ MatchResult MatchNearest(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
   return result;
 }
 
+MatchResult MatchNearest(const EmbeddedPoints& source, const EmbeddedPoints& target,
+                         double normal_weight, int threads) {
+  if (!(normal_weight >= 0.0)) {
+    throw ConfigError("matching: normal_weight must be >= 0, got " +
+                      std::to_string(normal_weight));
+  }
+  if (normal_weight == 0.0) return MatchNearest(source.Y, target.Y, threads);
+  CheckEmbedding(source.Y, "source");
+  CheckEmbedding(target.Y, "target");
+  const std::pair<const EmbeddedPoints*, const char*> sides[] = {{&source, "source"},
+                                                                  {&target, "target"}};
+  for (const auto& [points, which] : sides) {
+    if (points->N.rows() != points->Y.rows() || !points->N.allFinite()) {
+      throw InvalidInputError(std::string("matching: the ") + which + " normals (" +
+                              std::to_string(points->N.rows()) + " rows) do not match its " +
+                              std::to_string(points->Y.rows()) + " points or are not finite");
+    }
+  }
+  const double w = normal_weight * RmsRadius(target.Y);
+  auto lift = [w](const EmbeddedPoints& p) {
+    Eigen::MatrixXd X(p.Y.rows(), 6);
+    X << p.Y, w * p.N;
+    return X;
+  };
+  const KnnIndex index(lift(target));
+  Eigen::VectorXd dist;
+  MatchResult result;
+  result.map = index.Nearest(lift(source), &dist, threads);
+  result.status.residual = dist.mean();
+  return result;
+}
+
 bool ScaledIcpOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   if (iterations < 0) out << "iterations must be >= 0, got " << iterations;
   else if (!(min_scale > 0.0 && min_scale <= 1.0)) out << "min_scale must be in (0, 1], got " << min_scale;
   else if (!(max_scale >= 1.0)) out << "max_scale must be >= 1, got " << max_scale;
+  else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0, got " << normal_weight;
   else if (threads < 0) out << "threads must be >= 0, got " << threads;
   if (error) *error = out.str();
   return out.str().empty();
@@ -95,12 +129,20 @@ ScaledAlignment AlignScaled(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& 
   return a;
 }
 
-MatchResult MatchNearestScaled(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+MatchResult MatchNearestScaled(const EmbeddedPoints& source, const EmbeddedPoints& target,
                                const ScaledIcpOptions& options, ScaledAlignment* alignment) {
-  const ScaledAlignment a = AlignScaled(Ys, Yt, options);
-  const Eigen::MatrixX3d Z =
-      (Ys.array().rowwise() * a.scale.transpose().array()).rowwise() + a.translation.transpose().array();
-  MatchResult result = MatchNearest(Z, Yt, options.threads);
+  const ScaledAlignment a = AlignScaled(source.Y, target.Y, options);
+  EmbeddedPoints moved;
+  moved.Y = (source.Y.array().rowwise() * a.scale.transpose().array()).rowwise() +
+            a.translation.transpose().array();
+  if (options.normal_weight > 0.0 && source.N.rows() == source.Y.rows()) {
+    // y -> s .* y + b maps normals to n ./ s (the inverse transpose), renormalised.
+    moved.N = source.N.array().rowwise() / a.scale.transpose().array();
+    moved.N.rowwise().normalize();
+  } else {
+    moved.N = source.N;
+  }
+  MatchResult result = MatchNearest(moved, target, options.normal_weight, options.threads);
   result.status.iterations = a.iterations;
   std::ostringstream message;
   message << "scale " << a.scale.transpose() << ", translation " << a.translation.transpose();

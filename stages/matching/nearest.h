@@ -6,11 +6,20 @@
 // nearest target vertex (FLANN kd-tree, exact). `nearest_scaled` first aligns the source to the
 // target up to a per-axis scale and a translation by ICP [Besl & McKay 1992], which absorbs
 // non-isometric stretch (e.g. longer limbs) that the canonical frame keeps.
+//
+// Sides of thin parts: the nearest target point of a point on a thin part of the embedded surface
+// (a limb, an ear, a flat torso) may lie on the other side of the part, a few embedding units
+// away but half the part's circumference away on the surface. With normal_weight w > 0 both
+// stages match in R^6, points (y, w r n) with n the unit normal of the embedded surface and r
+// the target's RMS radius: squared distance |y - y'|^2 + (w r)^2 |n - n'|^2, so a point whose
+// normal points the other way is 2 w r further away. The embedded surfaces are consistently
+// oriented and the candidate rotation is proper, so the normals of corresponding points agree.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 
+#include "registry/stages.h"
 #include "registry/types.h"
 
 namespace symembed {
@@ -18,6 +27,12 @@ namespace symembed {
 // Ys: #Vs x 3 source, Yt: #Vt x 3 target (rotated). map[i] = nearest target vertex of source i.
 // Throws InvalidInputError for empty or non-finite inputs.
 MatchResult MatchNearest(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt, int threads = 0);
+
+// The same with the normals weighted by normal_weight (>= 0; 0: positions only, normals may
+// then be empty). Throws InvalidInputError when normal_weight > 0 and the normals do not match
+// the points (rows) or are not finite; ConfigError for a negative weight.
+MatchResult MatchNearest(const EmbeddedPoints& source, const EmbeddedPoints& target,
+                         double normal_weight, int threads = 0);
 
 struct ScaledIcpOptions {
   // ICP iterations (NN, then per-axis scale and translation by least squares).
@@ -28,6 +43,9 @@ struct ScaledIcpOptions {
   // Per-axis scales are clamped to [min_scale, max_scale].
   double min_scale = 0.5;
   double max_scale = 2.0;
+  // Weight of the normals in the final nearest-neighbour match (MatchNearest above); the ICP
+  // itself uses the positions. The normals follow the per-axis scale (n / s, renormalised).
+  double normal_weight = 0.0;
   // Threads of the NN queries (0: DefaultThreadCount()).
   int threads = 0;
 
@@ -45,7 +63,7 @@ ScaledAlignment AlignScaled(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& 
                             const ScaledIcpOptions& options);
 
 // AlignScaled, then MatchNearest of the moved source.
-MatchResult MatchNearestScaled(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+MatchResult MatchNearestScaled(const EmbeddedPoints& source, const EmbeddedPoints& target,
                                const ScaledIcpOptions& options,
                                ScaledAlignment* alignment = nullptr);
 

@@ -7,22 +7,27 @@
 namespace symembed {
 namespace {
 
+// Default weight of the embedded surfaces' normals (nearest.h).
+constexpr double kNormalWeight = 0.1;
+
 class NearestStage : public MatchingStage {
  public:
-  explicit NearestStage(int threads) : threads_(threads) {}
-  MatchResult Run(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt) const override {
-    return MatchNearest(Ys, Yt, threads_);
+  NearestStage(double normal_weight, int threads)
+      : normal_weight_(normal_weight), threads_(threads) {}
+  MatchResult Run(const EmbeddedPoints& source, const EmbeddedPoints& target) const override {
+    return MatchNearest(source, target, normal_weight_, threads_);
   }
 
  private:
+  double normal_weight_;
   int threads_;
 };
 
 class NearestScaledStage : public MatchingStage {
  public:
   explicit NearestScaledStage(ScaledIcpOptions options) : options_(options) {}
-  MatchResult Run(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt) const override {
-    return MatchNearestScaled(Ys, Yt, options_);
+  MatchResult Run(const EmbeddedPoints& source, const EmbeddedPoints& target) const override {
+    return MatchNearestScaled(source, target, options_);
   }
 
  private:
@@ -34,7 +39,10 @@ class NearestScaledStage : public MatchingStage {
 void RegisterMatchingStages(Registry& registry) {
   registry.Add("matching", "nearest", "nearest neighbour in the aligned embeddings (FLANN kd-tree)",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
-                 return std::make_unique<NearestStage>(o.GetInt("threads", 1, 0, 256));
+                 const double normal_weight =
+                     o.GetDouble("normal_weight", kNormalWeight, 0.0);
+                 return std::make_unique<NearestStage>(normal_weight,
+                                                       o.GetInt("threads", 1, 0, 256));
                });
   registry.Add("matching", "nearest_scaled",
                "ICP up to per-axis scale and translation, then nearest neighbour",
@@ -44,6 +52,7 @@ void RegisterMatchingStages(Registry& registry) {
                  s.symmetric = o.GetBool("symmetric", s.symmetric);
                  s.min_scale = o.GetDouble("min_scale", s.min_scale, 1e-3, 1.0);
                  s.max_scale = o.GetDouble("max_scale", s.max_scale, 1.0, 1e3);
+                 s.normal_weight = o.GetDouble("normal_weight", kNormalWeight, 0.0);
                  s.threads = o.GetInt("threads", 1, 0, 256);
                  std::string error;
                  if (!s.IsValid(&error)) o.Fail("", error);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/canonical_frame.h"
+#include "registry/pair_pipeline.h"
 #include "registry/registry.h"
 #include "stages/refine/functional_map.h"
 #include "tests/test_util.h"
@@ -99,8 +100,9 @@ void BM_FlipPrepare(benchmark::State& state, const Registry* registry, std::stri
 void BM_Matching(benchmark::State& state, const Registry* registry, std::string name) {
   const auto stage = Make<MatchingStage>(*registry, "matching", Type(name));
   const Pair& p = TestPair();
+  const EmbeddedPoints source = EmbeddedShape(p.source), target = EmbeddedShape(p.target);
   for (auto _ : state) {
-    MatchResult r = stage->Run(p.source.Y, p.target.Y);
+    MatchResult r = stage->Run(source, target);
     benchmark::DoNotOptimize(r.map.data());
   }
 }

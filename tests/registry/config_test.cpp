@@ -46,7 +46,7 @@ struct FakeFlip : FlipStage {
   FlipResult Run(const PairInput&) const override { return {}; }
 };
 struct FakeMatching : MatchingStage {
-  MatchResult Run(const Eigen::MatrixX3d&, const Eigen::MatrixX3d&) const override { return {}; }
+  MatchResult Run(const EmbeddedPoints&, const EmbeddedPoints&) const override { return {}; }
 };
 struct FakeRefine : RefineStage {
   MatchResult Run(const PairInput&, const std::vector<int>&) const override { return {}; }

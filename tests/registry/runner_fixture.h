@@ -217,8 +217,10 @@ class TestFlip : public FlipStage {
 
 class TestMatching : public MatchingStage {
  public:
-  MatchResult Run(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt) const override {
+  MatchResult Run(const EmbeddedPoints& source, const EmbeddedPoints& target) const override {
     Count("matching");
+    const Eigen::MatrixX3d& Ys = source.Y;
+    const Eigen::MatrixX3d& Yt = target.Y;
     MatchResult r;
     for (int i = 0; i < Ys.rows(); ++i) {
       Eigen::Index best;

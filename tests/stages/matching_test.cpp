@@ -3,6 +3,9 @@
 #include <numeric>
 #include <random>
 
+#include "core/errors.h"
+#include "core/laplacian.h"
+#include "core/primitives.h"
 #include "registry/registry.h"
 #include "stages/matching/nearest.h"
 #include "tests/test_util.h"
@@ -36,7 +39,7 @@ TEST(NearestScaledMatching, AbsorbsPerAxisScaleAndTranslation) {
   const Eigen::RowVector3d scale(1.15, 0.9, 1.1), shift(0.05, -0.03, 0.02);
   target = (target.array().rowwise() * scale.array()).rowwise() + shift.array();
   ScaledAlignment a;
-  const MatchResult r = MatchNearestScaled(figure.V, target, ScaledIcpOptions{}, &a);
+  const MatchResult r = MatchNearestScaled({figure.V, {}}, {target, {}}, ScaledIcpOptions{}, &a);
   int correct = 0;
   for (size_t i = 0; i < perm.size(); ++i) correct += r.map[i] == perm[i];
   // ICP converges to the exact alignment of this figure (checked: all vertices).
@@ -50,6 +53,40 @@ TEST(NearestScaledMatching, AbsorbsPerAxisScaleAndTranslation) {
   EXPECT_LT(plain_correct, correct);
 }
 
+// A thin slab (a sphere flattened to thickness t) against the same slab raised by 0.8 t: the
+// nearest target point of every source point on the upper side is on the target's lower side,
+// 0.2 t away, while its own image is 0.8 t away. Normals of opposite sides differ by 2, so with
+// (w r)^2 * 4 > 0.8^2 - 0.2^2 the sides are kept.
+TEST(NearestMatching, NormalsKeepTheSidesOfAThinPart) {
+  Surface slab = Icosphere(3);
+  const double t = 0.1;
+  slab.V.col(2) *= t / 2.0;
+  const Eigen::MatrixX3d N = VertexNormals(slab);
+  Eigen::MatrixX3d raised = slab.V;
+  raised.col(2).array() += 0.8 * t;
+  const EmbeddedPoints source{slab.V, N}, target{raised, N};
+  auto side_errors = [&](const MatchResult& r) {
+    int wrong = 0;
+    for (int i = 0; i < slab.NumVertices(); ++i) {
+      if (std::abs(slab.V(i, 2)) > 0.25 * t && slab.V(i, 2) * slab.V(r.map[i], 2) < 0.0) ++wrong;
+    }
+    return wrong;
+  };
+  const MatchResult plain = MatchNearest(source, target, 0.0, 1);
+  EXPECT_GT(side_errors(plain), slab.NumVertices() / 4);
+  // r = RMS radius of the raised slab (about 0.82); w r = 0.1 * 0.82 > sqrt(0.6) t / 2.
+  const MatchResult with_normals = MatchNearest(source, target, 0.1, 1);
+  EXPECT_EQ(side_errors(with_normals), 0);
+  // Without normals where they are needed: a clear error naming the side.
+  try {
+    MatchNearest({slab.V, {}}, target, 0.1, 1);
+    FAIL() << "expected InvalidInputError";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("source normals"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(MatchNearest(source, target, -1.0, 1), ConfigError);
+}
+
 TEST(Matching, RegisteredStagesRun) {
   Registry registry;
   RegisterBuiltinStages(registry);
@@ -57,7 +94,8 @@ TEST(Matching, RegisteredStagesRun) {
   for (const std::string& name : registry.Names("matching")) {
     auto stage = registry.CreateAs<MatchingStage>("matching", YAML::Load("{type: " + name + "}"),
                                                   "t.yaml", "pipeline.matching");
-    const MatchResult r = stage->Run(figure.V, figure.V);
+    const EmbeddedPoints points{figure.V, VertexNormals(figure)};
+    const MatchResult r = stage->Run(points, points);
     std::vector<int> identity(figure.NumVertices());
     std::iota(identity.begin(), identity.end(), 0);
     EXPECT_EQ(r.map, identity) << name;

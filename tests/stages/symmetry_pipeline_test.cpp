@@ -10,6 +10,7 @@
 #include "core/canonical_frame.h"
 #include "eval/synthetic/synthetic.h"
 #include "registry/config.h"
+#include "registry/pair_pipeline.h"
 #include "registry/registry.h"
 
 namespace symembed {
@@ -103,7 +104,7 @@ PairErrors RunPair(FigureKind kind, const std::string& symmetry, const std::stri
   e.oracle = oracle->Run(PairInput{source, target, &gt}).chosen;
   e.chosen = chain.flip->Run(PairInput{source, target, &gt}).chosen;
   const Eigen::Matrix3d Rc = CandidateRotations()[e.chosen];
-  const MatchResult m = chain.matching->Run(source.Y, target.Y * Rc.transpose());
+  const MatchResult m = chain.matching->Run(EmbeddedShape(source), EmbeddedShape(target, Rc));
   e.direct = MeanError(b.surface, m.map, direct);
   e.mirrored = MeanError(b.surface, m.map, mirrored);
   return e;
