@@ -19,6 +19,9 @@ Eigen::MatrixX3d Rotated(const Eigen::MatrixX3d& Y, const Eigen::Matrix3d& R) {
   return Y * R.transpose();
 }
 
+EmbeddedPoints Rotated(const EmbeddedPoints& points, const Eigen::Matrix3d& R) {
+  return {Rotated(points.Y, R), Rotated(points.N, R)};
+}
 
 void CheckMap(const MatchResult& result, int source_vertices, int target_vertices,
               const char* stage) {
@@ -38,7 +41,7 @@ void CheckMap(const MatchResult& result, int source_vertices, int target_vertice
 }  // namespace
 
 EmbeddedPoints EmbeddedShape(const ShapeData& shape, const Eigen::Matrix3d& R) {
-  return {Rotated(shape.Y, R), Rotated(VertexNormals(shape.Y, shape.surface.F), R)};
+  return Rotated(EmbeddedPoints{shape.Y, VertexNormals(shape.Y, shape.surface.F)}, R);
 }
 
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
@@ -105,9 +108,10 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   const auto rotations = CandidateRotations();
 
   start = std::chrono::steady_clock::now();
-  const EmbeddedPoints source_points = EmbeddedShape(a);
+  // The normals of both embedded surfaces, once per pair (the oracle below rotates the target's).
+  const EmbeddedPoints source_points = EmbeddedShape(a), target_points = EmbeddedShape(b);
   MatchResult matched =
-      pipeline.matching->Run(source_points, EmbeddedShape(b, rotations[out.flip.chosen]));
+      pipeline.matching->Run(source_points, Rotated(target_points, rotations[out.flip.chosen]));
   out.times.push_back({"matching", Since(start), false});
   counters->Executed("matching");
   CheckMap(matched, a.surface.NumVertices(), nb, "matching");
@@ -145,7 +149,7 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     }
     double best = std::numeric_limits<double>::infinity();
     for (int c = 0; c < 4; ++c) {
-      MatchResult m = pipeline.matching->Run(points, EmbeddedShape(b, rotations[c]));
+      MatchResult m = pipeline.matching->Run(points, Rotated(target_points, rotations[c]));
       CheckMap(m, static_cast<int>(points.Y.rows()), nb, "matching");
       std::vector<int> predicted(m.map.size());
       for (size_t i = 0; i < m.map.size(); ++i) predicted[i] = b.input_ids[m.map[i]];

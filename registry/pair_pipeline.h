@@ -31,12 +31,12 @@ struct PairOutcome {
   std::vector<StageTime> times;     // flip, matching, refine, oracle
 };
 
-// Mean error of predicted target input ids, one per ground-truth line of `ground_truth`.
 // A shape's canonical embedding Y rotated by R, with the normals of the embedded surface (Y
 // on the shape's faces) rotated alike: what the matching stage compares.
 EmbeddedPoints EmbeddedShape(const ShapeData& shape,
                              const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity());
 
+// Mean error of predicted target input ids, one per ground-truth line of `ground_truth`.
 using MeanErrorFunction = std::function<double(const std::vector<int>& predicted)>;
 
 // ground_truth: in input ids (PairLines of the shapes' ground truth), or null. mean_error is

@@ -56,13 +56,6 @@ struct OrientationOptions {
 double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
                       const std::vector<int>& samples, int neighbors);
 
-// The orientation of a candidate's nearest-neighbour map (from ComputeCandidateMaps of the
-// canonical embeddings) after ZoomOut in the given bases. Built once per pair: it holds what does
-// not depend on the candidate (sample prefixes, source triangles, target normals). samples:
-// source vertex ids (the first options.samples are used); target_samples: target vertex ids (the
-// first options.target_samples are used; all target vertices when that is 0). The surfaces and
-// bases are referenced, not copied: they must outlive it. Throws ConfigError for invalid options, InvalidInputError
-// for too few samples.
 // The source side of the measurement, independent of the map: triangles (apex sample i and two
 // of its nearest samples j, k) that are spread and near tangent to the surface at i.
 struct SourceTriangles {
@@ -70,6 +63,13 @@ struct SourceTriangles {
   std::vector<double> sign;                  // sign of their orientation against the normal at i
 };
 
+// The orientation of a candidate's nearest-neighbour map (from ComputeCandidateMaps of the
+// canonical embeddings) after ZoomOut in the given bases. Built once per pair: it holds what does
+// not depend on the candidate (sample prefixes, source triangles, target normals). samples:
+// source vertex ids (the first options.samples are used); target_samples: target vertex ids (the
+// first options.target_samples are used; all target vertices when that is 0). The surfaces and
+// bases are referenced, not copied: they must outlive it. Throws ConfigError for invalid
+// options, InvalidInputError for too few samples.
 class CandidateOrientation {
  public:
   CandidateOrientation(const Surface& source, const Surface& target,

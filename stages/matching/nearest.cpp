@@ -18,17 +18,22 @@ void CheckEmbedding(const Eigen::MatrixX3d& Y, const char* which) {
   }
 }
 
+// map[i] = the nearest row of T to row i of S (any dimension); residual: the mean distance.
+MatchResult NearestRows(const Eigen::MatrixXd& S, const Eigen::MatrixXd& T, int threads) {
+  const KnnIndex index(T);
+  Eigen::VectorXd dist;
+  MatchResult result;
+  result.map = index.Nearest(S, &dist, threads);
+  result.status.residual = dist.mean();
+  return result;
+}
+
 }  // namespace
 
 MatchResult MatchNearest(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt, int threads) {
   CheckEmbedding(Ys, "source");
   CheckEmbedding(Yt, "target");
-  const KnnIndex index(Yt);
-  Eigen::VectorXd dist;
-  MatchResult result;
-  result.map = index.Nearest(Ys, &dist, threads);
-  result.status.residual = dist.mean();
-  return result;
+  return NearestRows(Ys, Yt, threads);
 }
 
 MatchResult MatchNearest(const EmbeddedPoints& source, const EmbeddedPoints& target,
@@ -55,12 +60,7 @@ MatchResult MatchNearest(const EmbeddedPoints& source, const EmbeddedPoints& tar
     X << p.Y, w * p.N;
     return X;
   };
-  const KnnIndex index(lift(target));
-  Eigen::VectorXd dist;
-  MatchResult result;
-  result.map = index.Nearest(lift(source), &dist, threads);
-  result.status.residual = dist.mean();
-  return result;
+  return NearestRows(lift(source), lift(target), threads);
 }
 
 bool ScaledIcpOptions::IsValid(std::string* error) const {
@@ -135,13 +135,9 @@ MatchResult MatchNearestScaled(const EmbeddedPoints& source, const EmbeddedPoint
   EmbeddedPoints moved;
   moved.Y = (source.Y.array().rowwise() * a.scale.transpose().array()).rowwise() +
             a.translation.transpose().array();
-  if (options.normal_weight > 0.0 && source.N.rows() == source.Y.rows()) {
-    // y -> s .* y + b maps normals to n ./ s (the inverse transpose), renormalised.
-    moved.N = source.N.array().rowwise() / a.scale.transpose().array();
-    moved.N.rowwise().normalize();
-  } else {
-    moved.N = source.N;
-  }
+  // y -> s .* y + b maps normals to n ./ s (the inverse transpose), renormalised.
+  moved.N = source.N.array().rowwise() / a.scale.transpose().array();
+  moved.N.rowwise().normalize();
   MatchResult result = MatchNearest(moved, target, options.normal_weight, options.threads);
   result.status.iterations = a.iterations;
   std::ostringstream message;

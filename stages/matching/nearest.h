@@ -34,6 +34,9 @@ MatchResult MatchNearest(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
 MatchResult MatchNearest(const EmbeddedPoints& source, const EmbeddedPoints& target,
                          double normal_weight, int threads = 0);
 
+// Default normal_weight of both stages.
+inline constexpr double kDefaultNormalWeight = 0.1;
+
 struct ScaledIcpOptions {
   // ICP iterations (NN, then per-axis scale and translation by least squares).
   int iterations = 10;
@@ -45,7 +48,7 @@ struct ScaledIcpOptions {
   double max_scale = 2.0;
   // Weight of the normals in the final nearest-neighbour match (MatchNearest above); the ICP
   // itself uses the positions. The normals follow the per-axis scale (n / s, renormalised).
-  double normal_weight = 0.0;
+  double normal_weight = kDefaultNormalWeight;
   // Threads of the NN queries (0: DefaultThreadCount()).
   int threads = 0;
 

@@ -7,9 +7,6 @@
 namespace symembed {
 namespace {
 
-// Default weight of the embedded surfaces' normals (nearest.h).
-constexpr double kNormalWeight = 0.1;
-
 class NearestStage : public MatchingStage {
  public:
   NearestStage(double normal_weight, int threads)
@@ -40,7 +37,7 @@ void RegisterMatchingStages(Registry& registry) {
   registry.Add("matching", "nearest", "nearest neighbour in the aligned embeddings (FLANN kd-tree)",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  const double normal_weight =
-                     o.GetDouble("normal_weight", kNormalWeight, 0.0);
+                     o.GetDouble("normal_weight", kDefaultNormalWeight, 0.0);
                  return std::make_unique<NearestStage>(normal_weight,
                                                        o.GetInt("threads", 1, 0, 256));
                });
@@ -52,7 +49,7 @@ void RegisterMatchingStages(Registry& registry) {
                  s.symmetric = o.GetBool("symmetric", s.symmetric);
                  s.min_scale = o.GetDouble("min_scale", s.min_scale, 1e-3, 1.0);
                  s.max_scale = o.GetDouble("max_scale", s.max_scale, 1.0, 1e3);
-                 s.normal_weight = o.GetDouble("normal_weight", kNormalWeight, 0.0);
+                 s.normal_weight = o.GetDouble("normal_weight", s.normal_weight, 0.0);
                  s.threads = o.GetInt("threads", 1, 0, 256);
                  std::string error;
                  if (!s.IsValid(&error)) o.Fail("", error);

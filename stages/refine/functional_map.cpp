@@ -4,7 +4,6 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <limits>
-#include <numeric>
 #include <sstream>
 
 #include "core/errors.h"
@@ -88,13 +87,13 @@ std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s,
                  "C is " << ks << " x " << kt << " for bases of " << Phi_s.cols() << " and "
                          << Phi_t.cols() << " columns");
   SYMEMBED_CHECK(mass_t.size() == Phi_t.rows(), "mass_t must have one entry per target vertex");
-  std::vector<int> candidates = target_ids;
-  if (candidates.empty()) {
-    candidates.resize(Phi_t.rows());
-    std::iota(candidates.begin(), candidates.end(), 0);
-  }
+  // The candidate target vertices: target_ids, or every vertex when it is empty.
+  const bool every_vertex = target_ids.empty();
+  const int candidates = every_vertex ? static_cast<int>(Phi_t.rows())
+                                      : static_cast<int>(target_ids.size());
   std::vector<int> ids;
-  for (int j : candidates) {
+  for (int r = 0; r < candidates; ++r) {
+    const int j = every_vertex ? r : target_ids[r];
     SYMEMBED_CHECK(j >= 0 && j < Phi_t.rows(), "target id " << j << " out of range");
     if (mass_t(j) > 0.0) ids.push_back(j);
   }

@@ -13,6 +13,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using testing::ReadText;
+using testing::TempDir;
+using testing::WriteText;
+using testing::runner::CallCounter;
+using testing::runner::ReadOff;
+using testing::runner::TestEvaluation;
+using testing::runner::TestRegistry;
+using testing::runner::WriteTestDataset;
+
 // Points mirrored across x = 0 in pairs (a_i, b_i), plus two points on the plane.
 Eigen::MatrixX3d MirroredPairs(std::vector<int>* a, std::vector<int>* b) {
   Eigen::MatrixX3d Y(8, 3);
@@ -35,14 +44,6 @@ TEST(SymmetryGroundTruthError, ZeroForTheTrueMirrorLargeForAnotherPlaneAndMinusO
   EXPECT_NEAR(SymmetryGroundTruthError(Y, {0, -1}, {1, 3}), 0.0, 1e-12);
   EXPECT_EQ(SymmetryGroundTruthError(Y, {-1, 2}, {1, -1}), -1.0);
 }
-using testing::ReadText;
-using testing::TempDir;
-using testing::WriteText;
-using testing::runner::CallCounter;
-using testing::runner::ReadOff;
-using testing::runner::TestEvaluation;
-using testing::runner::TestRegistry;
-using testing::runner::WriteTestDataset;
 
 struct RunResult {
   RunStats stats;
