@@ -1,5 +1,6 @@
 #include "stages/symmetry/plane2d.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -16,6 +17,7 @@ bool Plane2dOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string sub;
   if (!search.IsValid(&sub)) out << sub;
+  else if (!spectral.IsValid(&sub)) out << sub;
   else if (num_angles < 1) out << "num_angles must be >= 1, got " << num_angles;
   else if (!(intrinsic_weight >= 0.0)) out << "intrinsic_weight must be >= 0, got " << intrinsic_weight;
   else if (intrinsic_pairs < 1) out << "intrinsic_pairs must be >= 1, got " << intrinsic_pairs;
@@ -48,7 +50,7 @@ struct Candidate {
   double offset = 0.0;
   std::vector<int> sigma;
   Eigen::VectorXd confidence;
-  double score = 0.0, intrinsic = 0.0, total = std::numeric_limits<double>::infinity();
+  double score = 0.0, intrinsic = 0.0, consistency = 1.0, total = std::numeric_limits<double>::infinity();
   bool converged = true;
   std::string origin;
 };
@@ -56,11 +58,17 @@ struct Candidate {
 }  // namespace
 
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
-                                     const Eigen::MatrixXd& Y, const Plane2dOptions& options) {
+                                     const Eigen::MatrixXd& Y, const Plane2dOptions& options,
+                                     const Eigen::MatrixXd& G) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("symmetry plane2d: " + error);
   if (Y.cols() != 3) throw InvalidInputError("symmetry plane2d: the embedding must be 3D");
   if (samples.size() < 4) throw InvalidInputError("symmetry plane2d: fewer than 4 samples");
+  if (G.size() > 0 && G.rows() != static_cast<Eigen::Index>(samples.size())) {
+    throw InvalidInputError("symmetry plane2d: spectral coordinates have " +
+                            std::to_string(G.rows()) + " rows for " +
+                            std::to_string(samples.size()) + " samples");
+  }
   const Eigen::MatrixXd Dss = SampleDistances(D, samples);
   const Eigen::MatrixXd X = EmbedSamples2d(Dss, options.smacof_iterations);
   const KnnIndex index2(X);
@@ -80,10 +88,10 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
                                      options.intrinsic_pairs, static_cast<unsigned>(options.seed))
                : 0.0;
   };
-  Candidate best;
+  std::vector<Candidate> candidates;
   auto consider = [&](Candidate c) {
     c.total = c.score + options.intrinsic_weight * c.intrinsic;
-    if (c.total < best.total) best = std::move(c);
+    candidates.push_back(std::move(c));
   };
 
   int iterations = 0;
@@ -149,9 +157,49 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
       consider(std::move(c));
     }
   }
-  if (!std::isfinite(best.total)) {
+  auto best_of = [&]() {
+    return std::min_element(candidates.begin(), candidates.end(),
+                            [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+  };
+  if (candidates.empty()) {
     throw InvalidInputError("symmetry plane2d: every candidate symmetry was rejected");
   }
+  double chosen_consistency = -1.0;
+  if (G.size() > 0) chosen_consistency = SpectralConsistency(G, best_of()->sigma);
+  if (G.size() > 0 && chosen_consistency < options.spectral.min_consistency) {
+    // Step 5: the choice by distances is not an intrinsic symmetry of the eigenfunctions. Self
+    // maps from sign flips of the eigenfunctions join the candidates, lifted to 3D, and the
+    // spectral inconsistency joins the criterion.
+    const double sizeG = RmsRadius(G);
+    for (const SignFlipCandidate& flip :
+         SignFlipCandidates(G, options.spectral.num_candidates, options.search.outlier_distance)) {
+      int fixed = 0;
+      for (size_t i = 0; i < flip.sigma.size(); ++i) fixed += flip.sigma[i] == static_cast<int>(i);
+      if (fixed > options.search.max_fixed_fraction * flip.sigma.size()) continue;
+      Candidate c;
+      c.sigma = flip.sigma;
+      c.confidence = SymmetryConfidence(flip.residual, flip.sigma, sizeG);
+      if (!FitReflection(P, flip.sigma, c.confidence, &c.normal, &c.offset)) continue;
+      // Scored like the other candidates, by the lifted plane's fit in 3D.
+      c.score = EvaluateReflection(P, index3, c.normal, c.offset, options.search).score;
+      if (!std::isfinite(c.score)) continue;
+      c.intrinsic = intrinsic(flip.sigma);
+      std::ostringstream origin;
+      origin << "sign flip of eigenfunctions";
+      for (int j = 0; j < G.cols(); ++j) {
+        if (flip.pattern >> j & 1u) origin << " " << j + 1;
+      }
+      c.origin = origin.str();
+      consider(std::move(c));
+    }
+    for (Candidate& c : candidates) {
+      c.consistency = SpectralConsistency(G, c.sigma);
+      c.total += options.spectral.weight * (1.0 - c.consistency);
+    }
+  } else if (G.size() > 0) {
+    best_of()->consistency = chosen_consistency;
+  }
+  const Candidate& best = *best_of();
   SymmetryResult result;
   result.normal = best.normal;
   result.offset = best.offset;
@@ -164,6 +212,7 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
   std::ostringstream message;
   message << "plane2d: " << best.origin << ", score " << best.score << ", intrinsic distortion "
           << best.intrinsic;
+  if (G.size() > 0) message << ", spectral consistency " << best.consistency;
   result.status.message = message.str();
   return result;
 }

@@ -18,6 +18,15 @@
 //      minimising score + intrinsic_weight * distortion wins. The 2D embedding of a shape with
 //      many limbs can fold (a quadruped's legs overlap in 2D), where the 3D search does better;
 //      the intrinsic check decides per shape.
+//   5. Spectral check (spectral_symmetry.h): the winner's self map should commute with the low
+//      Laplace-Beltrami eigenfunctions. When its SpectralConsistency is below
+//      spectral.min_consistency, self maps from sign flips of the eigenfunctions join the
+//      candidates (lifted like the 2D ones, scored by the lifted plane's fit in 3D) and the
+//      criterion adds spectral.weight * (1 - consistency). A shape bent so that one side is
+//      compressed (TOSCA cat9, dog10) has no reflection of its distance embeddings near the
+//      left-right one and its distances favour a front-back self map (consistency 0.38 and 0.39
+//      there, at least 0.79 on the other 74 TOSCA shapes); its eigenfunctions still show the
+//      left-right symmetry.
 #pragma once
 
 #include <Eigen/Core>
@@ -26,6 +35,7 @@
 
 #include "registry/types.h"
 #include "stages/symmetry/reflection_search.h"
+#include "stages/symmetry/spectral_symmetry.h"
 
 namespace symembed {
 
@@ -47,6 +57,8 @@ struct Plane2dOptions {
   bool candidates_3d = true;
   // Starting normals of those candidates besides the principal axes.
   int num_directions = 32;
+  // Spectral candidates and check (step 5).
+  SpectralSymmetryOptions spectral;
 
   bool IsValid(std::string* error) const;
 };
@@ -55,10 +67,12 @@ struct Plane2dOptions {
 Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations);
 
 // D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
-// embedding. Returns the plane in the coordinates of Y, the sample self map, per-sample
-// confidence and the score of the chosen candidate (in its space). Throws InvalidInputError on inconsistent shapes,
-// ConfigError on invalid options.
+// embedding; G: #S x K spectral coordinates of the samples (SampleSpectralCoordinates), or empty
+// to leave out step 5. Returns the plane in the coordinates of Y, the sample self map, per-sample
+// confidence and the score of the chosen candidate (in its space). Throws InvalidInputError on
+// inconsistent shapes, ConfigError on invalid options.
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
-                                     const Eigen::MatrixXd& Y, const Plane2dOptions& options);
+                                     const Eigen::MatrixXd& Y, const Plane2dOptions& options,
+                                     const Eigen::MatrixXd& G = Eigen::MatrixXd());
 
 }  // namespace symembed

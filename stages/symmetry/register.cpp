@@ -21,7 +21,10 @@ class Plane2dStage : public SymmetryStage {
  public:
   explicit Plane2dStage(Plane2dOptions options) : options_(options) {}
   SymmetryResult Run(const SymmetryInput& in) const override {
-    return DetectSymmetryPlane2d(in.D, in.samples, in.embedding.Y, options_);
+    const int k = options_.spectral.num_eigenfunctions;
+    const Eigen::MatrixXd G =
+        k > 0 ? SampleSpectralCoordinates(in.surface, in.samples, k) : Eigen::MatrixXd();
+    return DetectSymmetryPlane2d(in.D, in.samples, in.embedding.Y, options_, G);
   }
 
  private:
@@ -44,7 +47,8 @@ class Plane3dStage : public SymmetryStage {
 void RegisterSymmetryStages(Registry& registry) {
   registry.Add("symmetry", "plane2d",
                "reflection line in a 2D LS-MDS embedding of the samples (angle sweep, "
-               "reflect/NN/refit, intrinsic check), lifted to a plane in the 3D embedding",
+               "reflect/NN/refit, intrinsic and spectral checks, eigenfunction sign-flip "
+               "candidates), lifted to a plane in the 3D embedding",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  Plane2dOptions p;
                  p.search = ReadSearchOptions(o);
@@ -57,6 +61,13 @@ void RegisterSymmetryStages(Registry& registry) {
                      o.GetInt("refine_3d_iterations", p.refine_3d_iterations, 0);
                  p.candidates_3d = o.GetBool("candidates_3d", p.candidates_3d);
                  p.num_directions = o.GetInt("num_directions", p.num_directions, 0, 10000);
+                 p.spectral.num_eigenfunctions = o.GetInt(
+                     "spectral_eigenfunctions", p.spectral.num_eigenfunctions, 0, 12);
+                 p.spectral.num_candidates =
+                     o.GetInt("spectral_candidates", p.spectral.num_candidates, 0);
+                 p.spectral.min_consistency = o.GetDouble(
+                     "spectral_min_consistency", p.spectral.min_consistency, 0.0, 1.0);
+                 p.spectral.weight = o.GetDouble("spectral_weight", p.spectral.weight, 0.0);
                  std::string error;
                  if (!p.IsValid(&error)) o.Fail("", error);
                  return std::make_unique<Plane2dStage>(p);

@@ -1,0 +1,115 @@
+#include "stages/symmetry/spectral_symmetry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.h"
+#include "core/knn.h"
+#include "core/procrustes.h"
+#include "core/spectral.h"
+
+namespace symembed {
+
+bool SpectralSymmetryOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  if (num_eigenfunctions < 0 || num_eigenfunctions > 12)
+    out << "spectral_eigenfunctions must be in [0, 12], got " << num_eigenfunctions;
+  else if (num_candidates < 0) out << "spectral_candidates must be >= 0, got " << num_candidates;
+  else if (!(min_consistency >= 0.0 && min_consistency <= 1.0))
+    out << "spectral_min_consistency must be in [0, 1], got " << min_consistency;
+  else if (!(weight >= 0.0)) out << "spectral_weight must be >= 0, got " << weight;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+namespace {
+
+// Number of leading eigenvalues that are ~0 (one per connected component), relative to the
+// scale 1 / area of the eigenvalues of a surface of that area.
+int CountZeroEigenvalues(const Eigen::VectorXd& evals, double area) {
+  const double tolerance = 1e-8 / std::max(area, 1e-300);
+  int zeros = 0;
+  while (zeros < evals.size() && std::abs(evals(zeros)) <= tolerance) ++zeros;
+  return zeros;
+}
+
+}  // namespace
+
+Eigen::MatrixXd SampleSpectralCoordinates(const Surface& surface, const std::vector<int>& samples,
+                                          int num_eigenfunctions) {
+  SYMEMBED_CHECK(num_eigenfunctions >= 1, "num_eigenfunctions must be >= 1");
+  const double area = TotalArea(surface);
+  LaplaceBasisOptions options;
+  options.k = num_eigenfunctions + 1;
+  LaplaceBasis basis;
+  int zeros = 0;
+  for (;;) {
+    basis = ComputeLaplaceBasis(surface, options);
+    zeros = CountZeroEigenvalues(basis.evals, area);
+    if (basis.NumEigenpairs() >= zeros + num_eigenfunctions) break;
+    // Several components, one ~0 eigenvalue each: ask for more (ComputeLaplaceBasis throws when
+    // the surface has too few vertices).
+    options.k = zeros < basis.NumEigenpairs() ? zeros + num_eigenfunctions : 2 * options.k;
+  }
+  if (zeros == 0) {
+    throw InvalidInputError("spectral symmetry: the Laplace-Beltrami basis has no ~0 eigenvalue");
+  }
+  Eigen::MatrixXd G(samples.size(), num_eigenfunctions);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i] < 0 || samples[i] >= basis.NumVertices()) {
+      throw InvalidInputError("spectral symmetry: sample id out of range");
+    }
+    for (int j = 0; j < num_eigenfunctions; ++j) {
+      G(i, j) = basis.evecs(samples[i], zeros + j) / std::sqrt(basis.evals(zeros + j));
+    }
+  }
+  return G;
+}
+
+std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int num_candidates,
+                                                  double outlier_distance) {
+  const int k = static_cast<int>(G.cols());
+  SYMEMBED_CHECK(k >= 1 && k <= 12, "between 1 and 12 spectral coordinates");
+  std::vector<SignFlipCandidate> all;
+  if (num_candidates <= 0 || G.rows() < 2) return all;
+  const KnnIndex index(G);
+  const double size = std::max(RmsRadius(G), 1e-300);
+  for (unsigned pattern = 1; pattern < (1u << k); ++pattern) {
+    Eigen::MatrixXd Q = G;
+    for (int j = 0; j < k; ++j) {
+      if (pattern >> j & 1u) Q.col(j) = -Q.col(j);
+    }
+    SignFlipCandidate c;
+    c.pattern = pattern;
+    c.sigma = index.Nearest(Q, &c.residual, 1);
+    c.score = c.residual.array().min(outlier_distance * size).mean() / size;
+    all.push_back(std::move(c));
+  }
+  const size_t keep = std::min<size_t>(num_candidates, all.size());
+  std::partial_sort(all.begin(), all.begin() + keep, all.end(),
+                    [](const SignFlipCandidate& a, const SignFlipCandidate& b) {
+                      return a.score < b.score;
+                    });
+  all.resize(keep);
+  return all;
+}
+
+double SpectralConsistency(const Eigen::MatrixXd& G, const std::vector<int>& sigma) {
+  SYMEMBED_CHECK(static_cast<int>(sigma.size()) == G.rows(), "sigma does not match G");
+  if (G.cols() == 0) return 1.0;
+  double sum = 0.0;
+  for (int j = 0; j < G.cols(); ++j) {
+    double dot = 0.0, self = 0.0, image = 0.0;
+    for (int i = 0; i < G.rows(); ++i) {
+      const double mapped = G(sigma[i], j);
+      dot += G(i, j) * mapped;
+      self += G(i, j) * G(i, j);
+      image += mapped * mapped;
+    }
+    sum += self > 0.0 && image > 0.0 ? std::abs(dot) / std::sqrt(self * image) : 0.0;
+  }
+  return sum / G.cols();
+}
+
+}  // namespace symembed
