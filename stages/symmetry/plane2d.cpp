@@ -91,7 +91,7 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
   std::vector<Candidate> candidates;
   auto consider = [&](Candidate c) {
     c.total = c.score + options.intrinsic_weight * c.intrinsic;
-    candidates.push_back(std::move(c));
+    if (std::isfinite(c.total)) candidates.push_back(std::move(c));
   };
 
   int iterations = 0;

@@ -25,8 +25,8 @@
 //      criterion adds spectral.weight * (1 - consistency). A shape bent so that one side is
 //      compressed (TOSCA cat9, dog10) has no reflection of its distance embeddings near the
 //      left-right one and its distances favour a front-back self map (consistency 0.38 and 0.39
-//      there, at least 0.79 on the other 74 TOSCA shapes); its eigenfunctions still show the
-//      left-right symmetry.
+//      there, at least 0.79 on the other 74 TOSCA shapes; default threshold 0.4); its
+//      eigenfunctions still show the left-right symmetry.
 #pragma once
 
 #include <Eigen/Core>

@@ -23,12 +23,12 @@ namespace symembed {
 struct SpectralSymmetryOptions {
   // Eigenfunctions used, after the constant one (0: the spectral check and candidates are off).
   int num_eigenfunctions = 8;
-  // Sign patterns kept as candidates, the best by trimmed nearest-neighbour residual.
+  // Sign patterns kept as candidates, those of lowest SignFlipCandidate::score.
   int num_candidates = 4;
   // The candidates chosen by distances alone stand when their self map's SpectralConsistency is
   // at least this; below it the sign-flip candidates join and the criterion adds the weighted
   // inconsistency (1: always).
-  double min_consistency = 0.7;
+  double min_consistency = 0.4;
   // Weight of the spectral inconsistency (1 - SpectralConsistency) in the choice of candidate.
   double weight = 1.0;
 
