@@ -50,7 +50,8 @@ struct Candidate {
   double offset = 0.0;
   std::vector<int> sigma;
   Eigen::VectorXd confidence;
-  double score = 0.0, intrinsic = 0.0, consistency = 1.0, total = std::numeric_limits<double>::infinity();
+  double score = 0.0, intrinsic = 0.0, consistency = 1.0;
+  double total = std::numeric_limits<double>::infinity();
   bool converged = true;
   std::string origin;
 };
@@ -164,18 +165,16 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
   if (candidates.empty()) {
     throw InvalidInputError("symmetry plane2d: every candidate symmetry was rejected");
   }
-  double chosen_consistency = -1.0;
-  if (G.size() > 0) chosen_consistency = SpectralConsistency(G, best_of()->sigma);
-  if (G.size() > 0 && chosen_consistency < options.spectral.min_consistency) {
+  Candidate& chosen = *best_of();
+  if (G.size() > 0) chosen.consistency = SpectralConsistency(G, chosen.sigma);
+  if (G.size() > 0 && chosen.consistency < options.spectral.min_consistency) {
     // Step 5: the choice by distances is not an intrinsic symmetry of the eigenfunctions. Self
     // maps from sign flips of the eigenfunctions join the candidates, lifted to 3D, and the
     // spectral inconsistency joins the criterion.
     const double sizeG = RmsRadius(G);
     for (const SignFlipCandidate& flip :
          SignFlipCandidates(G, options.spectral.num_candidates, options.search.outlier_distance)) {
-      int fixed = 0;
-      for (size_t i = 0; i < flip.sigma.size(); ++i) fixed += flip.sigma[i] == static_cast<int>(i);
-      if (fixed > options.search.max_fixed_fraction * flip.sigma.size()) continue;
+      if (flip.fixed_fraction > options.search.max_fixed_fraction) continue;
       Candidate c;
       c.sigma = flip.sigma;
       c.confidence = SymmetryConfidence(flip.residual, flip.sigma, sizeG);
@@ -196,8 +195,6 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
       c.consistency = SpectralConsistency(G, c.sigma);
       c.total += options.spectral.weight * (1.0 - c.consistency);
     }
-  } else if (G.size() > 0) {
-    best_of()->consistency = chosen_consistency;
   }
   const Candidate& best = *best_of();
   SymmetryResult result;

@@ -69,17 +69,26 @@ void Score(const Eigen::MatrixXd& P, const KnnIndex& index, double size,
            const ReflectionSearchOptions& options, ReflectionFit* fit) {
   const Eigen::MatrixXd Q = Reflect(P, fit->normal, fit->offset);
   fit->sigma = index.Nearest(Q, &fit->residual, 1);
-  int fixed = 0;
-  for (int i = 0; i < P.rows(); ++i) fixed += fit->sigma[i] == i;
-  fit->fixed_fraction = static_cast<double>(fixed) / P.rows();
-  const double s = std::max(size, std::numeric_limits<double>::min());
-  fit->score = fit->residual.array().min(options.outlier_distance * s).mean() / s;
+  fit->fixed_fraction = FixedFraction(fit->sigma);
+  fit->score = TruncatedScore(fit->residual, size, options.outlier_distance);
   if (fit->fixed_fraction > options.max_fixed_fraction) {
     fit->score = std::numeric_limits<double>::infinity();
   }
 }
 
 }  // namespace
+
+double FixedFraction(const std::vector<int>& sigma) {
+  if (sigma.empty()) return 0.0;
+  int fixed = 0;
+  for (size_t i = 0; i < sigma.size(); ++i) fixed += sigma[i] == static_cast<int>(i);
+  return static_cast<double>(fixed) / sigma.size();
+}
+
+double TruncatedScore(const Eigen::VectorXd& residual, double size, double outlier_distance) {
+  const double s = std::max(size, std::numeric_limits<double>::min());
+  return residual.array().min(outlier_distance * s).mean() / s;
+}
 
 ReflectionFit EvaluateReflection(const Eigen::MatrixXd& P, const KnnIndex& index,
                                  const Eigen::VectorXd& normal, double offset,

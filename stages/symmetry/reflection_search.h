@@ -48,6 +48,13 @@ struct ReflectionFit {
   bool converged = false;
 };
 
+// Fraction of points that sigma maps to themselves.
+double FixedFraction(const std::vector<int>& sigma);
+
+// The score of a self map's residuals (#N) in a point set of RMS radius size: the mean of
+// min(residual, outlier_distance * size) / size.
+double TruncatedScore(const Eigen::VectorXd& residual, double size, double outlier_distance);
+
 // Rows of P reflected about the plane normal . p = offset.
 Eigen::MatrixXd Reflect(const Eigen::MatrixXd& P, const Eigen::VectorXd& normal, double offset);
 

@@ -8,6 +8,7 @@
 #include "core/knn.h"
 #include "core/procrustes.h"
 #include "core/spectral.h"
+#include "stages/symmetry/reflection_search.h"
 
 namespace symembed {
 
@@ -74,7 +75,7 @@ std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int 
   std::vector<SignFlipCandidate> all;
   if (num_candidates <= 0 || G.rows() < 2) return all;
   const KnnIndex index(G);
-  const double size = std::max(RmsRadius(G), 1e-300);
+  const double size = RmsRadius(G);
   for (unsigned pattern = 1; pattern < (1u << k); ++pattern) {
     Eigen::MatrixXd Q = G;
     for (int j = 0; j < k; ++j) {
@@ -83,7 +84,8 @@ std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int 
     SignFlipCandidate c;
     c.pattern = pattern;
     c.sigma = index.Nearest(Q, &c.residual, 1);
-    c.score = c.residual.array().min(outlier_distance * size).mean() / size;
+    c.score = TruncatedScore(c.residual, size, outlier_distance);
+    c.fixed_fraction = FixedFraction(c.sigma);
     all.push_back(std::move(c));
   }
   const size_t keep = std::min<size_t>(num_candidates, all.size());

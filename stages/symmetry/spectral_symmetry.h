@@ -46,7 +46,8 @@ struct SignFlipCandidate {
   unsigned pattern = 0;      // bit j set: coordinate j flipped
   std::vector<int> sigma;    // #S: sample -> nearest sample to its flipped coordinates
   Eigen::VectorXd residual;  // #S: distance to that nearest sample
-  double score = 0.0;        // mean of min(residual, outlier_distance * size) / size
+  double score = 0.0;        // TruncatedScore of the residuals (reflection_search.h)
+  double fixed_fraction = 0.0;  // FixedFraction of sigma
 };
 
 // The num_candidates sign patterns (out of the 2^K - 1 that flip at least one coordinate) whose
