@@ -5,10 +5,10 @@
 #include <numeric>
 #include <random>
 
+#include "core/errors.h"
 #include "core/knn.h"
 #include "core/primitives.h"
 #include "registry/registry.h"
-#include "core/errors.h"
 #include "stages/symmetry/plane2d.h"
 #include "stages/symmetry/spectral_symmetry.h"
 #include "tests/test_util.h"
