@@ -1,9 +1,11 @@
 // The flip stages: thin adapters around the scorers (extrinsic, chamfer, hks, oracle).
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
 
 #include "core/errors.h"
+#include "stages/flip/descriptor_map.h"
 #include "stages/flip/extrinsic.h"
 #include "stages/flip/flip_common.h"
 #include "stages/flip/hks.h"
@@ -26,15 +28,17 @@ const Eigen::MatrixXd& AuxOf(const ShapeData& shape, const char* key, const char
 class ExtrinsicStage : public FlipStage {
  public:
   ExtrinsicStage(ExtrinsicFlipOptions options, double orientation_weight,
-                 OrientationOptions orientation)
-      : options_(options), orientation_weight_(orientation_weight), orientation_(orientation) {}
+                 OrientationOptions orientation, double descriptor_weight,
+                 DescriptorMapOptions descriptor)
+      : options_(options), orientation_weight_(orientation_weight), orientation_(orientation),
+        descriptor_weight_(descriptor_weight), descriptor_(descriptor) {}
   void PrepareShape(ShapeData& shape) const override {
     shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
-    if (orientation_weight_ > 0.0) {
-      LaplaceBasisOptions basis;
-      basis.k = orientation_.k_end;
-      EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
-    }
+    LaplaceBasisOptions basis;
+    basis.k = 0;
+    if (orientation_weight_ > 0.0) basis.k = orientation_.k_end;
+    if (descriptor_weight_ > 0.0) basis.k = std::max(basis.k, descriptor_.eigenpairs);
+    if (basis.k > 0) EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
   }
   FlipResult Run(const PairInput& pair) const override {
     CheckFlipPair(pair);
@@ -43,6 +47,16 @@ class ExtrinsicStage : public FlipStage {
     ExtrinsicScores s = ExtrinsicFlipScores(
         pair.source.Y, pair.target.Y, AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
         AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_, maps);
+    DescriptorAgreement descriptor;
+    if (descriptor_weight_ > 0.0) {
+      descriptor = DescriptorMapAgreement(
+          pair.source.Y, pair.target.Y, GetLaplaceBasis(pair.source.aux, descriptor_.eigenpairs),
+          GetLaplaceBasis(pair.target.aux, descriptor_.eigenpairs), pair.source.samples,
+          descriptor_);
+      for (int k = 0; k < 4; ++k) {
+        s.total[k] += descriptor_weight_ * (1.0 - descriptor.agreement[k]) / 2.0;
+      }
+    }
     OrientationScores orientation;
     if (orientation_weight_ > 0.0) {
       const LaplaceBasis source_basis = GetLaplaceBasis(pair.source.aux, orientation_.k_end);
@@ -59,6 +73,10 @@ class ExtrinsicStage : public FlipStage {
     for (double v : s.local) detail << " " << v;
     detail << "; global";
     for (double v : s.global) detail << " " << v;
+    if (descriptor_weight_ > 0.0) {
+      detail << "; descriptor";
+      for (double v : descriptor.agreement) detail << " " << v;
+    }
     if (orientation_weight_ > 0.0) {
       // Candidates that could not have the lowest total are not measured ("-").
       detail << "; orientation";
@@ -75,6 +93,8 @@ class ExtrinsicStage : public FlipStage {
   ExtrinsicFlipOptions options_;
   double orientation_weight_;
   OrientationOptions orientation_;
+  double descriptor_weight_;
+  DescriptorMapOptions descriptor_;
 };
 
 class ChamferStage : public FlipStage {
@@ -126,7 +146,8 @@ void RegisterFlipStages(Registry& registry) {
   registry.Add("flip", "extrinsic",
                "curvature features of the original surfaces, compared locally through each "
                "candidate's NN map and globally (front/back, top/bottom distributions), plus "
-               "the orientation of each candidate's map after a short ZoomOut",
+               "the orientation of each candidate's map after a short ZoomOut, plus its "
+               "agreement with a wave-kernel-signature functional map",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  ExtrinsicFlipOptions e;
                  e.local_weight = o.GetDouble("local_weight", e.local_weight, 0.0);
@@ -145,10 +166,21 @@ void RegisterFlipStages(Registry& registry) {
                  r.samples = o.GetInt("orientation_samples", r.samples, 1, 100000);
                  r.target_samples =
                      o.GetInt("orientation_target_samples", r.target_samples, 0, 100000);
+                 const double descriptor_weight = o.GetDouble("descriptor_weight", 1.0, 0.0);
+                 DescriptorMapOptions d;
+                 d.k = o.GetInt("descriptor_k", d.k, 2, 1000);
+                 d.eigenpairs = o.GetInt("descriptor_eigenpairs", d.eigenpairs, 2, 1000);
+                 d.energies = o.GetInt("descriptor_energies", d.energies, 1, 10000);
+                 d.sigma = o.GetDouble("descriptor_sigma", d.sigma, 0.0);
+                 d.mu = o.GetDouble("descriptor_mu", d.mu, 0.0);
+                 d.samples = o.GetInt("descriptor_samples", d.samples, 1, 100000);
+                 d.axes = o.GetInt("descriptor_axes", d.axes, 1, 2);
                  std::string error;
                  if (!e.IsValid(&error)) o.Fail("", error);
                  if (!r.IsValid(&error)) o.Fail("", "orientation: " + error);
-                 return std::make_unique<ExtrinsicStage>(e, orientation_weight, r);
+                 if (!d.IsValid(&error)) o.Fail("", "descriptor: " + error);
+                 return std::make_unique<ExtrinsicStage>(e, orientation_weight, r,
+                                                         descriptor_weight, d);
                });
   registry.Add("flip", "chamfer", "symmetric Chamfer distance of the embeddings only",
                [](OptionReader& o) -> std::unique_ptr<Stage> {

@@ -10,6 +10,7 @@
 #include "core/primitives.h"
 #include "core/spectral.h"
 #include "eval/synthetic/synthetic.h"
+#include "stages/flip/descriptor_map.h"
 #include "stages/flip/extrinsic.h"
 #include "stages/flip/orientation.h"
 #include "stages/refine/functional_map.h"
@@ -68,6 +69,8 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
 INSTANTIATE_TEST_SUITE_P(All, FlipScorers,
                          ::testing::Values("{type: extrinsic}",
                                            "{type: extrinsic, orientation_weight: 0}",
+                                           "{type: extrinsic, descriptor_weight: 0}",
+                                           "{type: extrinsic, descriptor_axes: 2}",
                                            "{type: chamfer}", "{type: hks}", "{type: oracle}"));
 
 // The vertex of `surface` nearest to each vertex mirrored by x -> -x.
@@ -170,6 +173,95 @@ TEST(OrientationFlip, PrunedTermChoosesLikeTheFullOne) {
       }
     }
   }
+}
+
+TEST(DescriptorFlip, WaveKernelSignatureIsAPartitionOfTheMassAndIgnoresRigidMotion) {
+  SynthOptions synth;
+  synth.poses = 1;
+  synth.vertices = 1200;
+  const Surface figure = GenerateClass(FigureKind::kHumanoid, synth).shapes[0].shape.surface;
+  Surface moved = figure;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+  moved.V = (figure.V * R.transpose()).rowwise() + Eigen::RowVector3d(5, -2, 1);
+  LaplaceBasisOptions options;
+  options.k = 40;
+  const LaplaceBasis a = ComputeLaplaceBasis(figure, options);
+  const LaplaceBasis b = ComputeLaplaceBasis(moved, options);
+  double sigma = 0.0;
+  const Eigen::VectorXd energies = WksEnergies(a, b, 20, 7.0, &sigma);
+  ASSERT_GT(sigma, 0.0);
+  for (int e = 1; e < energies.size(); ++e) EXPECT_GT(energies(e), energies(e - 1));
+  const Eigen::MatrixXd wa = WaveKernelSignature(a, energies, sigma);
+  const Eigen::MatrixXd wb = WaveKernelSignature(b, energies, sigma);
+  // Each eigenfunction has unit M-norm, so each energy's signature integrates to 1.
+  const Eigen::RowVectorXd integral = a.mass.transpose() * wa;
+  for (int e = 0; e < energies.size(); ++e) EXPECT_NEAR(integral(e), 1.0, 1e-8) << e;
+  // Squared eigenfunctions do not depend on their signs or on a rigid motion.
+  EXPECT_LT((wa - wb).cwiseAbs().maxCoeff(), 1e-6 * wa.cwiseAbs().maxCoeff());
+}
+
+TEST(DescriptorFlip, FunctionalMapRecoversAKnownMap) {
+  // Descriptors of the source are C0 times those of the target; with equal spectra C0 (a
+  // permutation with signs among equal eigenvalues, +-1 elsewhere) commutes, so it is the
+  // minimiser for every mu.
+  const int k = 6, q = 15;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(k, q);
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; j < q; ++j) B(i, j) = std::sin(1.0 + 0.7 * i + 1.3 * j + 0.1 * i * j);
+  }
+  Eigen::VectorXd evals(k);
+  evals << 0.0, 1.0, 1.0, 2.0, 3.0, 5.0;
+  Eigen::MatrixXd C0 = Eigen::MatrixXd::Zero(k, k);
+  C0(0, 0) = 1;
+  C0(1, 2) = -1;
+  C0(2, 1) = 1;
+  C0(3, 3) = -1;
+  C0(4, 4) = 1;
+  C0(5, 5) = -1;
+  const Eigen::MatrixXd A = C0 * B;
+  for (double mu : {0.0, 1e-2, 1.0}) {
+    const Eigen::MatrixXd C = DescriptorFunctionalMap(A, B, evals, evals, mu);
+    EXPECT_LT((C - C0).cwiseAbs().maxCoeff(), 1e-6) << "mu " << mu;
+  }
+  EXPECT_THROW(DescriptorFunctionalMap(A, B.topRows(k - 1), evals, evals, 0.0), InvalidInputError);
+}
+
+TEST(DescriptorFlip, AgreementFollowsTheTurnOfTheTarget) {
+  // Two poses of the synthetic humanoid; the target's canonical embedding turned by each
+  // candidate R_j. The descriptor map does not see the embeddings, so its agreement must move
+  // with the turn: the candidates that keep the right sign along axis 1 agree, the others not.
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = 1500;
+  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
+  const ShapeData source = MakeShape("pose0", figures.shapes[0].shape.surface);
+  const ShapeData posed = MakeShape("pose1", figures.shapes[1].shape.surface);
+  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
+  DescriptorMapOptions options;
+  LaplaceBasisOptions basis;
+  basis.k = options.eigenpairs;
+  const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
+  const LaplaceBasis bt = ComputeLaplaceBasis(posed.surface, basis);
+  const auto rotations = CandidateRotations();
+  for (int j = 0; j < 4; ++j) {
+    ShapeData target = posed;
+    target.Y = posed.Y * rotations[j];
+    const int right = oracle->Run(PairInput{source, target, &gt}).chosen;
+    const DescriptorAgreement d =
+        DescriptorMapAgreement(source.Y, target.Y, bs, bt, source.samples, options);
+    ASSERT_EQ(d.map.size(), static_cast<size_t>(options.samples));
+    EXPECT_GT(d.agreement[right], 0.5) << "turn " << j;
+    for (int k = 0; k < 4; ++k) {
+      const bool same_axis1 = rotations[k](1, 1) == rotations[right](1, 1);
+      EXPECT_DOUBLE_EQ(d.agreement[k], same_axis1 ? d.agreement[right] : -d.agreement[right]);
+    }
+  }
+  options.eigenpairs = 80;
+  EXPECT_THROW(DescriptorMapAgreement(source.Y, posed.Y, bs, bt, source.samples, options),
+               InvalidInputError);
 }
 
 TEST(OracleFlip, RefusesWithoutGroundTruth) {

@@ -1,0 +1,172 @@
+#include "stages/flip/descriptor_map.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.h"
+#include "registry/types.h"
+#include "stages/refine/functional_map.h"
+
+namespace symembed {
+
+bool DescriptorMapOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  if (k < 2) out << "k must be >= 2, got " << k;
+  else if (eigenpairs < k) out << "eigenpairs must be >= k (" << k << "), got " << eigenpairs;
+  else if (energies < 1) out << "energies must be >= 1, got " << energies;
+  else if (!(sigma > 0.0)) out << "sigma must be > 0";
+  else if (!(mu >= 0.0)) out << "mu must be >= 0";
+  else if (samples < 1) out << "samples must be >= 1, got " << samples;
+  else if (axes != 1 && axes != 2) out << "axes must be 1 or 2, got " << axes;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+namespace {
+
+// log of the smallest eigenvalue above 1e-8 lambda_max, and of lambda_max.
+void LogRange(const LaplaceBasis& b, double* e_1, double* e_max) {
+  const double lambda_max = b.evals.maxCoeff();
+  double lambda_1 = lambda_max;
+  for (int i = 0; i < b.NumEigenpairs(); ++i) {
+    if (b.evals(i) > 1e-8 * lambda_max) lambda_1 = std::min(lambda_1, b.evals(i));
+  }
+  if (!(lambda_1 > 0.0)) throw InvalidInputError("flip descriptor: no positive eigenvalue");
+  *e_1 = std::log(lambda_1);
+  *e_max = std::log(lambda_max);
+}
+
+// First n columns of a basis, with the descriptors' coefficients A = Phi^T M D.
+Eigen::MatrixXd Coefficients(const LaplaceBasis& b, int k, const Eigen::MatrixXd& D) {
+  Eigen::MatrixXd MD = b.mass.asDiagonal() * D;
+  // Unit M-norm per descriptor, so that every energy weighs the same.
+  for (int c = 0; c < D.cols(); ++c) {
+    const double norm = std::sqrt(std::max(D.col(c).dot(MD.col(c)), 0.0));
+    if (norm > 0.0) MD.col(c) /= norm;
+  }
+  return b.evecs.leftCols(k).transpose() * MD;
+}
+
+}  // namespace
+
+Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& energies,
+                                    double sigma) {
+  const double lambda_max = basis.evals.maxCoeff();
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(basis.NumEigenpairs(), energies.size());
+  for (int j = 0; j < basis.NumEigenpairs(); ++j) {
+    if (!(basis.evals(j) > 1e-8 * lambda_max)) continue;
+    const double e_j = std::log(basis.evals(j));
+    for (int e = 0; e < energies.size(); ++e) {
+      const double d = energies(e) - e_j;
+      G(j, e) = std::exp(-d * d / (2.0 * sigma * sigma));
+    }
+  }
+  Eigen::MatrixXd W = basis.evecs.array().square().matrix() * G;
+  const Eigen::RowVectorXd total = G.colwise().sum();
+  for (int e = 0; e < energies.size(); ++e) {
+    if (total(e) > 0.0) W.col(e) /= total(e);
+  }
+  return W;
+}
+
+Eigen::VectorXd WksEnergies(const LaplaceBasis& a, const LaplaceBasis& b, int count,
+                            double sigma_units, double* sigma) {
+  double a1, amax, b1, bmax;
+  LogRange(a, &a1, &amax);
+  LogRange(b, &b1, &bmax);
+  const double e_1 = 0.5 * (a1 + b1), e_max = 0.5 * (amax + bmax);
+  // Spacing delta of `count` energies in [e_1 + 2 sigma, e_max - 2 sigma] with sigma =
+  // sigma_units * delta: (count - 1) delta + 4 sigma_units delta = e_max - e_1.
+  const double delta = (e_max - e_1) / std::max(count - 1 + 4.0 * sigma_units, 1.0);
+  *sigma = sigma_units * delta;
+  Eigen::VectorXd energies(count);
+  for (int e = 0; e < count; ++e) energies(e) = e_1 + 2.0 * *sigma + e * delta;
+  return energies;
+}
+
+Eigen::MatrixXd DescriptorFunctionalMap(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                        const Eigen::VectorXd& evals_s,
+                                        const Eigen::VectorXd& evals_t, double mu) {
+  const int k = static_cast<int>(A.rows());
+  if (B.rows() != k || A.cols() != B.cols() || evals_s.size() < k || evals_t.size() < k) {
+    throw InvalidInputError("flip descriptor: descriptor coefficients and eigenvalues disagree");
+  }
+  const double scale = 0.5 * (evals_s(k - 1) + evals_t(k - 1));
+  if (!(scale > 0.0)) throw InvalidInputError("flip descriptor: k-th eigenvalue is not positive");
+  const Eigen::VectorXd ls = evals_s.head(k) / scale, lt = evals_t.head(k) / scale;
+  const double weight = mu * B.squaredNorm() / k;
+  const Eigen::MatrixXd BBt = B * B.transpose();
+  const Eigen::MatrixXd ABt = A * B.transpose();
+  Eigen::MatrixXd C(k, k);
+  for (int i = 0; i < k; ++i) {
+    // Row i: c_i (B B^T + weight diag_j (ls_i - lt_j)^2) = A_i B^T.
+    Eigen::MatrixXd H = BBt;
+    for (int j = 0; j < k; ++j) H(j, j) += weight * (ls(i) - lt(j)) * (ls(i) - lt(j));
+    // A small ridge keeps rows without commutativity weight (i = j, equal eigenvalues) solvable.
+    H.diagonal().array() += 1e-10 * std::max(BBt.trace() / k, 1e-300);
+    C.row(i) = Eigen::LDLT<Eigen::MatrixXd>(H).solve(ABt.row(i).transpose()).transpose();
+  }
+  return C;
+}
+
+DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
+                                           const LaplaceBasis& source, const LaplaceBasis& target,
+                                           const std::vector<int>& samples,
+                                           const DescriptorMapOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("flip descriptor: " + error);
+  if (source.NumEigenpairs() < options.eigenpairs || target.NumEigenpairs() < options.eigenpairs) {
+    throw InvalidInputError("flip descriptor: the bases hold fewer than " +
+                            std::to_string(options.eigenpairs) + " eigenpairs");
+  }
+  if (source.NumVertices() != Ys.rows() || target.NumVertices() != Yt.rows()) {
+    throw InvalidInputError("flip descriptor: Laplace-Beltrami bases do not match the embeddings");
+  }
+  if (samples.empty()) throw InvalidInputError("flip descriptor: no source samples");
+  const auto head = [&](const LaplaceBasis& b) {
+    LaplaceBasis out;
+    out.evals = b.evals.head(options.eigenpairs);
+    out.evecs = b.evecs.leftCols(options.eigenpairs);
+    out.mass = b.mass;
+    return out;
+  };
+  const LaplaceBasis s = head(source), t = head(target);
+  double sigma = 0.0;
+  const Eigen::VectorXd energies = WksEnergies(s, t, options.energies, options.sigma, &sigma);
+  const Eigen::MatrixXd A = Coefficients(s, options.k, WaveKernelSignature(s, energies, sigma));
+  const Eigen::MatrixXd B = Coefficients(t, options.k, WaveKernelSignature(t, energies, sigma));
+  const Eigen::MatrixXd C = DescriptorFunctionalMap(A, B, s.evals, t.evals, options.mu);
+
+  const std::vector<int> ids(samples.begin(),
+                             samples.begin() + std::min<size_t>(samples.size(), options.samples));
+  DescriptorAgreement out;
+  out.map = PointMapFromFunctionalMap(s.evecs.leftCols(options.k), t.evecs.leftCols(options.k),
+                                      t.mass, C, ids);
+  // Normalised correlation per in-plane axis, so that a thin axis (front-back of a human) weighs
+  // as much as a long one.
+  Eigen::Vector2d cross = Eigen::Vector2d::Zero(), ss = cross, tt = cross;
+  for (size_t r = 0; r < ids.size(); ++r) {
+    const int i = ids[r], j = out.map[r];
+    for (int a = 1; a <= 2; ++a) {
+      cross(a - 1) += Ys(i, a) * Yt(j, a);
+      ss(a - 1) += Ys(i, a) * Ys(i, a);
+      tt(a - 1) += Yt(j, a) * Yt(j, a);
+    }
+  }
+  Eigen::Vector2d corr = Eigen::Vector2d::Zero();
+  for (int a = 0; a < 2; ++a) {
+    const double norm = std::sqrt(ss(a) * tt(a));
+    if (norm > 0.0) corr(a) = cross(a) / norm;
+  }
+  const auto rotations = CandidateRotations();
+  for (int c = 0; c < 4; ++c) {
+    out.agreement[c] = options.axes == 1
+                           ? rotations[c](1, 1) * corr(0)
+                           : 0.5 * (rotations[c](1, 1) * corr(0) + rotations[c](2, 2) * corr(1));
+  }
+  return out;
+}
+
+}  // namespace symembed
