@@ -38,37 +38,47 @@ void LogRange(const LaplaceBasis& b, double* e_1, double* e_max) {
   *e_max = std::log(lambda_max);
 }
 
-// First n columns of a basis, with the descriptors' coefficients A = Phi^T M D.
-Eigen::MatrixXd Coefficients(const LaplaceBasis& b, int k, const Eigen::MatrixXd& D) {
-  Eigen::MatrixXd MD = b.mass.asDiagonal() * D;
-  // Unit M-norm per descriptor, so that every energy weighs the same.
-  for (int c = 0; c < D.cols(); ++c) {
-    const double norm = std::sqrt(std::max(D.col(c).dot(MD.col(c)), 0.0));
-    if (norm > 0.0) MD.col(c) /= norm;
-  }
-  return b.evecs.leftCols(k).transpose() * MD;
-}
-
 }  // namespace
 
-Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& energies,
-                                    double sigma) {
-  const double lambda_max = basis.evals.maxCoeff();
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(basis.NumEigenpairs(), energies.size());
-  for (int j = 0; j < basis.NumEigenpairs(); ++j) {
-    if (!(basis.evals(j) > 1e-8 * lambda_max)) continue;
-    const double e_j = std::log(basis.evals(j));
+Eigen::MatrixXd EnergyWeights(const Eigen::VectorXd& evals, const Eigen::VectorXd& energies,
+                              double sigma) {
+  const double lambda_max = evals.maxCoeff();
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(evals.size(), energies.size());
+  for (int j = 0; j < evals.size(); ++j) {
+    if (!(evals(j) > 1e-8 * lambda_max)) continue;
+    const double e_j = std::log(evals(j));
     for (int e = 0; e < energies.size(); ++e) {
       const double d = energies(e) - e_j;
       G(j, e) = std::exp(-d * d / (2.0 * sigma * sigma));
     }
   }
-  Eigen::MatrixXd W = basis.evecs.array().square().matrix() * G;
-  const Eigen::RowVectorXd total = G.colwise().sum();
   for (int e = 0; e < energies.size(); ++e) {
-    if (total(e) > 0.0) W.col(e) /= total(e);
+    const double total = G.col(e).sum();
+    if (total > 0.0) G.col(e) /= total;
   }
-  return W;
+  return G;
+}
+
+// (Phi_k^T M Phi2) G with the norms from G^T (Phi2^T M Phi2) G: the products over the #V rows do
+// not depend on the number of energies.
+Eigen::MatrixXd WksCoefficients(const LaplaceBasis& b, int k, const Eigen::MatrixXd& G) {
+  const Eigen::MatrixXd phi2 = b.evecs.array().square().matrix();
+  const Eigen::MatrixXd P = b.evecs.leftCols(k).transpose() * (b.mass.asDiagonal() * phi2);
+  const Eigen::MatrixXd W = b.mass.cwiseMax(0.0).cwiseSqrt().asDiagonal() * phi2;
+  Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(phi2.cols(), phi2.cols());
+  Q.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose());
+  Q = Q.selfadjointView<Eigen::Lower>();
+  Eigen::MatrixXd A = P * G;
+  for (int e = 0; e < G.cols(); ++e) {
+    const double norm = std::sqrt(std::max(G.col(e).dot(Q * G.col(e)), 0.0));
+    if (norm > 0.0) A.col(e) /= norm;
+  }
+  return A;
+}
+
+Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& energies,
+                                    double sigma) {
+  return basis.evecs.array().square().matrix() * EnergyWeights(basis.evals, energies, sigma);
 }
 
 Eigen::VectorXd WksEnergies(const LaplaceBasis& a, const LaplaceBasis& b, int count,
@@ -135,8 +145,8 @@ DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eig
   const LaplaceBasis s = head(source), t = head(target);
   double sigma = 0.0;
   const Eigen::VectorXd energies = WksEnergies(s, t, options.energies, options.sigma, &sigma);
-  const Eigen::MatrixXd A = Coefficients(s, options.k, WaveKernelSignature(s, energies, sigma));
-  const Eigen::MatrixXd B = Coefficients(t, options.k, WaveKernelSignature(t, energies, sigma));
+  const Eigen::MatrixXd A = WksCoefficients(s, options.k, EnergyWeights(s.evals, energies, sigma));
+  const Eigen::MatrixXd B = WksCoefficients(t, options.k, EnergyWeights(t.evals, energies, sigma));
   const Eigen::MatrixXd C = DescriptorFunctionalMap(A, B, s.evals, t.evals, options.mu);
 
   const std::vector<int> ids(samples.begin(),

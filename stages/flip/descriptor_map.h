@@ -50,6 +50,15 @@ struct DescriptorMapOptions {
 Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& energies,
                                     double sigma);
 
+// The Gaussian weights g_j(e) / sum_j g_j(e) of WaveKernelSignature (eigenpairs x energies), so
+// that the signatures are Phi2 G for the squared eigenfunctions Phi2.
+Eigen::MatrixXd EnergyWeights(const Eigen::VectorXd& evals, const Eigen::VectorXd& energies,
+                              double sigma);
+
+// The coefficients Phi_k^T M D (k x energies) of the signatures D = Phi2 G in the first k
+// eigenfunctions, each signature first scaled to unit M-norm so that every energy weighs the same.
+Eigen::MatrixXd WksCoefficients(const LaplaceBasis& basis, int k, const Eigen::MatrixXd& G);
+
 // The log-energies shared by a pair: `count` evenly spaced in [e_1 + 2 sigma, e_max - 2 sigma],
 // e_1 and e_max the logs of the smallest positive and the largest eigenvalues (means over the
 // two bases), sigma = sigma_units * spacing. Writes the absolute sigma to *sigma.

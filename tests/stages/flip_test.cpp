@@ -198,6 +198,13 @@ TEST(DescriptorFlip, WaveKernelSignatureIsAPartitionOfTheMassAndIgnoresRigidMoti
   for (int e = 0; e < energies.size(); ++e) EXPECT_NEAR(integral(e), 1.0, 1e-8) << e;
   // Squared eigenfunctions do not depend on their signs or on a rigid motion.
   EXPECT_LT((wa - wb).cwiseAbs().maxCoeff(), 1e-6 * wa.cwiseAbs().maxCoeff());
+  // The coefficients without forming the signatures equal the projection of the normalised ones.
+  const int k = 20;
+  Eigen::MatrixXd MD = a.mass.asDiagonal() * wa;
+  for (int e = 0; e < wa.cols(); ++e) MD.col(e) /= std::sqrt(wa.col(e).dot(MD.col(e)));
+  const Eigen::MatrixXd direct = a.evecs.leftCols(k).transpose() * MD;
+  const Eigen::MatrixXd fast = WksCoefficients(a, k, EnergyWeights(a.evals, energies, sigma));
+  EXPECT_LT((fast - direct).cwiseAbs().maxCoeff(), 1e-9 * direct.cwiseAbs().maxCoeff());
 }
 
 TEST(DescriptorFlip, FunctionalMapRecoversAKnownMap) {
