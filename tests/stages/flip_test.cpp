@@ -39,6 +39,33 @@ PairGroundTruth IdentityGroundTruth(int n) {
   return gt;
 }
 
+// The candidate of the oracle flip stage for a pair on one vertex set (identity ground truth).
+int OracleChoice(const ShapeData& source, const ShapeData& target) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
+  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
+  return oracle->Run(PairInput{source, target, &gt}).chosen;
+}
+
+// Two poses of the synthetic humanoid (connected, one vertex set: identity ground truth).
+std::array<ShapeData, 2> HumanoidPoses(int vertices) {
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = vertices;
+  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
+  SYMEMBED_CHECK(figures.shapes.size() == 2u, "the generator made " << figures.shapes.size());
+  return {MakeShape("pose0", figures.shapes[0].shape.surface),
+          MakeShape("pose1", figures.shapes[1].shape.surface)};
+}
+
+// The first k Laplace-Beltrami eigenpairs of both shapes.
+std::array<LaplaceBasis, 2> Bases(const ShapeData& a, const ShapeData& b, int k) {
+  LaplaceBasisOptions options;
+  options.k = k;
+  return {ComputeLaplaceBasis(a.surface, options), ComputeLaplaceBasis(b.surface, options)};
+}
+
 // Source: the figure; target: a second pose (same vertex ids). For each candidate j the target's
 // canonical embedding is turned by R_j, so the right answer moves with j: candidates form the
 // Klein four-group and (with the index order I, Rx, Ry, Rz) R_a R_b = R_(a xor b).
@@ -54,8 +81,7 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
   const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
   stage->PrepareShape(source);
   // The right candidate for the unturned target, from the ground truth.
-  auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
-  const int base = oracle->Run(PairInput{source, posed, &gt}).chosen;
+  const int base = OracleChoice(source, posed);
   const auto rotations = CandidateRotations();
   for (int j = 0; j < 4; ++j) {
     ShapeData target = posed;
@@ -98,24 +124,10 @@ TEST(OrientationFlip, IdentityPreservesAndMirrorReversesOrientation) {
 }
 
 TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
-  // Two poses of the synthetic humanoid (connected, one vertex set: identity ground truth).
-  SynthOptions synth;
-  synth.poses = 2;
-  synth.vertices = 1500;
-  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
-  ASSERT_EQ(figures.shapes.size(), 2u);
-  const ShapeData source = MakeShape("pose0", figures.shapes[0].shape.surface);
-  const ShapeData target = MakeShape("pose1", figures.shapes[1].shape.surface);
-  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
-  Registry registry;
-  RegisterBuiltinStages(registry);
-  auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
-  const int right = oracle->Run(PairInput{source, target, &gt}).chosen;
+  const auto [source, target] = HumanoidPoses(1500);
+  const int right = OracleChoice(source, target);
   OrientationOptions options;
-  LaplaceBasisOptions basis;
-  basis.k = options.k_end;
-  const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
-  const LaplaceBasis bt = ComputeLaplaceBasis(target.surface, basis);
+  const auto [bs, bt] = Bases(source, target, options.k_end);
   const CandidateOrientation measure(source.surface, target.surface, bs, bt, source.samples,
                                      target.samples, options);
   const std::array<double, 4> o =
@@ -129,17 +141,9 @@ TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
 }
 
 TEST(OrientationFlip, PrunedTermChoosesLikeTheFullOne) {
-  SynthOptions synth;
-  synth.poses = 2;
-  synth.vertices = 1200;
-  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
-  const ShapeData source = MakeShape("pose0", figures.shapes[0].shape.surface);
-  const ShapeData target = MakeShape("pose1", figures.shapes[1].shape.surface);
+  const auto [source, target] = HumanoidPoses(1200);
   OrientationOptions options;
-  LaplaceBasisOptions basis;
-  basis.k = options.k_end;
-  const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
-  const LaplaceBasis bt = ComputeLaplaceBasis(target.surface, basis);
+  const auto [bs, bt] = Bases(source, target, options.k_end);
   const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
   const CandidateOrientation measure(source.surface, target.surface, bs, bt, source.samples,
                                      target.samples, options);
@@ -237,26 +241,14 @@ TEST(DescriptorFlip, AgreementFollowsTheTurnOfTheTarget) {
   // Two poses of the synthetic humanoid; the target's canonical embedding turned by each
   // candidate R_j. The descriptor map does not see the embeddings, so its agreement must move
   // with the turn: the candidates that keep the right sign along axis 1 agree, the others not.
-  SynthOptions synth;
-  synth.poses = 2;
-  synth.vertices = 1500;
-  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
-  const ShapeData source = MakeShape("pose0", figures.shapes[0].shape.surface);
-  const ShapeData posed = MakeShape("pose1", figures.shapes[1].shape.surface);
-  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
-  Registry registry;
-  RegisterBuiltinStages(registry);
-  auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
+  const auto [source, posed] = HumanoidPoses(1500);
   DescriptorMapOptions options;
-  LaplaceBasisOptions basis;
-  basis.k = options.eigenpairs;
-  const LaplaceBasis bs = ComputeLaplaceBasis(source.surface, basis);
-  const LaplaceBasis bt = ComputeLaplaceBasis(posed.surface, basis);
+  const auto [bs, bt] = Bases(source, posed, options.eigenpairs);
   const auto rotations = CandidateRotations();
   for (int j = 0; j < 4; ++j) {
     ShapeData target = posed;
     target.Y = posed.Y * rotations[j];
-    const int right = oracle->Run(PairInput{source, target, &gt}).chosen;
+    const int right = OracleChoice(source, target);
     const DescriptorAgreement d =
         DescriptorMapAgreement(source.Y, target.Y, bs, bt, source.samples, options);
     ASSERT_EQ(d.map.size(), static_cast<size_t>(options.samples));
