@@ -79,12 +79,13 @@ struct DescriptorAgreement {
   std::vector<int> map;               // target vertex of each source sample
 };
 
-// Per candidate k (CandidateRotations(), diagonal): the normalised correlation
-//   sum_i sum_{a=1,2} R_k(a, a) Ys(i, a) Yt(T(i), a) / sqrt(sum_i |Ys(i, 1:2)|^2 sum_i |Yt(T(i), 1:2)|^2)
-// over the source samples i, with T the point map of the descriptor functional map.
-// Ys, Yt: canonical embeddings; bases with at least options.eigenpairs eigenpairs; samples:
-// source vertex ids (the first options.samples are used). Throws ConfigError for invalid
-// options and InvalidInputError for inconsistent inputs.
+// Per candidate k (CandidateRotations(), diagonal): with c_a the normalised correlation
+//   c_a = sum_i Ys(i, a) Yt(T(i), a) / sqrt(sum_i Ys(i, a)^2 sum_i Yt(T(i), a)^2)
+// along in-plane axis a over the source samples i, T the point map of the descriptor functional
+// map, the agreement is R_k(1, 1) c_1 (axes = 1) or (R_k(1, 1) c_1 + R_k(2, 2) c_2) / 2
+// (axes = 2). Ys, Yt: canonical embeddings; bases with at least options.eigenpairs eigenpairs;
+// samples: source vertex ids (the first options.samples are used). Throws ConfigError for
+// invalid options and InvalidInputError for inconsistent inputs.
 DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                            const LaplaceBasis& source, const LaplaceBasis& target,
                                            const std::vector<int>& samples,
