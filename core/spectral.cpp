@@ -169,6 +169,15 @@ bool HasLaplaceBasis(const AuxMap& aux, int k, int num_vertices) {
          mass->second.cols() == 1 && stored >= k;
 }
 
+void PositiveEigenvalueRange(const Eigen::VectorXd& evals, double* lambda_1, double* lambda_max) {
+  SYMEMBED_CHECK(evals.size() > 0, "no eigenvalues");
+  *lambda_max = evals.maxCoeff();
+  *lambda_1 = *lambda_max;
+  for (int i = 0; i < evals.size(); ++i) {
+    if (evals(i) > 1e-8 * *lambda_max) *lambda_1 = std::min(*lambda_1, evals(i));
+  }
+}
+
 LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k) {
   const auto evals = aux.find(kLbEvalsKey);
   const auto evecs = aux.find(kLbEvecsKey);

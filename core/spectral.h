@@ -72,6 +72,11 @@ void PutLaplaceBasis(const LaplaceBasis& basis, AuxMap* aux);
 // shape.
 bool HasLaplaceBasis(const AuxMap& aux, int k, int num_vertices);
 
+// The spectrum's range for signatures built from eigenvalues: *lambda_max the largest eigenvalue
+// and *lambda_1 the smallest above 1e-8 lambda_max (the ~0 eigenvalues of the constant
+// eigenfunctions excluded). *lambda_1 is not positive when no eigenvalue is.
+void PositiveEigenvalueRange(const Eigen::VectorXd& evals, double* lambda_1, double* lambda_max);
+
 // The first k eigenpairs stored in aux (k = -1: all of them). Throws InvalidInputError when the
 // keys are missing, inconsistent, or hold fewer than k eigenpairs.
 LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k = -1);

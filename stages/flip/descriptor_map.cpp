@@ -24,28 +24,13 @@ bool DescriptorMapOptions::IsValid(std::string* error) const {
   return out.str().empty();
 }
 
-namespace {
-
-// log of the smallest eigenvalue above 1e-8 lambda_max, and of lambda_max.
-void LogRange(const LaplaceBasis& b, double* e_1, double* e_max) {
-  const double lambda_max = b.evals.maxCoeff();
-  double lambda_1 = lambda_max;
-  for (int i = 0; i < b.NumEigenpairs(); ++i) {
-    if (b.evals(i) > 1e-8 * lambda_max) lambda_1 = std::min(lambda_1, b.evals(i));
-  }
-  if (!(lambda_1 > 0.0)) throw InvalidInputError("flip descriptor: no positive eigenvalue");
-  *e_1 = std::log(lambda_1);
-  *e_max = std::log(lambda_max);
-}
-
-}  // namespace
-
 Eigen::MatrixXd EnergyWeights(const Eigen::VectorXd& evals, const Eigen::VectorXd& energies,
                               double sigma) {
-  const double lambda_max = evals.maxCoeff();
+  double lambda_1, lambda_max;
+  PositiveEigenvalueRange(evals, &lambda_1, &lambda_max);
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(evals.size(), energies.size());
   for (int j = 0; j < evals.size(); ++j) {
-    if (!(evals(j) > 1e-8 * lambda_max)) continue;
+    if (!(lambda_1 > 0.0 && evals(j) >= lambda_1)) continue;
     const double e_j = std::log(evals(j));
     for (int e = 0; e < energies.size(); ++e) {
       const double d = energies(e) - e_j;
@@ -62,7 +47,9 @@ Eigen::MatrixXd EnergyWeights(const Eigen::VectorXd& evals, const Eigen::VectorX
 // (Phi_k^T M Phi2) G with the norms from G^T (Phi2^T M Phi2) G: the products over the #V rows do
 // not depend on the number of energies.
 Eigen::MatrixXd WksCoefficients(const LaplaceBasis& b, int k, const Eigen::MatrixXd& G) {
-  const Eigen::MatrixXd phi2 = b.evecs.array().square().matrix();
+  SYMEMBED_CHECK(G.rows() <= b.NumEigenpairs() && k <= b.NumEigenpairs(),
+                 "the basis has fewer eigenpairs than the weights or k");
+  const Eigen::MatrixXd phi2 = b.evecs.leftCols(G.rows()).array().square().matrix();
   const Eigen::MatrixXd P = b.evecs.leftCols(k).transpose() * (b.mass.asDiagonal() * phi2);
   const Eigen::MatrixXd W = b.mass.cwiseMax(0.0).cwiseSqrt().asDiagonal() * phi2;
   Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(phi2.cols(), phi2.cols());
@@ -81,12 +68,14 @@ Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::Vect
   return basis.evecs.array().square().matrix() * EnergyWeights(basis.evals, energies, sigma);
 }
 
-Eigen::VectorXd WksEnergies(const LaplaceBasis& a, const LaplaceBasis& b, int count,
-                            double sigma_units, double* sigma) {
+Eigen::VectorXd WksEnergies(const Eigen::VectorXd& evals_a, const Eigen::VectorXd& evals_b,
+                            int count, double sigma_units, double* sigma) {
   double a1, amax, b1, bmax;
-  LogRange(a, &a1, &amax);
-  LogRange(b, &b1, &bmax);
-  const double e_1 = 0.5 * (a1 + b1), e_max = 0.5 * (amax + bmax);
+  PositiveEigenvalueRange(evals_a, &a1, &amax);
+  PositiveEigenvalueRange(evals_b, &b1, &bmax);
+  if (!(a1 > 0.0) || !(b1 > 0.0)) throw InvalidInputError("flip descriptor: no positive eigenvalue");
+  const double e_1 = 0.5 * (std::log(a1) + std::log(b1));
+  const double e_max = 0.5 * (std::log(amax) + std::log(bmax));
   // Spacing delta of `count` energies in [e_1 + 2 sigma, e_max - 2 sigma] with sigma =
   // sigma_units * delta: (count - 1) delta + 4 sigma_units delta = e_max - e_1.
   const double delta = (e_max - e_1) / std::max(count - 1 + 4.0 * sigma_units, 1.0);
@@ -135,25 +124,23 @@ DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eig
     throw InvalidInputError("flip descriptor: Laplace-Beltrami bases do not match the embeddings");
   }
   if (samples.empty()) throw InvalidInputError("flip descriptor: no source samples");
-  const auto head = [&](const LaplaceBasis& b) {
-    LaplaceBasis out;
-    out.evals = b.evals.head(options.eigenpairs);
-    out.evecs = b.evecs.leftCols(options.eigenpairs);
-    out.mass = b.mass;
-    return out;
-  };
-  const LaplaceBasis s = head(source), t = head(target);
+  // The first options.eigenpairs of each basis, without copying them.
+  const int n = options.eigenpairs;
   double sigma = 0.0;
-  const Eigen::VectorXd energies = WksEnergies(s, t, options.energies, options.sigma, &sigma);
-  const Eigen::MatrixXd A = WksCoefficients(s, options.k, EnergyWeights(s.evals, energies, sigma));
-  const Eigen::MatrixXd B = WksCoefficients(t, options.k, EnergyWeights(t.evals, energies, sigma));
-  const Eigen::MatrixXd C = DescriptorFunctionalMap(A, B, s.evals, t.evals, options.mu);
+  const Eigen::VectorXd energies = WksEnergies(source.evals.head(n), target.evals.head(n),
+                                               options.energies, options.sigma, &sigma);
+  const Eigen::MatrixXd A =
+      WksCoefficients(source, options.k, EnergyWeights(source.evals.head(n), energies, sigma));
+  const Eigen::MatrixXd B =
+      WksCoefficients(target, options.k, EnergyWeights(target.evals.head(n), energies, sigma));
+  const Eigen::MatrixXd C =
+      DescriptorFunctionalMap(A, B, source.evals, target.evals, options.mu);
 
   const std::vector<int> ids(samples.begin(),
                              samples.begin() + std::min<size_t>(samples.size(), options.samples));
   DescriptorAgreement out;
-  out.map = PointMapFromFunctionalMap(s.evecs.leftCols(options.k), t.evecs.leftCols(options.k),
-                                      t.mass, C, ids);
+  out.map = PointMapFromFunctionalMap(source.evecs.leftCols(options.k),
+                                      target.evecs.leftCols(options.k), target.mass, C, ids);
   // Normalised correlation per in-plane axis, so that a thin axis (front-back of a human) weighs
   // as much as a long one.
   Eigen::Vector2d cross = Eigen::Vector2d::Zero(), ss = cross, tt = cross;

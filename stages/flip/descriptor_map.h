@@ -45,7 +45,8 @@ struct DescriptorMapOptions {
 };
 
 // Wave kernel signatures WKS(x, e) = sum_j phi_j(x)^2 g_j(e) / sum_j g_j(e), g_j(e) =
-// exp(-(e - log lambda_j)^2 / (2 sigma^2)), over the eigenpairs with lambda_j > 1e-8 lambda_max.
+// exp(-(e - log lambda_j)^2 / (2 sigma^2)), over the eigenpairs with positive eigenvalues
+// (PositiveEigenvalueRange, core/spectral.h).
 // energies: the log-energies e. Returns #V x energies.size().
 Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& energies,
                                     double sigma);
@@ -55,15 +56,16 @@ Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::Vect
 Eigen::MatrixXd EnergyWeights(const Eigen::VectorXd& evals, const Eigen::VectorXd& energies,
                               double sigma);
 
-// The coefficients Phi_k^T M D (k x energies) of the signatures D = Phi2 G in the first k
-// eigenfunctions, each signature first scaled to unit M-norm so that every energy weighs the same.
+// The coefficients Phi_k^T M D (k x energies) of the signatures D = Phi2 G (Phi2 the squares of
+// the first G.rows() eigenfunctions) in the first k eigenfunctions, each signature first scaled to unit M-norm so that every energy weighs the same.
 Eigen::MatrixXd WksCoefficients(const LaplaceBasis& basis, int k, const Eigen::MatrixXd& G);
 
 // The log-energies shared by a pair: `count` evenly spaced in [e_1 + 2 sigma, e_max - 2 sigma],
-// e_1 and e_max the logs of the smallest positive and the largest eigenvalues (means over the
-// two bases), sigma = sigma_units * spacing. Writes the absolute sigma to *sigma.
-Eigen::VectorXd WksEnergies(const LaplaceBasis& a, const LaplaceBasis& b, int count,
-                            double sigma_units, double* sigma);
+// e_1 and e_max the means over the two spectra of the logs of the ends of
+// PositiveEigenvalueRange (core/spectral.h), sigma = sigma_units * spacing. Writes the absolute
+// sigma to *sigma. Throws InvalidInputError when a spectrum has no positive eigenvalue.
+Eigen::VectorXd WksEnergies(const Eigen::VectorXd& evals_a, const Eigen::VectorXd& evals_b,
+                            int count, double sigma_units, double* sigma);
 
 // The k x k functional map (target coefficients to source coefficients, the convention of
 // stages/refine/functional_map.h) minimising ||C B - A||^2 + mu' ||Lambda_s C - C Lambda_t||^2

@@ -32,22 +32,10 @@ Eigen::MatrixXd HeatKernelSignature(const LaplaceBasis& basis, const Eigen::Vect
   return H.array().rowwise() / trace.array();
 }
 
-namespace {
-
-void Range(const LaplaceBasis& b, double* lambda_1, double* lambda_max) {
-  *lambda_max = b.evals.maxCoeff();
-  *lambda_1 = *lambda_max;
-  for (int i = 0; i < b.NumEigenpairs(); ++i) {
-    if (b.evals(i) > 1e-8 * *lambda_max) *lambda_1 = std::min(*lambda_1, b.evals(i));
-  }
-}
-
-}  // namespace
-
 Eigen::VectorXd HksTimes(const LaplaceBasis& a, const LaplaceBasis& b, int num_times) {
   double a1, amax, b1, bmax;
-  Range(a, &a1, &amax);
-  Range(b, &b1, &bmax);
+  PositiveEigenvalueRange(a.evals, &a1, &amax);
+  PositiveEigenvalueRange(b.evals, &b1, &bmax);
   const double lambda_1 = 0.5 * (a1 + b1), lambda_max = 0.5 * (amax + bmax);
   if (!(lambda_1 > 0.0) || !(lambda_max > 0.0)) {
     throw InvalidInputError("flip hks: no positive Laplace-Beltrami eigenvalue");

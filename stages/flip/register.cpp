@@ -35,9 +35,7 @@ class ExtrinsicStage : public FlipStage {
   void PrepareShape(ShapeData& shape) const override {
     shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
     LaplaceBasisOptions basis;
-    basis.k = 0;
-    if (orientation_weight_ > 0.0) basis.k = orientation_.k_end;
-    if (descriptor_weight_ > 0.0) basis.k = std::max(basis.k, descriptor_.eigenpairs);
+    basis.k = BasisSize();
     if (basis.k > 0) EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
   }
   FlipResult Run(const PairInput& pair) const override {
@@ -47,20 +45,22 @@ class ExtrinsicStage : public FlipStage {
     ExtrinsicScores s = ExtrinsicFlipScores(
         pair.source.Y, pair.target.Y, AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
         AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_, maps);
+    // One copy of each basis for both spectral terms.
+    LaplaceBasis source_basis, target_basis;
+    if (BasisSize() > 0) {
+      source_basis = GetLaplaceBasis(pair.source.aux, BasisSize());
+      target_basis = GetLaplaceBasis(pair.target.aux, BasisSize());
+    }
     DescriptorAgreement descriptor;
     if (descriptor_weight_ > 0.0) {
-      descriptor = DescriptorMapAgreement(
-          pair.source.Y, pair.target.Y, GetLaplaceBasis(pair.source.aux, descriptor_.eigenpairs),
-          GetLaplaceBasis(pair.target.aux, descriptor_.eigenpairs), pair.source.samples,
-          descriptor_);
+      descriptor = DescriptorMapAgreement(pair.source.Y, pair.target.Y, source_basis,
+                                          target_basis, pair.source.samples, descriptor_);
       for (int k = 0; k < 4; ++k) {
         s.total[k] += descriptor_weight_ * (1.0 - descriptor.agreement[k]) / 2.0;
       }
     }
     OrientationScores orientation;
     if (orientation_weight_ > 0.0) {
-      const LaplaceBasis source_basis = GetLaplaceBasis(pair.source.aux, orientation_.k_end);
-      const LaplaceBasis target_basis = GetLaplaceBasis(pair.target.aux, orientation_.k_end);
       const CandidateOrientation measure(pair.source.surface, pair.target.surface, source_basis,
                                          target_basis, pair.source.samples, pair.target.samples,
                                          orientation_);
@@ -90,6 +90,12 @@ class ExtrinsicStage : public FlipStage {
   }
 
  private:
+  // Eigenpairs the orientation and descriptor terms need (0: neither is on).
+  int BasisSize() const {
+    return std::max(orientation_weight_ > 0.0 ? orientation_.k_end : 0,
+                    descriptor_weight_ > 0.0 ? descriptor_.eigenpairs : 0);
+  }
+
   ExtrinsicFlipOptions options_;
   double orientation_weight_;
   OrientationOptions orientation_;

@@ -192,7 +192,7 @@ TEST(DescriptorFlip, WaveKernelSignatureIsAPartitionOfTheMassAndIgnoresRigidMoti
   const LaplaceBasis a = ComputeLaplaceBasis(figure, options);
   const LaplaceBasis b = ComputeLaplaceBasis(moved, options);
   double sigma = 0.0;
-  const Eigen::VectorXd energies = WksEnergies(a, b, 20, 7.0, &sigma);
+  const Eigen::VectorXd energies = WksEnergies(a.evals, b.evals, 20, 7.0, &sigma);
   ASSERT_GT(sigma, 0.0);
   for (int e = 1; e < energies.size(); ++e) EXPECT_GT(energies(e), energies(e - 1));
   const Eigen::MatrixXd wa = WaveKernelSignature(a, energies, sigma);
