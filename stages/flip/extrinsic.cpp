@@ -76,6 +76,30 @@ AxisDescriptor Describe(const Eigen::VectorXd& u_raw, const Eigen::MatrixXd& F, 
 
 }  // namespace
 
+std::array<double, 2> FeatureScales(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft) {
+  std::array<double, 2> scales{};
+  for (int f : {kShapeIndex, kCurvedness}) {
+    scales[f] = std::max(0.5 * (WeightedStd(Fs, f) + WeightedStd(Ft, f)), 1e-6);
+  }
+  return scales;
+}
+
+double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
+                           const std::vector<int>& map, const std::array<double, 2>& scales,
+                           const std::vector<int>& vertices) {
+  const int n = vertices.empty() ? static_cast<int>(Fs.rows()) : static_cast<int>(vertices.size());
+  double sum = 0.0, area = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const int v = vertices.empty() ? i : vertices[i];
+    const int t = map[v];
+    double diff = 0.0;
+    for (int f : {kShapeIndex, kCurvedness}) diff += std::abs(Fs(v, f) - Ft(t, f)) / scales[f];
+    sum += Fs(v, kArea) * diff / 2.0;
+    area += Fs(v, kArea);
+  }
+  return sum / std::max(area, 1e-300);
+}
+
 ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                     const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                                     const ExtrinsicFlipOptions& options,
@@ -85,12 +109,8 @@ ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::Mat
   if (Fs.rows() != Ys.rows() || Ft.rows() != Yt.rows() || Fs.cols() != 3 || Ft.cols() != 3) {
     throw InvalidInputError("flip extrinsic: features do not match the embeddings");
   }
-  double sigma[2];
-  for (int f : {kShapeIndex, kCurvedness}) {
-    sigma[f] = std::max(0.5 * (WeightedStd(Fs, f) + WeightedStd(Ft, f)), 1e-6);
-  }
+  const std::array<double, 2> sigma = FeatureScales(Fs, Ft);
   ExtrinsicScores out;
-  const Eigen::VectorXd as = Fs.col(kArea) / std::max(Fs.col(kArea).sum(), 1e-300);
   const double rs = std::max(RmsRadius(Ys), 1e-300), rt = std::max(RmsRadius(Yt), 1e-300);
   AxisDescriptor source_axes[2];
   for (int axis = 1; axis <= 2; ++axis) {
@@ -100,13 +120,7 @@ ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::Mat
   std::array<double, 4> chamfer{};
   if (options.chamfer_weight > 0.0) chamfer = ChamferScores(Ys, Yt, options.threads);
   for (int k = 0; k < 4; ++k) {
-    double local = 0.0;
-    for (int v = 0; v < Ys.rows(); ++v) {
-      const int t = maps.map[k][v];
-      double diff = 0.0;
-      for (int f : {kShapeIndex, kCurvedness}) diff += std::abs(Fs(v, f) - Ft(t, f)) / sigma[f];
-      local += as(v) * diff / 2.0;
-    }
+    const double local = FeatureDisagreement(Fs, Ft, maps.map[k], sigma);
     const Eigen::MatrixX3d Ytk = Yt * rotations[k].transpose();
     double global = 0.0;
     for (int axis = 1; axis <= 2; ++axis) {

@@ -17,11 +17,17 @@
 // orientation of candidate k's map after a short ZoomOut (stages/flip/orientation.h): the
 // features above cannot tell the right candidate from the one whose map lies near the
 // left-right mirrored correspondence (the human classes of TOSCA), orientation can.
+// It then adds refined_weight * (score_k - min score) (default weight 10) to the two best
+// candidates, score_k the curvature disagreement and orientation of candidate k's map after a
+// longer ZoomOut from k = 20 (stages/flip/refined_agreement.h): the refined maps of a human's
+// right candidate and of its front-back partner are accurate enough for the face, feet and torso
+// to tell them apart.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <string>
+#include <vector>
 
 #include "core/mesh.h"
 #include "stages/flip/flip_common.h"
@@ -59,6 +65,17 @@ ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::Mat
                                     const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                                     const ExtrinsicFlipOptions& options,
                                     const CandidateMaps& maps);
+
+// Scales of the shape index and curvedness columns for comparing Fs with Ft: the mean of the two
+// shapes' area-weighted standard deviations (at least 1e-6).
+std::array<double, 2> FeatureScales(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft);
+
+// sum_v a_v mean_f |Fs(v, f) - Ft(map[v], f)| / scales[f] over the shape index and curvedness,
+// a_v the source area fractions: the `local` term of a map (#Vs target vertex ids). Given
+// `vertices`, the sum runs over those source vertices only, a_v their share of their area.
+double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
+                           const std::vector<int>& map, const std::array<double, 2>& scales,
+                           const std::vector<int>& vertices = {});
 
 // The features of `surface` in the kExtrinsicFeaturesKey layout from core/curvature.h, with
 // curvatures averaged over smoothing_rings rings. Curvedness sqrt((k1^2 + k2^2) / 2)

@@ -10,6 +10,7 @@
 #include "stages/flip/flip_common.h"
 #include "stages/flip/hks.h"
 #include "stages/flip/oracle.h"
+#include "stages/flip/refined_agreement.h"
 #include "stages/flip/orientation.h"
 #include "stages/register.h"
 
@@ -29,9 +30,11 @@ class ExtrinsicStage : public FlipStage {
  public:
   ExtrinsicStage(ExtrinsicFlipOptions options, double orientation_weight,
                  OrientationOptions orientation, double descriptor_weight,
-                 DescriptorMapOptions descriptor)
+                 DescriptorMapOptions descriptor, double refined_weight,
+                 RefinedAgreementOptions refined)
       : options_(options), orientation_weight_(orientation_weight), orientation_(orientation),
-        descriptor_weight_(descriptor_weight), descriptor_(descriptor) {}
+        descriptor_weight_(descriptor_weight), descriptor_(descriptor),
+        refined_weight_(refined_weight), refined_(refined) {}
   void PrepareShape(ShapeData& shape) const override {
     shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
     LaplaceBasisOptions basis;
@@ -67,6 +70,16 @@ class ExtrinsicStage : public FlipStage {
       orientation = AddOrientationTerm(s.total, orientation_weight_, maps, measure);
       s.total = orientation.total;
     }
+    RefinedScores refined;
+    if (refined_weight_ > 0.0) {
+      refined = AddRefinedTerm(s.total, refined_weight_, pair.source.Y, pair.target.Y,
+                               pair.source.surface,
+                               pair.target.surface, source_basis, target_basis,
+                               AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
+                               AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"),
+                               pair.source.samples, pair.target.samples, refined_);
+      s.total = refined.total;
+    }
     FlipResult result = MakeFlipResult(s.total, "extrinsic");
     std::ostringstream detail;
     detail << "; local";
@@ -85,15 +98,24 @@ class ExtrinsicStage : public FlipStage {
         else detail << " " << v;
       }
     }
+    if (refined_weight_ > 0.0) {
+      // Disagreement / orientation of each refined candidate ("-": not refined).
+      detail << "; refined";
+      for (int k = 0; k < 4; ++k) {
+        if (std::isnan(refined.disagreement[k])) detail << " -";
+        else detail << " " << refined.disagreement[k] << "/" << refined.orientation[k];
+      }
+    }
     result.status.message += detail.str();
     return result;
   }
 
  private:
-  // Eigenpairs the orientation and descriptor terms need (0: neither is on).
+  // Eigenpairs the spectral terms need (0: none is on).
   int BasisSize() const {
-    return std::max(orientation_weight_ > 0.0 ? orientation_.k_end : 0,
-                    descriptor_weight_ > 0.0 ? descriptor_.eigenpairs : 0);
+    return std::max({orientation_weight_ > 0.0 ? orientation_.k_end : 0,
+                     descriptor_weight_ > 0.0 ? descriptor_.eigenpairs : 0,
+                     refined_weight_ > 0.0 ? refined_.k_end : 0});
   }
 
   ExtrinsicFlipOptions options_;
@@ -101,6 +123,8 @@ class ExtrinsicStage : public FlipStage {
   OrientationOptions orientation_;
   double descriptor_weight_;
   DescriptorMapOptions descriptor_;
+  double refined_weight_;
+  RefinedAgreementOptions refined_;
 };
 
 class ChamferStage : public FlipStage {
@@ -153,7 +177,9 @@ void RegisterFlipStages(Registry& registry) {
                "curvature features of the original surfaces, compared locally through each "
                "candidate's NN map and globally (front/back, top/bottom distributions), plus "
                "the orientation of each candidate's map after a short ZoomOut, plus its "
-               "agreement with a wave-kernel-signature functional map",
+               "agreement with a wave-kernel-signature functional map, plus the curvature "
+               "agreement and orientation of the two best candidates' maps after ZoomOut from "
+               "k = 20",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  ExtrinsicFlipOptions e;
                  e.local_weight = o.GetDouble("local_weight", e.local_weight, 0.0);
@@ -181,12 +207,24 @@ void RegisterFlipStages(Registry& registry) {
                  d.mu = o.GetDouble("descriptor_mu", d.mu, 0.0);
                  d.samples = o.GetInt("descriptor_samples", d.samples, 1, 100000);
                  d.axes = o.GetInt("descriptor_axes", d.axes, 1, 2);
+                 const double refined_weight = o.GetDouble("refined_weight", 10.0, 0.0);
+                 RefinedAgreementOptions f;
+                 f.k_start = o.GetInt("refined_k_start", f.k_start, 1, 1000);
+                 f.k_end = o.GetInt("refined_k_end", f.k_end, 1, 1000);
+                 f.step = o.GetInt("refined_step", f.step, 1, 1000);
+                 f.samples = o.GetInt("refined_samples", f.samples, 1, 100000);
+                 f.target_samples =
+                     o.GetInt("refined_target_samples", f.target_samples, 1, 100000);
+                 f.candidates = o.GetInt("refined_candidates", f.candidates, 1, 4);
+                 f.normal_weight =
+                     o.GetDouble("refined_normal_weight", f.normal_weight, 0.0);
                  std::string error;
                  if (!e.IsValid(&error)) o.Fail("", error);
                  if (!r.IsValid(&error)) o.Fail("", "orientation: " + error);
                  if (!d.IsValid(&error)) o.Fail("", "descriptor: " + error);
+                 if (!f.IsValid(&error)) o.Fail("", "refined: " + error);
                  return std::make_unique<ExtrinsicStage>(e, orientation_weight, r,
-                                                         descriptor_weight, d);
+                                                         descriptor_weight, d, refined_weight, f);
                });
   registry.Add("flip", "chamfer", "symmetric Chamfer distance of the embeddings only",
                [](OptionReader& o) -> std::unique_ptr<Stage> {

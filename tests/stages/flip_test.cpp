@@ -13,6 +13,7 @@
 #include "stages/flip/descriptor_map.h"
 #include "stages/flip/extrinsic.h"
 #include "stages/flip/orientation.h"
+#include "stages/flip/refined_agreement.h"
 #include "stages/refine/functional_map.h"
 #include "tests/test_util.h"
 
@@ -97,6 +98,8 @@ INSTANTIATE_TEST_SUITE_P(All, FlipScorers,
                                            "{type: extrinsic, orientation_weight: 0}",
                                            "{type: extrinsic, descriptor_weight: 0}",
                                            "{type: extrinsic, descriptor_axes: 2}",
+                                           "{type: extrinsic, refined_weight: 0}",
+                                           "{type: extrinsic, refined_candidates: 4}",
                                            "{type: chamfer}", "{type: hks}", "{type: oracle}"));
 
 // The vertex of `surface` nearest to each vertex mirrored by x -> -x.
@@ -261,6 +264,109 @@ TEST(DescriptorFlip, AgreementFollowsTheTurnOfTheTarget) {
   options.eigenpairs = 80;
   EXPECT_THROW(DescriptorMapAgreement(source.Y, posed.Y, bs, bt, source.samples, options),
                InvalidInputError);
+}
+
+TEST(RefinedFlip, RightCandidateAgreesBestWhateverTheTurn) {
+  // Every candidate refined (candidates 4) and no other term: the refined term alone must pick
+  // the oracle's candidate for each turn R_j of the target's canonical embedding.
+  const auto [source, posed] = HumanoidPoses(1500);
+  RefinedAgreementOptions options;
+  options.candidates = 4;
+  const auto [bs, bt] = Bases(source, posed, options.k_end);
+  const Eigen::MatrixXd Fs = ExtrinsicFeatures(source.surface, 2);
+  const Eigen::MatrixXd Ft = ExtrinsicFeatures(posed.surface, 2);
+  const auto rotations = CandidateRotations();
+  for (int j = 0; j < 4; ++j) {
+    ShapeData target = posed;
+    target.Y = posed.Y * rotations[j];
+    const int right = OracleChoice(source, target);
+    const RefinedScores r =
+        AddRefinedTerm({0, 0, 0, 0}, 1.0, source.Y, target.Y, source.surface, target.surface, bs,
+                       bt, Fs, Ft, source.samples, target.samples, options);
+    EXPECT_EQ(r.total[right], 0.0) << "turn " << j;
+    EXPECT_GT(r.orientation[right], 0.5) << "turn " << j;
+    for (int k = 0; k < 4; ++k) {
+      if (k != right) {
+        EXPECT_GT(r.total[k], 0.0) << "turn " << j << " candidate " << k;
+      }
+    }
+  }
+}
+
+TEST(RefinedFlip, OnlyTheBestCandidatesAreRefinedAndTheChoiceStaysAmongThem) {
+  const auto [source, target] = HumanoidPoses(1200);
+  RefinedAgreementOptions options;
+  const auto [bs, bt] = Bases(source, target, options.k_end);
+  const Eigen::MatrixXd Fs = ExtrinsicFeatures(source.surface, 2);
+  const Eigen::MatrixXd Ft = ExtrinsicFeatures(target.surface, 2);
+  const std::array<double, 4> scores{0.3, 0.1, 0.2, 0.0};  // best two: 3, then 1
+  for (double weight : {0.0, 1.0, 100.0}) {
+    const RefinedScores r = AddRefinedTerm(scores, weight, source.Y, target.Y, source.surface,
+                                           target.surface, bs, bt, Fs, Ft, source.samples,
+                                           target.samples, options);
+    for (int k : {0, 2}) {
+      EXPECT_TRUE(std::isnan(r.disagreement[k]) && std::isnan(r.orientation[k])) << k;
+      EXPECT_EQ(r.total[k], scores[k]);
+    }
+    for (int k : {1, 3}) {
+      EXPECT_FALSE(std::isnan(r.disagreement[k]) || std::isnan(r.orientation[k])) << k;
+      EXPECT_GE(r.total[k], scores[k]);
+    }
+    // The better refined candidate keeps its score, so the choice is one of the two.
+    EXPECT_TRUE(r.total[1] == scores[1] || r.total[3] == scores[3]);
+    const int chosen = static_cast<int>(std::min_element(r.total.begin(), r.total.end()) -
+                                        r.total.begin());
+    EXPECT_TRUE(chosen == 1 || chosen == 3) << "weight " << weight;
+  }
+}
+
+TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {
+  const auto [source, target] = HumanoidPoses(600);
+  RefinedAgreementOptions options;
+  const auto [bs, bt] = Bases(source, target, options.k_end);
+  const Eigen::MatrixXd Fs = ExtrinsicFeatures(source.surface, 2);
+  const Eigen::MatrixXd Ft = ExtrinsicFeatures(target.surface, 2);
+  auto run = [&](const RefinedAgreementOptions& o, const std::vector<int>& samples,
+                 const Eigen::MatrixXd& features) {
+    AddRefinedTerm({0, 0, 0, 0}, 1.0, source.Y, target.Y, source.surface, target.surface, bs, bt,
+                   features, Ft, samples, target.samples, o);
+  };
+  RefinedAgreementOptions bad = options;
+  bad.candidates = 0;
+  EXPECT_THROW(run(bad, source.samples, Fs), ConfigError);
+  bad = options;
+  bad.samples = options.k_end - 1;
+  EXPECT_THROW(run(bad, source.samples, Fs), ConfigError);
+  const std::vector<int> few(source.samples.begin(), source.samples.begin() + 10);
+  EXPECT_THROW(run(options, few, Fs), InvalidInputError);
+  EXPECT_THROW(run(options, source.samples, Fs.topRows(5)), InvalidInputError);
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  EXPECT_THROW(registry.CreateAs<FlipStage>(
+                   "flip", YAML::Load("{type: extrinsic, refined_candidates: 5}"), "t.yaml", "f"),
+               ConfigError);
+}
+
+TEST(ExtrinsicFlip, FeatureDisagreementOverAllVerticesOrASubset) {
+  const Surface figure = testing::SymmetricFigure();
+  const Eigen::MatrixXd F = ExtrinsicFeatures(figure, 2);
+  const std::array<double, 2> scales = FeatureScales(F, F);
+  std::vector<int> identity(figure.NumVertices()), all(figure.NumVertices());
+  for (int v = 0; v < figure.NumVertices(); ++v) identity[v] = all[v] = v;
+  EXPECT_EQ(FeatureDisagreement(F, F, identity, scales), 0.0);
+  const std::vector<int> mirror = MirrorMap(figure);
+  std::vector<int> shifted(figure.NumVertices());
+  for (int v = 0; v < figure.NumVertices(); ++v) shifted[v] = (v + 7) % figure.NumVertices();
+  const double full = FeatureDisagreement(F, F, shifted, scales);
+  EXPECT_GT(full, 0.1);
+  EXPECT_NEAR(FeatureDisagreement(F, F, shifted, scales, all), full, 1e-12);
+  // One vertex: its own mean normalised difference.
+  const int v = 5, t = shifted[v];
+  const double one = 0.5 * (std::abs(F(v, 0) - F(t, 0)) / scales[0] +
+                            std::abs(F(v, 1) - F(t, 1)) / scales[1]);
+  EXPECT_NEAR(FeatureDisagreement(F, F, shifted, scales, {v}), one, 1e-12);
+  // The figure is near symmetric: its mirror map preserves the features far better.
+  EXPECT_LT(FeatureDisagreement(F, F, mirror, scales), 0.5 * full);
 }
 
 TEST(OracleFlip, RefusesWithoutGroundTruth) {
