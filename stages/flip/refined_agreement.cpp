@@ -66,7 +66,15 @@ RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
   zoomout.step = options.step;
   zoomout.dense_result = false;
   const std::array<double, 2> scales = FeatureScales(Fs, Ft);
-  const EmbeddedPoints source_points{Ys, VertexNormals(Ys, source.F)};
+  // ZoomOut reads the initial map at the samples only: match those.
+  const Eigen::MatrixX3d source_normals = VertexNormals(Ys, source.F);
+  EmbeddedPoints source_points;
+  source_points.Y.resize(prefix.size(), 3);
+  source_points.N.resize(prefix.size(), 3);
+  for (size_t i = 0; i < prefix.size(); ++i) {
+    source_points.Y.row(i) = Ys.row(prefix[i]);
+    source_points.N.row(i) = source_normals.row(prefix[i]);
+  }
   const Eigen::MatrixX3d target_embedded_normals = VertexNormals(Yt, target.F);
   const auto rotations = CandidateRotations();
 
@@ -84,10 +92,12 @@ RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
     // The candidate's rotation applied to the target (y' = R y), as in the matching stage.
     const EmbeddedPoints turned{Yt * rotations[k].transpose(),
                                 target_embedded_normals * rotations[k].transpose()};
-    const MatchResult initial =
+    const MatchResult matched =
         MatchNearest(source_points, turned, options.normal_weight, /*threads=*/1);
+    std::vector<int> initial(source.NumVertices(), 0);
+    for (size_t i = 0; i < prefix.size(); ++i) initial[prefix[i]] = matched.map[i];
     const ZoomOutResult refined =
-        ZoomOut(source_basis, target_basis, initial.map, prefix, zoomout, target_prefix);
+        ZoomOut(source_basis, target_basis, initial, prefix, zoomout, target_prefix);
     out.disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
     out.orientation[k] = MapOrientation(source, target, refined.map, prefix, kNeighbors);
     score[k] = out.disagreement[k] + (1.0 - out.orientation[k]) / 4.0;
