@@ -19,9 +19,6 @@ Eigen::MatrixX3d Rotated(const Eigen::MatrixX3d& Y, const Eigen::Matrix3d& R) {
   return Y * R.transpose();
 }
 
-EmbeddedPoints Rotated(const EmbeddedPoints& points, const Eigen::Matrix3d& R) {
-  return {Rotated(points.Y, R), Rotated(points.N, R)};
-}
 
 void CheckMap(const MatchResult& result, int source_vertices, int target_vertices,
               const char* stage) {
@@ -39,6 +36,10 @@ void CheckMap(const MatchResult& result, int source_vertices, int target_vertice
 }
 
 }  // namespace
+
+EmbeddedPoints Rotated(const EmbeddedPoints& points, const Eigen::Matrix3d& R) {
+  return {Rotated(points.Y, R), Rotated(points.N, R)};
+}
 
 EmbeddedPoints EmbeddedShape(const ShapeData& shape, const Eigen::Matrix3d& R) {
   return Rotated(EmbeddedPoints{shape.Y, VertexNormals(shape.Y, shape.surface.F)}, R);

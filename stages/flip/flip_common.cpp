@@ -1,5 +1,6 @@
 #include "stages/flip/flip_common.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -35,6 +36,13 @@ std::array<double, 4> ChamferScores(const Eigen::MatrixX3d& Ys, const Eigen::Mat
     scores[k] = (forward.dist[k].mean() + back.mean()) / std::max(size, 1e-300);
   }
   return scores;
+}
+
+std::array<int, 4> CandidateOrder(const std::array<double, 4>& scores) {
+  std::array<int, 4> order{0, 1, 2, 3};
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return scores[a] < scores[b]; });
+  return order;
 }
 
 FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name) {

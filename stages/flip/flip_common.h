@@ -25,6 +25,9 @@ CandidateMaps ComputeCandidateMaps(const Eigen::MatrixX3d& Ys, const Eigen::Matr
 std::array<double, 4> ChamferScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                     int threads = 1);
 
+// The candidate indices by increasing score (stable: ties keep index order).
+std::array<int, 4> CandidateOrder(const std::array<double, 4>& scores);
+
 // chosen = argmin of scores (first on ties); message lists the scores.
 FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name);
 

@@ -39,6 +39,25 @@ bool NearTangent(const Eigen::Vector3d& cross, const Eigen::Vector3d& normal) {
   return std::abs(cross.dot(normal)) >= 0.5 * cross.norm() * normal.norm();
 }
 
+// The first `count` of a shape's samples; throws unless they determine k_end coefficients.
+std::vector<int> SamplePrefix(const std::vector<int>& samples, int count, int k_end,
+                              const char* shape) {
+  if (static_cast<int>(samples.size()) < k_end) {
+    throw InvalidInputError(std::string("flip orientation: the ") + shape + " has " +
+                            std::to_string(samples.size()) + " samples, fewer than k_end");
+  }
+  return {samples.begin(), samples.begin() + std::min<size_t>(samples.size(), count)};
+}
+
+void CheckOrientationInput(const Surface& source, const std::vector<int>& map,
+                           const std::vector<int>& samples) {
+  if (samples.size() < 3 || static_cast<int>(map.size()) != source.NumVertices()) {
+    throw InvalidInputError("flip orientation: need >= 3 samples and a map of every source vertex");
+  }
+}
+
+}  // namespace
+
 SourceTriangles MakeSourceTriangles(const Surface& source, const std::vector<int>& samples,
                                     int neighbors) {
   const int n = static_cast<int>(samples.size());
@@ -69,9 +88,8 @@ SourceTriangles MakeSourceTriangles(const Surface& source, const std::vector<int
   return out;
 }
 
-// Mean of source sign * image sign over the triangles whose image is spread and near tangent.
-double Orientation(const SourceTriangles& triangles, const Surface& target,
-                   const Eigen::MatrixX3d& target_normals, const std::vector<int>& map) {
+double TriangleOrientation(const SourceTriangles& triangles, const Surface& target,
+                           const Eigen::MatrixX3d& target_normals, const std::vector<int>& map) {
   double sum = 0.0;
   int count = 0;
   for (size_t t = 0; t < triangles.vertices.size(); ++t) {
@@ -88,30 +106,11 @@ double Orientation(const SourceTriangles& triangles, const Surface& target,
   return count > 0 ? sum / count : 0.0;
 }
 
-// The first `count` of a shape's samples; throws unless they determine k_end coefficients.
-std::vector<int> SamplePrefix(const std::vector<int>& samples, int count, int k_end,
-                              const char* shape) {
-  if (static_cast<int>(samples.size()) < k_end) {
-    throw InvalidInputError(std::string("flip orientation: the ") + shape + " has " +
-                            std::to_string(samples.size()) + " samples, fewer than k_end");
-  }
-  return {samples.begin(), samples.begin() + std::min<size_t>(samples.size(), count)};
-}
-
-void CheckOrientationInput(const Surface& source, const std::vector<int>& map,
-                           const std::vector<int>& samples) {
-  if (samples.size() < 3 || static_cast<int>(map.size()) != source.NumVertices()) {
-    throw InvalidInputError("flip orientation: need >= 3 samples and a map of every source vertex");
-  }
-}
-
-}  // namespace
-
 double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
                       const std::vector<int>& samples, int neighbors) {
   CheckOrientationInput(source, map, samples);
-  return Orientation(MakeSourceTriangles(source, samples, neighbors), target,
-                     VertexNormals(target), map);
+  return TriangleOrientation(MakeSourceTriangles(source, samples, neighbors), target,
+                             VertexNormals(target), map);
 }
 
 CandidateOrientation::CandidateOrientation(const Surface& source, const Surface& target,
@@ -142,7 +141,7 @@ double CandidateOrientation::operator()(const std::vector<int>& map) const {
   CheckOrientationInput(source_, map, samples_);
   const ZoomOutResult refined =
       ZoomOut(source_basis_, target_basis_, map, samples_, zoomout_, target_samples_);
-  return Orientation(triangles_, target_, target_normals_, refined.map);
+  return TriangleOrientation(triangles_, target_, target_normals_, refined.map);
 }
 
 std::array<double, 4> CandidateOrientations(const CandidateOrientation& measure,
@@ -156,14 +155,11 @@ OrientationScores AddOrientationTerm(const std::array<double, 4>& scores, double
                                      const CandidateMaps& maps,
                                      const CandidateOrientation& measure) {
   if (!(weight >= 0.0)) throw ConfigError("flip orientation: weight must be >= 0");
-  std::array<int, 4> order{0, 1, 2, 3};
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return scores[a] < scores[b]; });
   OrientationScores out;
   out.total = scores;
   out.orientation.fill(std::numeric_limits<double>::quiet_NaN());
   double best = std::numeric_limits<double>::infinity();
-  for (int k : order) {
+  for (int k : CandidateOrder(scores)) {
     // total_k >= scores[k]: a candidate whose score already exceeds the lowest total cannot be
     // the lowest (ties are measured, so the choice is the one of measuring all four).
     if (scores[k] > best) continue;

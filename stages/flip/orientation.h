@@ -50,18 +50,30 @@ struct OrientationOptions {
   bool IsValid(std::string* error) const;
 };
 
-// Mean over source samples and their neighbour pairs of sign(source triple product) *
-// sign(image triple product), in [-1, 1]: near 1 for an orientation-preserving map, near -1 for
-// a reversing one. map: #Vs target vertex per source vertex; samples: source vertex ids.
-double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
-                      const std::vector<int>& samples, int neighbors);
-
 // The source side of the measurement, independent of the map: triangles (apex sample i and two
 // of its nearest samples j, k) that are spread and near tangent to the surface at i.
 struct SourceTriangles {
   std::vector<std::array<int, 3>> vertices;  // source vertex ids (i, j, k)
   std::vector<double> sign;                  // sign of their orientation against the normal at i
 };
+
+// The triangles of `samples` (source vertex ids), each with two of its `neighbors` nearest
+// samples in the source's own coordinates.
+SourceTriangles MakeSourceTriangles(const Surface& source, const std::vector<int>& samples,
+                                    int neighbors);
+
+// Mean of source sign * sign of the image triangle's triple product with the target normal at
+// the apex's image, over the triangles whose image is spread and near tangent (0 when none is).
+// map: target vertex per source vertex (at least at the triangles' vertices); target_normals:
+// VertexNormals(target).
+double TriangleOrientation(const SourceTriangles& triangles, const Surface& target,
+                           const Eigen::MatrixX3d& target_normals, const std::vector<int>& map);
+
+// Mean over source samples and their neighbour pairs of sign(source triple product) *
+// sign(image triple product), in [-1, 1]: near 1 for an orientation-preserving map, near -1 for
+// a reversing one. map: #Vs target vertex per source vertex; samples: source vertex ids.
+double MapOrientation(const Surface& source, const Surface& target, const std::vector<int>& map,
+                      const std::vector<int>& samples, int neighbors);
 
 // The orientation of a candidate's nearest-neighbour map (from ComputeCandidateMaps of the
 // canonical embeddings) after ZoomOut in the given bases. Built once per pair: it holds what does

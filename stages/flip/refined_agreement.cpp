@@ -1,14 +1,12 @@
 #include "stages/flip/refined_agreement.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
-#include <cmath>
 #include <limits>
-#include <numeric>
 #include <sstream>
 
 #include "core/errors.h"
 #include "core/laplacian.h"
+#include "registry/pair_pipeline.h"
 #include "stages/flip/extrinsic.h"
 #include "stages/flip/orientation.h"
 #include "stages/matching/nearest.h"
@@ -16,8 +14,13 @@
 
 namespace symembed {
 namespace {
-// Nearest samples whose pairs make the triangles of MapOrientation.
+// Nearest samples whose pairs make the triangles of the orientation (orientation.h).
 constexpr int kNeighbors = 6;
+
+// The first `count` of `ids`.
+std::vector<int> Prefix(const std::vector<int>& ids, int count) {
+  return {ids.begin(), ids.begin() + std::min<size_t>(ids.size(), count)};
+}
 }  // namespace
 
 bool RefinedAgreementOptions::IsValid(std::string* error) const {
@@ -35,52 +38,48 @@ bool RefinedAgreementOptions::IsValid(std::string* error) const {
 }
 
 RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
-                             const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
-                             const Surface& source,
-                             const Surface& target, const LaplaceBasis& source_basis,
-                             const LaplaceBasis& target_basis, const Eigen::MatrixXd& Fs,
-                             const Eigen::MatrixXd& Ft, const std::vector<int>& samples,
-                             const std::vector<int>& target_samples,
+                             const ShapeData& source, const ShapeData& target,
+                             const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,
+                             const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                              const RefinedAgreementOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip refined: " + error);
   if (!(weight >= 0.0)) throw ConfigError("flip refined: weight must be >= 0");
-  if (Fs.rows() != source.NumVertices() || Ft.rows() != target.NumVertices()) {
+  if (Fs.rows() != source.surface.NumVertices() || Ft.rows() != target.surface.NumVertices()) {
     throw InvalidInputError("flip refined: features do not match the surfaces");
   }
-  for (const auto* s : {&samples, &target_samples}) {
-    if (static_cast<int>(s->size()) < options.k_end) {
-      throw InvalidInputError(std::string("flip refined: the ") +
-                              (s == &samples ? "source" : "target") + " has " +
-                              std::to_string(s->size()) + " samples, fewer than k_end");
+  for (const ShapeData* shape : {&source, &target}) {
+    if (static_cast<int>(shape->samples.size()) < options.k_end) {
+      throw InvalidInputError("flip refined: shape '" + shape->name + "' has " +
+                              std::to_string(shape->samples.size()) +
+                              " samples, fewer than k_end");
     }
   }
-  const std::vector<int> prefix(
-      samples.begin(), samples.begin() + std::min<size_t>(samples.size(), options.samples));
-  const std::vector<int> target_prefix(
-      target_samples.begin(),
-      target_samples.begin() + std::min<size_t>(target_samples.size(), options.target_samples));
+  const std::vector<int> prefix = Prefix(source.samples, options.samples);
+  const std::vector<int> target_prefix = Prefix(target.samples, options.target_samples);
   ZoomOutOptions zoomout;
   zoomout.k_start = options.k_start;
   zoomout.k_end = options.k_end;
   zoomout.step = options.step;
   zoomout.dense_result = false;
+  // What does not depend on the candidate, once: the feature scales, the embedded points of the
+  // source samples (ZoomOut reads the initial map at the samples only) and of the target, and
+  // the triangles and normals of the orientation.
   const std::array<double, 2> scales = FeatureScales(Fs, Ft);
-  // ZoomOut reads the initial map at the samples only: match those.
-  const Eigen::MatrixX3d source_normals = VertexNormals(Ys, source.F);
+  const EmbeddedPoints source_all = EmbeddedShape(source);
   EmbeddedPoints source_points;
   source_points.Y.resize(prefix.size(), 3);
   source_points.N.resize(prefix.size(), 3);
   for (size_t i = 0; i < prefix.size(); ++i) {
-    source_points.Y.row(i) = Ys.row(prefix[i]);
-    source_points.N.row(i) = source_normals.row(prefix[i]);
+    source_points.Y.row(i) = source_all.Y.row(prefix[i]);
+    source_points.N.row(i) = source_all.N.row(prefix[i]);
   }
-  const Eigen::MatrixX3d target_embedded_normals = VertexNormals(Yt, target.F);
+  const EmbeddedPoints target_points = EmbeddedShape(target);
+  const SourceTriangles triangles = MakeSourceTriangles(source.surface, prefix, kNeighbors);
+  const Eigen::MatrixX3d target_normals = VertexNormals(target.surface);
   const auto rotations = CandidateRotations();
 
-  std::array<int, 4> order{0, 1, 2, 3};
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return scores[a] < scores[b]; });
+  const std::array<int, 4> order = CandidateOrder(scores);
   RefinedScores out;
   out.total = scores;
   out.disagreement.fill(std::numeric_limits<double>::quiet_NaN());
@@ -89,17 +88,16 @@ RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
   double best = std::numeric_limits<double>::infinity();
   for (int r = 0; r < options.candidates; ++r) {
     const int k = order[r];
-    // The candidate's rotation applied to the target (y' = R y), as in the matching stage.
-    const EmbeddedPoints turned{Yt * rotations[k].transpose(),
-                                target_embedded_normals * rotations[k].transpose()};
-    const MatchResult matched =
-        MatchNearest(source_points, turned, options.normal_weight, /*threads=*/1);
-    std::vector<int> initial(source.NumVertices(), 0);
+    // The candidate's rotation applied to the target, as the matching stage gets it.
+    const MatchResult matched = MatchNearest(source_points, Rotated(target_points, rotations[k]),
+                                             options.normal_weight, /*threads=*/1);
+    std::vector<int> initial(source.surface.NumVertices(), 0);
     for (size_t i = 0; i < prefix.size(); ++i) initial[prefix[i]] = matched.map[i];
     const ZoomOutResult refined =
         ZoomOut(source_basis, target_basis, initial, prefix, zoomout, target_prefix);
     out.disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
-    out.orientation[k] = MapOrientation(source, target, refined.map, prefix, kNeighbors);
+    out.orientation[k] =
+        TriangleOrientation(triangles, target.surface, target_normals, refined.map);
     score[k] = out.disagreement[k] + (1.0 - out.orientation[k]) / 4.0;
     best = std::min(best, score[k]);
   }

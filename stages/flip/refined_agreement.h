@@ -26,11 +26,9 @@
 #include <Eigen/Core>
 #include <array>
 #include <string>
-#include <vector>
 
-#include "core/mesh.h"
 #include "core/spectral.h"
-#include "stages/flip/flip_common.h"
+#include "registry/types.h"
 
 namespace symembed {
 
@@ -59,18 +57,15 @@ struct RefinedScores {
 };
 
 // Adds the term to `scores` (the other terms' totals) for the best options.candidates
-// candidates, each refined from the nearest-neighbour map of the canonical embeddings Ys, Yt
-// (target turned by the candidate's rotation) with normals. Fs, Ft: kExtrinsicFeaturesKey features; samples: source vertex ids (the first
-// options.samples are used), target_samples: target vertex ids (the first
-// options.target_samples). Throws ConfigError for invalid options, InvalidInputError for
-// inputs that do not match.
+// candidates, each refined from the nearest-neighbour map of the shapes' embedded points
+// (EmbeddedShape, the target turned by the candidate's rotation) with normals. The shapes'
+// samples give the source samples (the first options.samples) and the target samples (the first
+// options.target_samples). Fs, Ft: kExtrinsicFeaturesKey features. Throws ConfigError for
+// invalid options, InvalidInputError for inputs that do not match.
 RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
-                             const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
-                             const Surface& source,
-                             const Surface& target, const LaplaceBasis& source_basis,
-                             const LaplaceBasis& target_basis, const Eigen::MatrixXd& Fs,
-                             const Eigen::MatrixXd& Ft, const std::vector<int>& samples,
-                             const std::vector<int>& target_samples,
+                             const ShapeData& source, const ShapeData& target,
+                             const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,
+                             const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                              const RefinedAgreementOptions& options);
 
 }  // namespace symembed

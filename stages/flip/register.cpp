@@ -10,8 +10,8 @@
 #include "stages/flip/flip_common.h"
 #include "stages/flip/hks.h"
 #include "stages/flip/oracle.h"
-#include "stages/flip/refined_agreement.h"
 #include "stages/flip/orientation.h"
+#include "stages/flip/refined_agreement.h"
 #include "stages/register.h"
 
 namespace symembed {
@@ -45,9 +45,9 @@ class ExtrinsicStage : public FlipStage {
     CheckFlipPair(pair);
     // One set of candidate maps for both terms.
     const CandidateMaps maps = ComputeCandidateMaps(pair.source.Y, pair.target.Y, options_.threads);
-    ExtrinsicScores s = ExtrinsicFlipScores(
-        pair.source.Y, pair.target.Y, AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
-        AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"), options_, maps);
+    const Eigen::MatrixXd& Fs = AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic");
+    const Eigen::MatrixXd& Ft = AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic");
+    ExtrinsicScores s = ExtrinsicFlipScores(pair.source.Y, pair.target.Y, Fs, Ft, options_, maps);
     // One copy of each basis for both spectral terms.
     LaplaceBasis source_basis, target_basis;
     if (BasisSize() > 0) {
@@ -72,12 +72,8 @@ class ExtrinsicStage : public FlipStage {
     }
     RefinedScores refined;
     if (refined_weight_ > 0.0) {
-      refined = AddRefinedTerm(s.total, refined_weight_, pair.source.Y, pair.target.Y,
-                               pair.source.surface,
-                               pair.target.surface, source_basis, target_basis,
-                               AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic"),
-                               AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic"),
-                               pair.source.samples, pair.target.samples, refined_);
+      refined = AddRefinedTerm(s.total, refined_weight_, pair.source, pair.target, source_basis,
+                               target_basis, Fs, Ft, refined_);
       s.total = refined.total;
     }
     FlipResult result = MakeFlipResult(s.total, "extrinsic");

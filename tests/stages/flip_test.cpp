@@ -266,23 +266,37 @@ TEST(DescriptorFlip, AgreementFollowsTheTurnOfTheTarget) {
                InvalidInputError);
 }
 
+// Two humanoid poses with what the refined term reads besides them: both bases (the default
+// k_end eigenpairs) and both shapes' curvature features.
+struct RefinedInputs {
+  ShapeData source, target;
+  LaplaceBasis source_basis, target_basis;
+  Eigen::MatrixXd Fs, Ft;
+};
+
+RefinedInputs HumanoidRefinedInputs(int vertices) {
+  auto [source, target] = HumanoidPoses(vertices);
+  auto [bs, bt] = Bases(source, target, RefinedAgreementOptions().k_end);
+  Eigen::MatrixXd Fs = ExtrinsicFeatures(source.surface, 2);
+  Eigen::MatrixXd Ft = ExtrinsicFeatures(target.surface, 2);
+  return {std::move(source), std::move(target), std::move(bs), std::move(bt), std::move(Fs),
+          std::move(Ft)};
+}
+
 TEST(RefinedFlip, RightCandidateAgreesBestWhateverTheTurn) {
   // Every candidate refined (candidates 4) and no other term: the refined term alone must pick
   // the oracle's candidate for each turn R_j of the target's canonical embedding.
-  const auto [source, posed] = HumanoidPoses(1500);
+  const RefinedInputs in = HumanoidRefinedInputs(1500);
   RefinedAgreementOptions options;
   options.candidates = 4;
-  const auto [bs, bt] = Bases(source, posed, options.k_end);
-  const Eigen::MatrixXd Fs = ExtrinsicFeatures(source.surface, 2);
-  const Eigen::MatrixXd Ft = ExtrinsicFeatures(posed.surface, 2);
   const auto rotations = CandidateRotations();
   for (int j = 0; j < 4; ++j) {
-    ShapeData target = posed;
-    target.Y = posed.Y * rotations[j];
-    const int right = OracleChoice(source, target);
-    const RefinedScores r =
-        AddRefinedTerm({0, 0, 0, 0}, 1.0, source.Y, target.Y, source.surface, target.surface, bs,
-                       bt, Fs, Ft, source.samples, target.samples, options);
+    ShapeData target = in.target;
+    target.Y = in.target.Y * rotations[j];
+    const int right = OracleChoice(in.source, target);
+    const RefinedScores r = AddRefinedTerm({0, 0, 0, 0}, 1.0, in.source, target,
+                                           in.source_basis, in.target_basis, in.Fs, in.Ft,
+                                           options);
     EXPECT_EQ(r.total[right], 0.0) << "turn " << j;
     EXPECT_GT(r.orientation[right], 0.5) << "turn " << j;
     for (int k = 0; k < 4; ++k) {
@@ -294,16 +308,12 @@ TEST(RefinedFlip, RightCandidateAgreesBestWhateverTheTurn) {
 }
 
 TEST(RefinedFlip, OnlyTheBestCandidatesAreRefinedAndTheChoiceStaysAmongThem) {
-  const auto [source, target] = HumanoidPoses(1200);
-  RefinedAgreementOptions options;
-  const auto [bs, bt] = Bases(source, target, options.k_end);
-  const Eigen::MatrixXd Fs = ExtrinsicFeatures(source.surface, 2);
-  const Eigen::MatrixXd Ft = ExtrinsicFeatures(target.surface, 2);
+  const RefinedInputs in = HumanoidRefinedInputs(1200);
+  const RefinedAgreementOptions options;
   const std::array<double, 4> scores{0.3, 0.1, 0.2, 0.0};  // best two: 3, then 1
   for (double weight : {0.0, 1.0, 100.0}) {
-    const RefinedScores r = AddRefinedTerm(scores, weight, source.Y, target.Y, source.surface,
-                                           target.surface, bs, bt, Fs, Ft, source.samples,
-                                           target.samples, options);
+    const RefinedScores r = AddRefinedTerm(scores, weight, in.source, in.target, in.source_basis,
+                                           in.target_basis, in.Fs, in.Ft, options);
     for (int k : {0, 2}) {
       EXPECT_TRUE(std::isnan(r.disagreement[k]) && std::isnan(r.orientation[k])) << k;
       EXPECT_EQ(r.total[k], scores[k]);
@@ -321,25 +331,23 @@ TEST(RefinedFlip, OnlyTheBestCandidatesAreRefinedAndTheChoiceStaysAmongThem) {
 }
 
 TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {
-  const auto [source, target] = HumanoidPoses(600);
-  RefinedAgreementOptions options;
-  const auto [bs, bt] = Bases(source, target, options.k_end);
-  const Eigen::MatrixXd Fs = ExtrinsicFeatures(source.surface, 2);
-  const Eigen::MatrixXd Ft = ExtrinsicFeatures(target.surface, 2);
-  auto run = [&](const RefinedAgreementOptions& o, const std::vector<int>& samples,
+  const RefinedInputs in = HumanoidRefinedInputs(600);
+  const RefinedAgreementOptions options;
+  auto run = [&](const RefinedAgreementOptions& o, const ShapeData& source,
                  const Eigen::MatrixXd& features) {
-    AddRefinedTerm({0, 0, 0, 0}, 1.0, source.Y, target.Y, source.surface, target.surface, bs, bt,
-                   features, Ft, samples, target.samples, o);
+    AddRefinedTerm({0, 0, 0, 0}, 1.0, source, in.target, in.source_basis, in.target_basis,
+                   features, in.Ft, o);
   };
   RefinedAgreementOptions bad = options;
   bad.candidates = 0;
-  EXPECT_THROW(run(bad, source.samples, Fs), ConfigError);
+  EXPECT_THROW(run(bad, in.source, in.Fs), ConfigError);
   bad = options;
   bad.samples = options.k_end - 1;
-  EXPECT_THROW(run(bad, source.samples, Fs), ConfigError);
-  const std::vector<int> few(source.samples.begin(), source.samples.begin() + 10);
-  EXPECT_THROW(run(options, few, Fs), InvalidInputError);
-  EXPECT_THROW(run(options, source.samples, Fs.topRows(5)), InvalidInputError);
+  EXPECT_THROW(run(bad, in.source, in.Fs), ConfigError);
+  ShapeData few = in.source;
+  few.samples.resize(10);
+  EXPECT_THROW(run(options, few, in.Fs), InvalidInputError);
+  EXPECT_THROW(run(options, in.source, in.Fs.topRows(5)), InvalidInputError);
   Registry registry;
   RegisterBuiltinStages(registry);
   EXPECT_THROW(registry.CreateAs<FlipStage>(
