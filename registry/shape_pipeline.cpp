@@ -276,7 +276,9 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   Hasher data_key(symz_key);
   for (const auto& [kind, stage] : pair_stages) {
     const std::string name = std::string("prepare_") + kind;
-    const uint64_t key = StageKey(symz_key, name, *stage);
+    const uint64_t key = Hasher(StageKey(symz_key, name, *stage))
+                             .AddU64(static_cast<uint64_t>(stage->PrepareVersion()))
+                             .Digest();
     data_key.AddU64(key);
     AuxMap aux = Cached<AuxMap>(
         context, name, key,

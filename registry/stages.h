@@ -82,6 +82,9 @@ class PairStage : public Stage {
  public:
   // Adds this stage's per-shape data to shape.aux (cached by the runner).
   virtual void PrepareShape(ShapeData& /*shape*/) const {}
+  // The version of what PrepareShape adds, part of its cache key: bump it when the entries
+  // change, so that caches written before are not read.
+  virtual int PrepareVersion() const { return 1; }
 };
 
 class FlipStage : public PairStage {

@@ -44,23 +44,35 @@ Eigen::MatrixXd EnergyWeights(const Eigen::VectorXd& evals, const Eigen::VectorX
   return G;
 }
 
-// (Phi_k^T M Phi2) G with the norms from G^T (Phi2^T M Phi2) G: the products over the #V rows do
-// not depend on the number of energies.
-Eigen::MatrixXd WksCoefficients(const LaplaceBasis& b, int k, const Eigen::MatrixXd& G) {
-  SYMEMBED_CHECK(G.rows() <= b.NumEigenpairs() && k <= b.NumEigenpairs(),
+WksProducts ComputeWksProducts(const LaplaceBasis& b, int k, int n) {
+  SYMEMBED_CHECK(n <= b.NumEigenpairs() && k <= b.NumEigenpairs(),
                  "the basis has fewer eigenpairs than the weights or k");
-  const Eigen::MatrixXd phi2 = b.evecs.leftCols(G.rows()).array().square().matrix();
-  const Eigen::MatrixXd P = b.evecs.leftCols(k).transpose() * (b.mass.asDiagonal() * phi2);
+  const Eigen::MatrixXd phi2 = b.evecs.leftCols(n).array().square().matrix();
+  WksProducts out;
+  out.P = b.evecs.leftCols(k).transpose() * (b.mass.asDiagonal() * phi2);
   const Eigen::MatrixXd W = b.mass.cwiseMax(0.0).cwiseSqrt().asDiagonal() * phi2;
-  Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(phi2.cols(), phi2.cols());
-  Q.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose());
-  Q = Q.selfadjointView<Eigen::Lower>();
-  Eigen::MatrixXd A = P * G;
+  out.Q = Eigen::MatrixXd::Zero(n, n);
+  out.Q.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose());
+  out.Q = out.Q.selfadjointView<Eigen::Lower>();
+  return out;
+}
+
+// (Phi_k^T M Phi2) G with the norms from G^T (Phi2^T M Phi2) G: the products over the #V rows do
+// not depend on the energies.
+Eigen::MatrixXd WksCoefficients(const WksProducts& products, const Eigen::MatrixXd& G) {
+  SYMEMBED_CHECK(products.P.cols() == G.rows() && products.Q.rows() == G.rows(),
+                 "the signature products are for " << products.Q.rows() << " eigenpairs, the "
+                                                   << "weights for " << G.rows());
+  Eigen::MatrixXd A = products.P * G;
   for (int e = 0; e < G.cols(); ++e) {
-    const double norm = std::sqrt(std::max(G.col(e).dot(Q * G.col(e)), 0.0));
+    const double norm = std::sqrt(std::max(G.col(e).dot(products.Q * G.col(e)), 0.0));
     if (norm > 0.0) A.col(e) /= norm;
   }
   return A;
+}
+
+Eigen::MatrixXd WksCoefficients(const LaplaceBasis& b, int k, const Eigen::MatrixXd& G) {
+  return WksCoefficients(ComputeWksProducts(b, k, static_cast<int>(G.rows())), G);
 }
 
 Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& energies,
@@ -113,7 +125,9 @@ Eigen::MatrixXd DescriptorFunctionalMap(const Eigen::MatrixXd& A, const Eigen::M
 DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                            const LaplaceBasis& source, const LaplaceBasis& target,
                                            const std::vector<int>& samples,
-                                           const DescriptorMapOptions& options) {
+                                           const DescriptorMapOptions& options,
+                                           const WksProducts* source_products,
+                                           const WksProducts* target_products) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip descriptor: " + error);
   if (source.NumEigenpairs() < options.eigenpairs || target.NumEigenpairs() < options.eigenpairs) {
@@ -129,10 +143,12 @@ DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eig
   double sigma = 0.0;
   const Eigen::VectorXd energies = WksEnergies(source.evals.head(n), target.evals.head(n),
                                                options.energies, options.sigma, &sigma);
-  const Eigen::MatrixXd A =
-      WksCoefficients(source, options.k, EnergyWeights(source.evals.head(n), energies, sigma));
-  const Eigen::MatrixXd B =
-      WksCoefficients(target, options.k, EnergyWeights(target.evals.head(n), energies, sigma));
+  const WksProducts ps = source_products ? WksProducts{} : ComputeWksProducts(source, options.k, n);
+  const WksProducts pt = target_products ? WksProducts{} : ComputeWksProducts(target, options.k, n);
+  const Eigen::MatrixXd A = WksCoefficients(source_products ? *source_products : ps,
+                                            EnergyWeights(source.evals.head(n), energies, sigma));
+  const Eigen::MatrixXd B = WksCoefficients(target_products ? *target_products : pt,
+                                            EnergyWeights(target.evals.head(n), energies, sigma));
   const Eigen::MatrixXd C =
       DescriptorFunctionalMap(A, B, source.evals, target.evals, options.mu);
 

@@ -56,8 +56,19 @@ Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::Vect
 Eigen::MatrixXd EnergyWeights(const Eigen::VectorXd& evals, const Eigen::VectorXd& energies,
                               double sigma);
 
+// What WksCoefficients needs of one shape's basis, whatever the energies: the products over its
+// #V rows, P = Phi_k^T M Phi2 (k x n) and Q = Phi2^T M Phi2 (n x n), Phi2 the squares of the
+// first n eigenfunctions. Per shape; the energies depend on both shapes of a pair.
+struct WksProducts {
+  Eigen::MatrixXd P;
+  Eigen::MatrixXd Q;
+};
+WksProducts ComputeWksProducts(const LaplaceBasis& basis, int k, int n);
+
 // The coefficients Phi_k^T M D (k x energies) of the signatures D = Phi2 G (Phi2 the squares of
-// the first G.rows() eigenfunctions) in the first k eigenfunctions, each signature first scaled to unit M-norm so that every energy weighs the same.
+// the first G.rows() eigenfunctions) in the first k eigenfunctions, each signature first scaled
+// to unit M-norm so that every energy weighs the same.
+Eigen::MatrixXd WksCoefficients(const WksProducts& products, const Eigen::MatrixXd& G);
 Eigen::MatrixXd WksCoefficients(const LaplaceBasis& basis, int k, const Eigen::MatrixXd& G);
 
 // The log-energies shared by a pair: `count` evenly spaced in [e_1 + 2 sigma, e_max - 2 sigma],
@@ -86,11 +97,15 @@ struct DescriptorAgreement {
 // along in-plane axis a over the source samples i, T the point map of the descriptor functional
 // map, the agreement is R_k(1, 1) c_1 (axes = 1) or (R_k(1, 1) c_1 + R_k(2, 2) c_2) / 2
 // (axes = 2). Ys, Yt: canonical embeddings; bases with at least options.eigenpairs eigenpairs;
-// samples: source vertex ids (the first options.samples are used). Throws ConfigError for
-// invalid options and InvalidInputError for inconsistent inputs.
+// samples: source vertex ids (the first options.samples are used). source_products and
+// target_products: ComputeWksProducts(basis, options.k, options.eigenpairs) of each shape when
+// kept per shape, or null to compute them here. Throws ConfigError for invalid options and
+// InvalidInputError for inconsistent inputs.
 DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                            const LaplaceBasis& source, const LaplaceBasis& target,
                                            const std::vector<int>& samples,
-                                           const DescriptorMapOptions& options);
+                                           const DescriptorMapOptions& options,
+                                           const WksProducts* source_products = nullptr,
+                                           const WksProducts* target_products = nullptr);
 
 }  // namespace symembed

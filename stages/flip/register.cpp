@@ -26,6 +26,10 @@ const Eigen::MatrixXd& AuxOf(const ShapeData& shape, const char* key, const char
   return it->second;
 }
 
+// The descriptor term's per-shape products (WksProducts).
+constexpr const char* kWksPKey = "extrinsic_wks_P";
+constexpr const char* kWksQKey = "extrinsic_wks_Q";
+
 class ExtrinsicStage : public FlipStage {
  public:
   ExtrinsicStage(ExtrinsicFlipOptions options, double orientation_weight,
@@ -40,7 +44,15 @@ class ExtrinsicStage : public FlipStage {
     LaplaceBasisOptions basis;
     basis.k = BasisSize();
     if (basis.k > 0) EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
+    if (descriptor_weight_ > 0.0) {
+      // The descriptor term's products over the shape's vertices, once per shape.
+      const WksProducts products = ComputeWksProducts(GetLaplaceBasis(shape.aux, basis.k),
+                                                      descriptor_.k, descriptor_.eigenpairs);
+      shape.aux[kWksPKey] = products.P;
+      shape.aux[kWksQKey] = products.Q;
+    }
   }
+  int PrepareVersion() const override { return 2; }  // 2: the descriptor term's products
   FlipResult Run(const PairInput& pair) const override {
     CheckFlipPair(pair);
     // One set of candidate maps for both terms.
@@ -56,8 +68,13 @@ class ExtrinsicStage : public FlipStage {
     }
     DescriptorAgreement descriptor;
     if (descriptor_weight_ > 0.0) {
+      const WksProducts ps{AuxOf(pair.source, kWksPKey, "extrinsic"),
+                           AuxOf(pair.source, kWksQKey, "extrinsic")};
+      const WksProducts pt{AuxOf(pair.target, kWksPKey, "extrinsic"),
+                           AuxOf(pair.target, kWksQKey, "extrinsic")};
       descriptor = DescriptorMapAgreement(pair.source.Y, pair.target.Y, source_basis,
-                                          target_basis, pair.source.samples, descriptor_);
+                                          target_basis, pair.source.samples, descriptor_, &ps,
+                                          &pt);
       for (int k = 0; k < 4; ++k) {
         s.total[k] += descriptor_weight_ * (1.0 - descriptor.agreement[k]) / 2.0;
       }

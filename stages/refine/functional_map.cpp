@@ -13,44 +13,76 @@ namespace symembed {
 
 namespace {
 
-// Gathers A (rows source_ids of Phi_s), B (rows target_ids of Phi_t) and the weights W, and
-// returns A^T W A and A^T W B.
-void NormalEquations(const BasisRef& Phi_s, const BasisRef& Phi_t,
-                     const std::vector<int>& source_ids, const std::vector<int>& target_ids,
-                     const Eigen::VectorXd& weights, Eigen::MatrixXd* AtWA, Eigen::MatrixXd* AtWB) {
-  const int m = static_cast<int>(source_ids.size());
-  if (target_ids.size() != source_ids.size()) {
-    throw InvalidInputError("functional map: source and target id lists differ in length");
-  }
+// The weights w(source_ids[r]) of the pairs, after checking the ids against Phi_s.
+Eigen::VectorXd PairWeights(const BasisRef& Phi_s, const std::vector<int>& source_ids,
+                            const Eigen::VectorXd& weights) {
   if (weights.size() != Phi_s.rows()) {
     throw InvalidInputError("functional map: weights must have one entry per source vertex");
   }
-  Eigen::MatrixXd A(m, Phi_s.cols()), B(m, Phi_t.cols());
-  for (int r = 0; r < m; ++r) {
-    const int i = source_ids[r], j = target_ids[r];
-    if (i < 0 || i >= Phi_s.rows() || j < 0 || j >= Phi_t.rows()) {
+  Eigen::VectorXd w(source_ids.size());
+  for (size_t r = 0; r < source_ids.size(); ++r) {
+    const int i = source_ids[r];
+    if (i < 0 || i >= Phi_s.rows()) {
       std::ostringstream out;
-      out << "functional map: pair " << r << " (" << i << " -> " << j << ") out of range";
+      out << "functional map: source id " << i << " of pair " << r << " out of range";
       throw InvalidInputError(out.str());
     }
-    A.row(r) = Phi_s.row(i);
-    B.row(r) = Phi_t.row(j);
+    w(r) = weights(i);
   }
-  Eigen::VectorXd w(m);
-  for (int r = 0; r < m; ++r) w(r) = weights(source_ids[r]);
-  const Eigen::MatrixXd WA = w.asDiagonal() * A;
-  *AtWA = WA.transpose() * A;
-  *AtWB = WA.transpose() * B;
+  return w;
+}
+
+// The rows `ids` (in range) of the first `cols` columns of Phi (all by default), gathered column
+// by column: each column of a #V x k basis is contiguous, row by row would touch k cache lines
+// per row.
+Eigen::MatrixXd Rows(const BasisRef& Phi, const std::vector<int>& ids, int cols = -1) {
+  Eigen::MatrixXd A(ids.size(), cols < 0 ? Phi.cols() : cols);
+  for (int c = 0; c < A.cols(); ++c) {
+    const double* column = Phi.col(c).data();
+    for (size_t r = 0; r < ids.size(); ++r) A(r, c) = column[ids[r]];
+  }
+  return A;
+}
+
+// A^T W B for A = rows source_ids of Phi_s, B = rows target_ids of Phi_t, W = the weights.
+Eigen::MatrixXd WeightedCross(const BasisRef& Phi_s, const BasisRef& Phi_t,
+                              const std::vector<int>& source_ids,
+                              const std::vector<int>& target_ids, const Eigen::VectorXd& weights) {
+  if (target_ids.size() != source_ids.size()) {
+    throw InvalidInputError("functional map: source and target id lists differ in length");
+  }
+  const Eigen::VectorXd w = PairWeights(Phi_s, source_ids, weights);
+  for (size_t r = 0; r < target_ids.size(); ++r) {
+    const int j = target_ids[r];
+    if (j < 0 || j >= Phi_t.rows()) {
+      std::ostringstream out;
+      out << "functional map: pair " << r << " (" << source_ids[r] << " -> " << j
+          << ") out of range";
+      throw InvalidInputError(out.str());
+    }
+  }
+  return (w.asDiagonal() * Rows(Phi_s, source_ids)).transpose() * Rows(Phi_t, target_ids);
 }
 
 }  // namespace
 
+Eigen::MatrixXd WeightedGram(const BasisRef& Phi_s, const std::vector<int>& source_ids,
+                             const Eigen::VectorXd& weights) {
+  const Eigen::VectorXd w = PairWeights(Phi_s, source_ids, weights);
+  const Eigen::MatrixXd A = Rows(Phi_s, source_ids);
+  return (w.asDiagonal() * A).transpose() * A;
+}
+
 Eigen::MatrixXd FitFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
                                  const std::vector<int>& source_ids,
                                  const std::vector<int>& target_ids,
-                                 const Eigen::VectorXd& weights) {
-  Eigen::MatrixXd AtWA, AtWB;
-  NormalEquations(Phi_s, Phi_t, source_ids, target_ids, weights, &AtWA, &AtWB);
+                                 const Eigen::VectorXd& weights, const Eigen::MatrixXd* gram) {
+  const int ks = static_cast<int>(Phi_s.cols());
+  SYMEMBED_CHECK(gram == nullptr || (gram->rows() >= ks && gram->cols() >= ks),
+                 "functional map: the Gram matrix is smaller than the basis");
+  const Eigen::MatrixXd AtWB = WeightedCross(Phi_s, Phi_t, source_ids, target_ids, weights);
+  const Eigen::MatrixXd AtWA = gram != nullptr ? Eigen::MatrixXd(gram->topLeftCorner(ks, ks))
+                                               : WeightedGram(Phi_s, source_ids, weights);
   // For the dense map with mass weights A^T W A = I; for a sample it is near I when the sample
   // covers the surface. LDL^T with a pivot check detects too small a sample.
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(AtWA);
@@ -69,8 +101,7 @@ Eigen::MatrixXd FitOrthogonalFunctionalMap(const BasisRef& Phi_s, const BasisRef
                                            const std::vector<int>& target_ids,
                                            const Eigen::VectorXd& weights) {
   SYMEMBED_CHECK(Phi_s.cols() == Phi_t.cols(), "orthogonal functional map needs ks == kt");
-  Eigen::MatrixXd AtWA, AtWB;
-  NormalEquations(Phi_s, Phi_t, source_ids, target_ids, weights, &AtWA, &AtWB);
+  const Eigen::MatrixXd AtWB = WeightedCross(Phi_s, Phi_t, source_ids, target_ids, weights);
   // min ||A C - B||_W over orthogonal C = max trace(C^T A^T W B): C = U V^T.
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(AtWB, Eigen::ComputeFullU | Eigen::ComputeFullV);
   return svd.matrixU() * svd.matrixV().transpose();
@@ -98,16 +129,13 @@ std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s,
     if (mass_t(j) > 0.0) ids.push_back(j);
   }
   if (ids.empty()) throw InvalidInputError("target surface has no vertex with positive area");
-  Eigen::MatrixXd points(ids.size(), kt);
-  for (size_t r = 0; r < ids.size(); ++r) points.row(r) = Phi_t.row(ids[r]).head(kt);
-  const SpectralNearest tree(points * C.transpose(), std::move(ids));
+  const Eigen::MatrixXd points = Rows(Phi_t, ids, kt) * C.transpose();
+  const SpectralNearest tree(points, std::move(ids));
 
-  Eigen::MatrixXd queries(source_ids.size(), ks);
-  for (size_t r = 0; r < source_ids.size(); ++r) {
-    const int i = source_ids[r];
+  for (const int i : source_ids) {
     SYMEMBED_CHECK(i >= 0 && i < Phi_s.rows(), "source id " << i << " out of range");
-    queries.row(r) = Phi_s.row(i).head(ks);
   }
+  const Eigen::MatrixXd queries = Rows(Phi_s, source_ids, ks);
   std::vector<int> nearest;
   tree.Query(queries, &nearest, sq_dist);
   return nearest;

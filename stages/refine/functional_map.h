@@ -30,11 +30,19 @@ using BasisRef = Eigen::Ref<const Eigen::MatrixXd>;
 //   C = argmin sum_r w(source_ids[r]) || Phi_s(source_ids[r], :) C - Phi_t(target_ids[r], :) ||^2,
 // i.e. C = (A^T W A)^{-1} A^T W B. Phi_s: #Vs x ks, Phi_t: #Vt x kt, weights: #Vs (the lumped
 // mass for the dense map, ones for a uniform sample). Returns ks x kt. Throws InvalidInputError
-// when the ids are out of range or A^T W A is singular (too few points for ks).
+// when the ids are out of range or A^T W A is singular (too few points for ks). `gram`, when
+// given, is WeightedGram of the same source ids and weights for Phi_s or a basis it is the first
+// columns of: its top-left ks x ks block is A^T W A (ZoomOut fits one map per basis size on the
+// same points).
 Eigen::MatrixXd FitFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
                                  const std::vector<int>& source_ids,
                                  const std::vector<int>& target_ids,
-                                 const Eigen::VectorXd& weights);
+                                 const Eigen::VectorXd& weights,
+                                 const Eigen::MatrixXd* gram = nullptr);
+
+// A^T W A of FitFunctionalMap: A the rows source_ids of Phi_s, W their weights.
+Eigen::MatrixXd WeightedGram(const BasisRef& Phi_s, const std::vector<int>& source_ids,
+                             const Eigen::VectorXd& weights);
 
 // The orthogonal C (ks == kt) minimising the same weighted energy: the Procrustes solution
 // C = U V^T of A^T W B = U S V^T [Ovsjanikov et al. 2012] Functional maps: a flexible

@@ -30,25 +30,24 @@ SpectralNearest::~SpectralNearest() = default;
 
 void SpectralNearest::QueryBruteForce(const Eigen::MatrixXd& queries,
                                       std::vector<int>* rows) const {
-  // Blocks of queries keep the block x n product in cache-friendly size (n ~ 5k: 1 MB).
+  // Blocks of queries keep the n x block product in cache-friendly size (n ~ 5k: 1 MB). The
+  // product is stored one query per column, so that each query's distances ||p_j||^2 - 2 q.p_j
+  // (||q||^2 is common to all j) are contiguous: their minimum is a vectorized reduction, and the
+  // first point that attains it (ties to the lower row) is found by a scan that stops there.
   constexpr int kBlock = 64;
   const int m = static_cast<int>(queries.rows());
   const Eigen::MatrixXf q = queries.cast<float>();
   Eigen::MatrixXf products;
+  Eigen::VectorXf d;
   for (int begin = 0; begin < m; begin += kBlock) {
     const int b = std::min(kBlock, m - begin);
-    products.noalias() = q.middleRows(begin, b) * points_f_.transpose();
+    products.noalias() = points_f_ * q.middleRows(begin, b).transpose();
     for (int r = 0; r < b; ++r) {
-      // argmin_j ||p_j||^2 - 2 q.p_j (||q||^2 is common to all j).
-      float best = std::numeric_limits<float>::infinity();
+      d.noalias() = sq_norms_f_ - 2.0f * products.col(r);
+      const float best = d.minCoeff();
       int arg = 0;
-      for (int j = 0; j < products.cols(); ++j) {
-        const float d = sq_norms_f_(j) - 2.0f * products(r, j);
-        if (d < best) {
-          best = d;
-          arg = j;
-        }
-      }
+      const int last = static_cast<int>(d.size()) - 1;
+      while (arg < last && !(d(arg) == best)) ++arg;  // bounded: NaN equals nothing
       (*rows)[begin + r] = arg;
     }
   }

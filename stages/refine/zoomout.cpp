@@ -62,11 +62,13 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
   std::vector<int> k_sizes;
   for (int k = options.k_start; k < options.k_end; k += options.step) k_sizes.push_back(k);
   k_sizes.push_back(options.k_end);
+  // The same points and weights at every basis size: A^T W A once, at the largest.
+  const Eigen::MatrixXd gram = WeightedGram(source.evecs.leftCols(options.k_end), active, weights);
   for (size_t it = 0; it < k_sizes.size(); ++it) {
     const int k = k_sizes[it];
     const bool last = it + 1 == k_sizes.size();
     const Eigen::MatrixXd C = FitFunctionalMap(source.evecs.leftCols(k), target.evecs.leftCols(k),
-                                               active, active_map, weights);
+                                               active, active_map, weights, &gram);
     std::vector<double> sq_dist;
     // The query covers every source vertex without samples, and in the last iteration of the
     // sampled variant (its dense map) unless only the samples are asked for; a query on the

@@ -163,6 +163,13 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("BM_Flip/extrinsic_300_samples", BM_Flip, &registry,
                                "{type: extrinsic, orientation_samples: 300}")
       ->Unit(benchmark::kMillisecond);
+  // Each added term's cost: the scorer without it.
+  for (const char* term : {"refined", "orientation", "descriptor"}) {
+    const std::string options = std::string("{type: extrinsic, ") + term + "_weight: 0}";
+    benchmark::RegisterBenchmark(("BM_Flip/extrinsic_no_" + std::string(term)).c_str(), BM_Flip,
+                                 &registry, options)
+        ->Unit(benchmark::kMillisecond);
+  }
   for (const std::string& name : registry.Names("matching")) {
     benchmark::RegisterBenchmark(("BM_Matching/" + name).c_str(), BM_Matching, &registry, name)
         ->Unit(benchmark::kMillisecond);

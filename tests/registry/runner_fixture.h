@@ -202,6 +202,9 @@ class TestFlip : public FlipStage {
     Count("prepare_flip");
     shape.aux["test_feature"] = shape.Y.col(0);
   }
+  int PrepareVersion() const override { return prepare_version; }
+  // What PrepareVersion returns, the same for every instance (a code change, not an option).
+  static inline int prepare_version = 1;
   FlipResult Run(const PairInput& pair) const override {
     Count("flip");
     SYMEMBED_CHECK(pair.source.aux.count("test_feature"), "missing aux");

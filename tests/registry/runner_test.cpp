@@ -142,6 +142,22 @@ TEST(Runner, SecondIdenticalRunRecomputesNothing) {
   EXPECT_EQ(Snapshot(tmp.File("out")), before);
 }
 
+TEST(Runner, ANewPrepareVersionRecomputesThePreparedDataAndThePairs) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  RunConfig(config, tmp.File("out1"), tmp.File("cache"));
+  testing::runner::TestFlip::prepare_version = 2;
+  const RunResult second = RunConfig(config, tmp.File("out2"), tmp.File("cache"));
+  testing::runner::TestFlip::prepare_version = 1;
+  // The flip stage's per-shape data is stale, what comes before it is not.
+  EXPECT_EQ(Get(second.stats.executed, "prepare_flip"), 3);
+  EXPECT_EQ(Get(second.stats.executed, "symmetrize"), 0);
+  EXPECT_EQ(Get(second.stats.cache_hits, "pair"), 0);
+  EXPECT_EQ(Get(second.calls, "flip"), 6);
+  const RunResult third = RunConfig(config, tmp.File("out3"), tmp.File("cache"));
+  EXPECT_TRUE(third.calls.empty());
+}
+
 TEST(Runner, VariantChangingALaterStageRecomputesNothingBeforeIt) {
   TempDir tmp;
   const std::string config = WriteTestDataset(
