@@ -71,10 +71,6 @@ Eigen::MatrixXd WksCoefficients(const WksProducts& products, const Eigen::Matrix
   return A;
 }
 
-Eigen::MatrixXd WksCoefficients(const LaplaceBasis& b, int k, const Eigen::MatrixXd& G) {
-  return WksCoefficients(ComputeWksProducts(b, k, static_cast<int>(G.rows())), G);
-}
-
 Eigen::MatrixXd WaveKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& energies,
                                     double sigma) {
   return basis.evecs.array().square().matrix() * EnergyWeights(basis.evals, energies, sigma);
@@ -124,10 +120,10 @@ Eigen::MatrixXd DescriptorFunctionalMap(const Eigen::MatrixXd& A, const Eigen::M
 
 DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                            const LaplaceBasis& source, const LaplaceBasis& target,
+                                           const WksProducts& source_products,
+                                           const WksProducts& target_products,
                                            const std::vector<int>& samples,
-                                           const DescriptorMapOptions& options,
-                                           const WksProducts* source_products,
-                                           const WksProducts* target_products) {
+                                           const DescriptorMapOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip descriptor: " + error);
   if (source.NumEigenpairs() < options.eigenpairs || target.NumEigenpairs() < options.eigenpairs) {
@@ -143,12 +139,17 @@ DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eig
   double sigma = 0.0;
   const Eigen::VectorXd energies = WksEnergies(source.evals.head(n), target.evals.head(n),
                                                options.energies, options.sigma, &sigma);
-  const WksProducts ps = source_products ? WksProducts{} : ComputeWksProducts(source, options.k, n);
-  const WksProducts pt = target_products ? WksProducts{} : ComputeWksProducts(target, options.k, n);
-  const Eigen::MatrixXd A = WksCoefficients(source_products ? *source_products : ps,
-                                            EnergyWeights(source.evals.head(n), energies, sigma));
-  const Eigen::MatrixXd B = WksCoefficients(target_products ? *target_products : pt,
-                                            EnergyWeights(target.evals.head(n), energies, sigma));
+  for (const WksProducts* products : {&source_products, &target_products}) {
+    if (products->P.rows() != options.k || products->P.cols() != n) {
+      throw InvalidInputError("flip descriptor: the signature products are " +
+                              std::to_string(products->P.rows()) + " x " +
+                              std::to_string(products->P.cols()) + ", not k x eigenpairs");
+    }
+  }
+  const Eigen::MatrixXd A =
+      WksCoefficients(source_products, EnergyWeights(source.evals.head(n), energies, sigma));
+  const Eigen::MatrixXd B =
+      WksCoefficients(target_products, EnergyWeights(target.evals.head(n), energies, sigma));
   const Eigen::MatrixXd C =
       DescriptorFunctionalMap(A, B, source.evals, target.evals, options.mu);
 

@@ -69,7 +69,6 @@ WksProducts ComputeWksProducts(const LaplaceBasis& basis, int k, int n);
 // the first G.rows() eigenfunctions) in the first k eigenfunctions, each signature first scaled
 // to unit M-norm so that every energy weighs the same.
 Eigen::MatrixXd WksCoefficients(const WksProducts& products, const Eigen::MatrixXd& G);
-Eigen::MatrixXd WksCoefficients(const LaplaceBasis& basis, int k, const Eigen::MatrixXd& G);
 
 // The log-energies shared by a pair: `count` evenly spaced in [e_1 + 2 sigma, e_max - 2 sigma],
 // e_1 and e_max the means over the two spectra of the logs of the ends of
@@ -97,15 +96,15 @@ struct DescriptorAgreement {
 // along in-plane axis a over the source samples i, T the point map of the descriptor functional
 // map, the agreement is R_k(1, 1) c_1 (axes = 1) or (R_k(1, 1) c_1 + R_k(2, 2) c_2) / 2
 // (axes = 2). Ys, Yt: canonical embeddings; bases with at least options.eigenpairs eigenpairs;
-// samples: source vertex ids (the first options.samples are used). source_products and
-// target_products: ComputeWksProducts(basis, options.k, options.eigenpairs) of each shape when
-// kept per shape, or null to compute them here. Throws ConfigError for invalid options and
-// InvalidInputError for inconsistent inputs.
+// source_products, target_products: ComputeWksProducts(basis, options.k, options.eigenpairs)
+// of each shape (per-shape data of the flip stage); samples: source vertex ids (the first
+// options.samples are used). Throws ConfigError for invalid options and InvalidInputError for
+// inconsistent inputs.
 DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                            const LaplaceBasis& source, const LaplaceBasis& target,
+                                           const WksProducts& source_products,
+                                           const WksProducts& target_products,
                                            const std::vector<int>& samples,
-                                           const DescriptorMapOptions& options,
-                                           const WksProducts* source_products = nullptr,
-                                           const WksProducts* target_products = nullptr);
+                                           const DescriptorMapOptions& options);
 
 }  // namespace symembed

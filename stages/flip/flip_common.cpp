@@ -45,6 +45,15 @@ std::array<int, 4> CandidateOrder(const std::array<double, 4>& scores) {
   return order;
 }
 
+std::vector<int> SamplePrefix(const std::vector<int>& samples, int count, int k_end,
+                              const std::string& what) {
+  if (static_cast<int>(samples.size()) < k_end) {
+    throw InvalidInputError(what + " has " + std::to_string(samples.size()) +
+                            " samples, fewer than k_end");
+  }
+  return {samples.begin(), samples.begin() + std::min<size_t>(samples.size(), count)};
+}
+
 FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name) {
   FlipResult result;
   result.scores = scores;

@@ -28,6 +28,11 @@ std::array<double, 4> ChamferScores(const Eigen::MatrixX3d& Ys, const Eigen::Mat
 // The candidate indices by increasing score (stable: ties keep index order).
 std::array<int, 4> CandidateOrder(const std::array<double, 4>& scores);
 
+// The first `count` of a shape's samples, for a ZoomOut up to k_end coefficients. Throws
+// InvalidInputError "<what> has N samples, fewer than k_end" when there are fewer than k_end.
+std::vector<int> SamplePrefix(const std::vector<int>& samples, int count, int k_end,
+                              const std::string& what);
+
 // chosen = argmin of scores (first on ties); message lists the scores.
 FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name);
 

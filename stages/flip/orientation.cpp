@@ -39,16 +39,6 @@ bool NearTangent(const Eigen::Vector3d& cross, const Eigen::Vector3d& normal) {
   return std::abs(cross.dot(normal)) >= 0.5 * cross.norm() * normal.norm();
 }
 
-// The first `count` of a shape's samples; throws unless they determine k_end coefficients.
-std::vector<int> SamplePrefix(const std::vector<int>& samples, int count, int k_end,
-                              const char* shape) {
-  if (static_cast<int>(samples.size()) < k_end) {
-    throw InvalidInputError(std::string("flip orientation: the ") + shape + " has " +
-                            std::to_string(samples.size()) + " samples, fewer than k_end");
-  }
-  return {samples.begin(), samples.begin() + std::min<size_t>(samples.size(), count)};
-}
-
 void CheckOrientationInput(const Surface& source, const std::vector<int>& map,
                            const std::vector<int>& samples) {
   if (samples.size() < 3 || static_cast<int>(map.size()) != source.NumVertices()) {
@@ -123,10 +113,11 @@ CandidateOrientation::CandidateOrientation(const Surface& source, const Surface&
       target_basis_(target_basis) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
-  samples_ = SamplePrefix(samples, options.samples, options.k_end, "source");
+  samples_ = SamplePrefix(samples, options.samples, options.k_end, "flip orientation: the source");
   if (options.target_samples > 0) {
     target_samples_ =
-        SamplePrefix(target_samples, options.target_samples, options.k_end, "target");
+        SamplePrefix(target_samples, options.target_samples, options.k_end,
+                     "flip orientation: the target");
   }
   zoomout_.k_start = options.k_start;
   zoomout_.k_end = options.k_end;

@@ -8,6 +8,7 @@
 #include "core/laplacian.h"
 #include "registry/pair_pipeline.h"
 #include "stages/flip/extrinsic.h"
+#include "stages/flip/flip_common.h"
 #include "stages/flip/orientation.h"
 #include "stages/matching/nearest.h"
 #include "stages/refine/zoomout.h"
@@ -16,11 +17,6 @@ namespace symembed {
 namespace {
 // Nearest samples whose pairs make the triangles of the orientation (orientation.h).
 constexpr int kNeighbors = 6;
-
-// The first `count` of `ids`.
-std::vector<int> Prefix(const std::vector<int>& ids, int count) {
-  return {ids.begin(), ids.begin() + std::min<size_t>(ids.size(), count)};
-}
 }  // namespace
 
 bool RefinedAgreementOptions::IsValid(std::string* error) const {
@@ -48,15 +44,11 @@ RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
   if (Fs.rows() != source.surface.NumVertices() || Ft.rows() != target.surface.NumVertices()) {
     throw InvalidInputError("flip refined: features do not match the surfaces");
   }
-  for (const ShapeData* shape : {&source, &target}) {
-    if (static_cast<int>(shape->samples.size()) < options.k_end) {
-      throw InvalidInputError("flip refined: shape '" + shape->name + "' has " +
-                              std::to_string(shape->samples.size()) +
-                              " samples, fewer than k_end");
-    }
-  }
-  const std::vector<int> prefix = Prefix(source.samples, options.samples);
-  const std::vector<int> target_prefix = Prefix(target.samples, options.target_samples);
+  const std::vector<int> prefix = SamplePrefix(source.samples, options.samples, options.k_end,
+                                               "flip refined: shape '" + source.name + "'");
+  const std::vector<int> target_prefix =
+      SamplePrefix(target.samples, options.target_samples, options.k_end,
+                   "flip refined: shape '" + target.name + "'");
   ZoomOutOptions zoomout;
   zoomout.k_start = options.k_start;
   zoomout.k_end = options.k_end;

@@ -26,9 +26,26 @@ const Eigen::MatrixXd& AuxOf(const ShapeData& shape, const char* key, const char
   return it->second;
 }
 
+// The ZoomOut schedule and sample counts of the orientation and refined terms, from the options
+// <prefix>k_start, k_end, step, samples and target_samples (at least target_min).
+template <typename Options>
+void ReadZoomOutSchedule(OptionReader& o, const std::string& prefix, int target_min,
+                         Options* out) {
+  out->k_start = o.GetInt(prefix + "k_start", out->k_start, 1, 1000);
+  out->k_end = o.GetInt(prefix + "k_end", out->k_end, 1, 1000);
+  out->step = o.GetInt(prefix + "step", out->step, 1, 1000);
+  out->samples = o.GetInt(prefix + "samples", out->samples, 1, 100000);
+  out->target_samples =
+      o.GetInt(prefix + "target_samples", out->target_samples, target_min, 100000);
+}
+
 // The descriptor term's per-shape products (WksProducts).
 constexpr const char* kWksPKey = "extrinsic_wks_P";
 constexpr const char* kWksQKey = "extrinsic_wks_Q";
+
+WksProducts WksProductsOf(const ShapeData& shape) {
+  return {AuxOf(shape, kWksPKey, "extrinsic"), AuxOf(shape, kWksQKey, "extrinsic")};
+}
 
 class ExtrinsicStage : public FlipStage {
  public:
@@ -68,13 +85,10 @@ class ExtrinsicStage : public FlipStage {
     }
     DescriptorAgreement descriptor;
     if (descriptor_weight_ > 0.0) {
-      const WksProducts ps{AuxOf(pair.source, kWksPKey, "extrinsic"),
-                           AuxOf(pair.source, kWksQKey, "extrinsic")};
-      const WksProducts pt{AuxOf(pair.target, kWksPKey, "extrinsic"),
-                           AuxOf(pair.target, kWksQKey, "extrinsic")};
       descriptor = DescriptorMapAgreement(pair.source.Y, pair.target.Y, source_basis,
-                                          target_basis, pair.source.samples, descriptor_, &ps,
-                                          &pt);
+                                          target_basis, WksProductsOf(pair.source),
+                                          WksProductsOf(pair.target), pair.source.samples,
+                                          descriptor_);
       for (int k = 0; k < 4; ++k) {
         s.total[k] += descriptor_weight_ * (1.0 - descriptor.agreement[k]) / 2.0;
       }
@@ -205,12 +219,7 @@ void RegisterFlipStages(Registry& registry) {
                  const double orientation_weight =
                      o.GetDouble("orientation_weight", 1.0, 0.0);
                  OrientationOptions r;
-                 r.k_start = o.GetInt("orientation_k_start", r.k_start, 1, 1000);
-                 r.k_end = o.GetInt("orientation_k_end", r.k_end, 1, 1000);
-                 r.step = o.GetInt("orientation_step", r.step, 1, 1000);
-                 r.samples = o.GetInt("orientation_samples", r.samples, 1, 100000);
-                 r.target_samples =
-                     o.GetInt("orientation_target_samples", r.target_samples, 0, 100000);
+                 ReadZoomOutSchedule(o, "orientation_", /*target_min=*/0, &r);
                  const double descriptor_weight = o.GetDouble("descriptor_weight", 1.0, 0.0);
                  DescriptorMapOptions d;
                  d.k = o.GetInt("descriptor_k", d.k, 2, 1000);
@@ -222,12 +231,7 @@ void RegisterFlipStages(Registry& registry) {
                  d.axes = o.GetInt("descriptor_axes", d.axes, 1, 2);
                  const double refined_weight = o.GetDouble("refined_weight", 10.0, 0.0);
                  RefinedAgreementOptions f;
-                 f.k_start = o.GetInt("refined_k_start", f.k_start, 1, 1000);
-                 f.k_end = o.GetInt("refined_k_end", f.k_end, 1, 1000);
-                 f.step = o.GetInt("refined_step", f.step, 1, 1000);
-                 f.samples = o.GetInt("refined_samples", f.samples, 1, 100000);
-                 f.target_samples =
-                     o.GetInt("refined_target_samples", f.target_samples, 1, 100000);
+                 ReadZoomOutSchedule(o, "refined_", /*target_min=*/1, &f);
                  f.candidates = o.GetInt("refined_candidates", f.candidates, 1, 4);
                  f.normal_weight =
                      o.GetDouble("refined_normal_weight", f.normal_weight, 0.0);

@@ -210,7 +210,9 @@ TEST(DescriptorFlip, WaveKernelSignatureIsAPartitionOfTheMassAndIgnoresRigidMoti
   Eigen::MatrixXd MD = a.mass.asDiagonal() * wa;
   for (int e = 0; e < wa.cols(); ++e) MD.col(e) /= std::sqrt(wa.col(e).dot(MD.col(e)));
   const Eigen::MatrixXd direct = a.evecs.leftCols(k).transpose() * MD;
-  const Eigen::MatrixXd fast = WksCoefficients(a, k, EnergyWeights(a.evals, energies, sigma));
+  const Eigen::MatrixXd fast =
+      WksCoefficients(ComputeWksProducts(a, k, static_cast<int>(a.evals.size())),
+                      EnergyWeights(a.evals, energies, sigma));
   EXPECT_LT((fast - direct).cwiseAbs().maxCoeff(), 1e-9 * direct.cwiseAbs().maxCoeff());
 }
 
@@ -247,13 +249,15 @@ TEST(DescriptorFlip, AgreementFollowsTheTurnOfTheTarget) {
   const auto [source, posed] = HumanoidPoses(1500);
   DescriptorMapOptions options;
   const auto [bs, bt] = Bases(source, posed, options.eigenpairs);
+  const WksProducts ps = ComputeWksProducts(bs, options.k, options.eigenpairs);
+  const WksProducts pt = ComputeWksProducts(bt, options.k, options.eigenpairs);
   const auto rotations = CandidateRotations();
   for (int j = 0; j < 4; ++j) {
     ShapeData target = posed;
     target.Y = posed.Y * rotations[j];
     const int right = OracleChoice(source, target);
     const DescriptorAgreement d =
-        DescriptorMapAgreement(source.Y, target.Y, bs, bt, source.samples, options);
+        DescriptorMapAgreement(source.Y, target.Y, bs, bt, ps, pt, source.samples, options);
     ASSERT_EQ(d.map.size(), static_cast<size_t>(options.samples));
     EXPECT_GT(d.agreement[right], 0.5) << "turn " << j;
     for (int k = 0; k < 4; ++k) {
@@ -261,8 +265,13 @@ TEST(DescriptorFlip, AgreementFollowsTheTurnOfTheTarget) {
       EXPECT_DOUBLE_EQ(d.agreement[k], same_axis1 ? d.agreement[right] : -d.agreement[right]);
     }
   }
+  // Products for another k than the options'.
+  const WksProducts other = ComputeWksProducts(bs, options.k - 1, options.eigenpairs);
+  EXPECT_THROW(
+      DescriptorMapAgreement(source.Y, posed.Y, bs, bt, other, other, source.samples, options),
+      InvalidInputError);
   options.eigenpairs = 80;
-  EXPECT_THROW(DescriptorMapAgreement(source.Y, posed.Y, bs, bt, source.samples, options),
+  EXPECT_THROW(DescriptorMapAgreement(source.Y, posed.Y, bs, bt, ps, pt, source.samples, options),
                InvalidInputError);
 }
 
