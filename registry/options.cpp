@@ -170,6 +170,41 @@ std::vector<std::string> OptionReader::GetStringList(const std::string& key,
   return value;
 }
 
+std::vector<int> OptionReader::GetIntList(const std::string& key,
+                                          const std::vector<int>& default_value, int min,
+                                          int max) {
+  YAML::Node v = Lookup(key);
+  std::vector<int> value = default_value;
+  if (v.IsDefined() && !v.IsNull()) {
+    value.clear();
+    std::vector<YAML::Node> items;
+    if (v.IsSequence()) {
+      for (const auto& item : v) items.push_back(item);
+    } else {
+      items.push_back(v);
+    }
+    for (const auto& item : items) {
+      long long x = 0;
+      try {
+        if (!item.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
+        x = item.as<long long>();
+      } catch (const YAML::Exception&) {
+        Fail(key, "expected a list of integers, got '" + Scalar(item) + "'");
+      }
+      if (x < min || x > max) {
+        std::ostringstream out;
+        out << "value " << x << " is out of range [" << min << ", " << max << "]";
+        Fail(key, out.str());
+      }
+      value.push_back(static_cast<int>(x));
+    }
+  }
+  YAML::Node out(YAML::NodeType::Sequence);
+  for (int x : value) out.push_back(x);
+  resolved_[key] = out;
+  return value;
+}
+
 OptionReader OptionReader::Child(const std::string& key) {
   return OptionReader(Lookup(key), file_, KeyPath(key));
 }

@@ -59,6 +59,10 @@ class OptionReader {
   }
   std::vector<std::string> GetStringList(const std::string& key,
                                          const std::vector<std::string>& default_value);
+  // A list of integers, each in [min, max] (a single integer is a list of one).
+  std::vector<int> GetIntList(const std::string& key, const std::vector<int>& default_value,
+                              int min = std::numeric_limits<int>::min(),
+                              int max = std::numeric_limits<int>::max());
   // A nested map, read with its own reader (recorded as read; its keys checked by its Finish).
   OptionReader Child(const std::string& key);
   // Marks the nested reader's resolved values as part of this reader's resolved node.

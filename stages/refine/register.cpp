@@ -51,8 +51,8 @@ class NoRefine : public RefineStage {
 
 class ZoomOutRefine : public RefineStage {
  public:
-  ZoomOutRefine(const ZoomOutOptions& options, int sample_count)
-      : options_(options), sample_count_(sample_count) {}
+  ZoomOutRefine(const ZoomOutOptions& options, int sample_count, int target_sample_count)
+      : options_(options), sample_count_(sample_count), target_sample_count_(target_sample_count) {}
 
   void PrepareShape(ShapeData& shape) const override { PrepareBasis(shape, options_.k_end); }
 
@@ -60,31 +60,36 @@ class ZoomOutRefine : public RefineStage {
     bool computed = false;
     const LaplaceBasis source = ShapeBasis(pair.source, options_.k_end, &computed);
     const LaplaceBasis target = ShapeBasis(pair.target, options_.k_end, &computed);
-    ZoomOutResult z = ZoomOut(source, target, initial_map, Samples(pair.source, source), options_);
+    const std::vector<int> samples = Samples(pair.source, source, sample_count_);
+    // Target samples only go with source samples (the dense variant maps onto every vertex).
+    const std::vector<int> target_samples =
+        samples.empty() ? std::vector<int>{} : Samples(pair.target, target, target_sample_count_);
+    ZoomOutResult z = ZoomOut(source, target, initial_map, samples, options_, target_samples);
     z.status.message += BasisNote(computed);
     return MatchResult{std::move(z.map), std::move(z.status)};
   }
 
  private:
-  // sample_count source vertices with area: the prefix of the shape's farthest-point samples
-  // when there are enough of them, else Euclidean farthest points; none (dense) when
-  // sample_count is 0 or not less than the vertex count.
-  std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis) const {
+  // `count` vertices with area: the prefix of the shape's farthest-point samples when there are
+  // enough of them, else Euclidean farthest points; none (every vertex) when count is 0 or not
+  // less than the vertex count.
+  static std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis, int count) {
     const int n = shape.surface.NumVertices();
-    if (sample_count_ == 0 || sample_count_ >= n) return {};
+    if (count == 0 || count >= n) return {};
     std::vector<bool> keep(n);
     for (int i = 0; i < n; ++i) keep[i] = basis.mass(i) > 0.0;
     std::vector<int> prefix;
     for (int id : shape.samples) {
-      if (static_cast<int>(prefix.size()) == sample_count_) break;
+      if (static_cast<int>(prefix.size()) == count) break;
       if (id >= 0 && id < n && keep[id]) prefix.push_back(id);
     }
-    if (static_cast<int>(prefix.size()) == sample_count_) return prefix;
-    return EuclideanFarthestPoints(shape.surface.V, sample_count_, keep);
+    if (static_cast<int>(prefix.size()) == count) return prefix;
+    return EuclideanFarthestPoints(shape.surface.V, count, keep);
   }
 
   ZoomOutOptions options_;
   int sample_count_;
+  int target_sample_count_;
 };
 
 class IcpRefine : public RefineStage {
@@ -121,7 +126,9 @@ void RegisterRefineStages(Registry& registry) {
         options.k_start = reader.GetInt("k_start", options.k_start, 1, 1000);
         options.k_end = reader.GetInt("k_end", options.k_end, 1, 1000);
         options.step = reader.GetInt("step", options.step, 1, 1000);
+        options.extra_k_starts = reader.GetIntList("extra_k_starts", {}, 1, 1000);
         const int sample_count = reader.GetInt("sample_count", 0, 0);
+        const int target_sample_count = reader.GetInt("target_sample_count", 0, 0);
         std::string error;
         if (!options.IsValid(&error)) reader.Fail("", error);
         if (sample_count > 0 && sample_count < options.k_end) {
@@ -129,7 +136,16 @@ void RegisterRefineStages(Registry& registry) {
                                           std::to_string(options.k_end) + "), got " +
                                           std::to_string(sample_count));
         }
-        return std::make_unique<ZoomOutRefine>(options, sample_count);
+        if (target_sample_count > 0 && sample_count == 0) {
+          reader.Fail("target_sample_count",
+                      "needs sample_count (the dense variant maps onto every target vertex)");
+        }
+        if (target_sample_count > 0 && target_sample_count < options.k_end) {
+          reader.Fail("target_sample_count", "must be 0 (every vertex) or >= k_end (" +
+                                                 std::to_string(options.k_end) + "), got " +
+                                                 std::to_string(target_sample_count));
+        }
+        return std::make_unique<ZoomOutRefine>(options, sample_count, target_sample_count);
       });
   registry.Add("refine", "icp",
                "functional-map ICP at a fixed basis size [Ovsjanikov et al. 2012] (baseline)",

@@ -1,5 +1,7 @@
 #include "stages/refine/zoomout.h"
 
+#include <algorithm>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -17,10 +19,47 @@ bool ZoomOutOptions::IsValid(std::string* error) const {
   } else if (step < 1) {
     out << "step must be >= 1, got " << step;
   }
+  for (int k : extra_k_starts) {
+    if (!out.str().empty()) break;
+    if (k < 1 || k > k_end) {
+      out << "extra_k_starts must lie in [1, k_end = " << k_end << "], got " << k;
+    } else if (k == k_start || std::count(extra_k_starts.begin(), extra_k_starts.end(), k) > 1) {
+      out << "extra_k_starts must differ from k_start and from each other, got " << k
+          << " twice";
+    }
+  }
   if (out.str().empty()) return true;
   if (error != nullptr) *error = out.str();
   return false;
 }
+
+namespace {
+
+double Mean(const std::vector<double>& values) {
+  return values.empty() ? 0.0
+                        : std::accumulate(values.begin(), values.end(), 0.0) / values.size();
+}
+
+// The basis sizes of one run: start, start + step, ... below k_end, then k_end.
+std::vector<int> BasisSizes(int start, const ZoomOutOptions& options) {
+  std::vector<int> sizes;
+  for (int k = start; k < options.k_end; k += options.step) sizes.push_back(k);
+  sizes.push_back(options.k_end);
+  return sizes;
+}
+
+// One ZoomOut run from one start on the active points, up to and including the fit of C at
+// k_end. When `score` is set, the last iteration's query also runs on the active points, so that
+// runs from different starts can be compared by their spectral residual at k_end.
+struct Run {
+  int start = 0;
+  std::vector<int> k;
+  std::vector<double> orthogonality, spectral_residual;
+  Eigen::MatrixXd C;           // the functional map at k_end
+  std::vector<int> active_map;  // the map of the active points before (or, scored, after) C
+};
+
+}  // namespace
 
 ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
                       const std::vector<int>& initial_map, const std::vector<int>& samples,
@@ -54,52 +93,105 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
   std::vector<int> all(ns);
   std::iota(all.begin(), all.end(), 0);
   const bool sampled = !samples.empty();
+  // A query on the samples lands on the target samples; a query on every source vertex (the
+  // dense variant, and the last query of the sampled one) on every target vertex.
+  const std::vector<int> no_ids;
+  const std::vector<int>& active_targets = sampled ? target_samples : no_ids;
 
-  std::vector<int> active_map(active.size());
-  for (size_t r = 0; r < active.size(); ++r) active_map[r] = initial_map[active[r]];
+  std::vector<int> starts = {options.k_start};
+  starts.insert(starts.end(), options.extra_k_starts.begin(), options.extra_k_starts.end());
+  const bool compare = starts.size() > 1;
 
-  ZoomOutResult result;
-  std::vector<int> k_sizes;
-  for (int k = options.k_start; k < options.k_end; k += options.step) k_sizes.push_back(k);
-  k_sizes.push_back(options.k_end);
   // The same points and weights at every basis size: A^T W A once, at the largest.
   const Eigen::MatrixXd gram = WeightedGram(source.evecs.leftCols(options.k_end), active, weights);
-  for (size_t it = 0; it < k_sizes.size(); ++it) {
-    const int k = k_sizes[it];
-    const bool last = it + 1 == k_sizes.size();
-    const Eigen::MatrixXd C = FitFunctionalMap(source.evecs.leftCols(k), target.evecs.leftCols(k),
-                                               active, active_map, weights, &gram);
-    std::vector<double> sq_dist;
-    // The query covers every source vertex without samples, and in the last iteration of the
-    // sampled variant (its dense map) unless only the samples are asked for; a query on the
-    // samples lands on the target samples.
-    const bool every_vertex = !sampled || (last && options.dense_result);
-    const std::vector<int>& query = every_vertex ? all : active;
-    std::vector<int> mapped =
-        PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C, query, &sq_dist,
-                                  every_vertex ? std::vector<int>{} : target_samples);
-    result.k.push_back(k);
-    result.orthogonality.push_back(OrthogonalityDefect(C));
-    result.spectral_residual.push_back(
-        sq_dist.empty() ? 0.0
-                        : std::accumulate(sq_dist.begin(), sq_dist.end(), 0.0) / sq_dist.size());
-    if (last && every_vertex) {
-      result.map = std::move(mapped);
-    } else if (last) {
-      result.map = initial_map;
-      for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = mapped[r];
-    } else {
-      active_map = std::move(mapped);
+  auto fit = [&](int k, const std::vector<int>& active_map) {
+    return FitFunctionalMap(source.evecs.leftCols(k), target.evecs.leftCols(k), active,
+                            active_map, weights, &gram);
+  };
+  auto record = [](Run* run, int k, const Eigen::MatrixXd& C, const std::vector<double>& sq) {
+    run->k.push_back(k);
+    run->orthogonality.push_back(OrthogonalityDefect(C));
+    run->spectral_residual.push_back(Mean(sq));
+  };
+
+  std::vector<Run> runs(starts.size());
+  for (size_t s = 0; s < starts.size(); ++s) {
+    Run& run = runs[s];
+    run.start = starts[s];
+    run.active_map.resize(active.size());
+    for (size_t r = 0; r < active.size(); ++r) run.active_map[r] = initial_map[active[r]];
+    const std::vector<int> sizes = BasisSizes(run.start, options);
+    for (size_t it = 0; it < sizes.size(); ++it) {
+      const Eigen::MatrixXd C = fit(sizes[it], run.active_map);
+      if (it + 1 == sizes.size()) {
+        run.C = C;
+        // Without a comparison the last query is the result's (below).
+        if (!compare) break;
+      }
+      std::vector<double> sq;
+      run.active_map = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C,
+                                                 active, &sq, active_targets);
+      record(&run, sizes[it], C, sq);
     }
   }
+  // The kept run: the lowest mean spectral residual at k_end on the active points.
+  size_t kept = 0;
+  for (size_t s = 1; s < runs.size(); ++s) {
+    if (runs[s].spectral_residual.back() < runs[kept].spectral_residual.back()) kept = s;
+  }
+  Run& run = runs[kept];
+
+  ZoomOutResult result;
+  result.start = run.start;
+  for (const Run& r : runs) {
+    result.starts.push_back(r.start);
+    result.start_residuals.push_back(compare ? r.spectral_residual.back() : 0.0);
+  }
+  const bool dense_query = !sampled || options.dense_result;
+  if (compare && !(sampled && options.dense_result)) {
+    // The comparison's query on the active points is the result.
+    result.map = sampled ? initial_map : run.active_map;
+    if (sampled) {
+      for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = run.active_map[r];
+    }
+  } else {
+    // The last query: every source vertex (dense), or the samples only.
+    std::vector<double> sq;
+    std::vector<int> mapped = PointMapFromFunctionalMap(
+        source.evecs, target.evecs, target.mass, run.C, dense_query ? all : active, &sq,
+        dense_query ? no_ids : active_targets);
+    if (compare) {
+      // The scored entry at k_end was measured on the samples; report the dense query's.
+      run.k.pop_back();
+      run.orthogonality.pop_back();
+      run.spectral_residual.pop_back();
+    }
+    record(&run, options.k_end, run.C, sq);
+    if (dense_query) {
+      result.map = std::move(mapped);
+    } else {
+      result.map = initial_map;
+      for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = mapped[r];
+    }
+  }
+  result.k = run.k;
+  result.orthogonality = run.orthogonality;
+  result.spectral_residual = run.spectral_residual;
   for (int i = 0; i < ns; ++i) result.changed += result.map[i] != initial_map[i];
 
   std::ostringstream message;
-  message << "zoomout k " << options.k_start << ".." << options.k_end << " step " << options.step
-          << (sampled ? " on " + std::to_string(samples.size()) + " samples" : "") << "; changed "
-          << result.changed << "/" << ns
-          << "; per k: orthogonality defect ||C^T C - I||^2/k, mean NN spectral residual:";
+  message << "zoomout k " << run.start << ".." << options.k_end << " step " << options.step
+          << (sampled ? " on " + std::to_string(samples.size()) + " samples" : "");
   message.precision(3);
+  if (compare) {
+    message << "; starts (k: residual at k_end)";
+    for (size_t s = 0; s < runs.size(); ++s) {
+      message << " " << result.starts[s] << ":" << result.start_residuals[s];
+    }
+    message << ", kept " << run.start;
+  }
+  message << "; changed " << result.changed << "/" << ns
+          << "; per k: orthogonality defect ||C^T C - I||^2/k, mean NN spectral residual:";
   for (size_t it = 0; it < result.k.size(); ++it) {
     message << " " << result.k[it] << ":" << result.orthogonality[it] << ","
             << result.spectral_residual[it];

@@ -6,6 +6,12 @@
 // nearest neighbours in the k-dimensional spectral embedding, growing k from k_start to k_end by
 // step. Given a sample of source vertices, the iterations run on the sample only (the paper's
 // fast variant) and only the last nearest-neighbour query maps every source vertex.
+//
+// ZoomOut is a local method: a region the initial map sends to the wrong part of the target stays
+// there once the basis has grown, and where it ends depends on the first basis size. With
+// extra_k_starts the iterations also run from each of those sizes, and the run whose map is best
+// explained by a functional map at k_end (lowest mean squared spectral distance of its matches,
+// the paper's per-point energy at the last size) is kept; only its last query is dense.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +27,9 @@ struct ZoomOutOptions {
   int k_start = 20;  // basis size of the first functional map (>= 1)
   int k_end = 120;   // basis size of the last one (>= k_start; both bases need k_end pairs)
   int step = 5;      // increment of k per iteration (>= 1); k_end is always the last size
+  // Further first basis sizes to run from, each in [1, k_end], distinct and != k_start; empty:
+  // one run.
+  std::vector<int> extra_k_starts;
   // With samples: true maps every source vertex in the last iteration; false maps only the
   // samples (the other entries of the result keep the initial map).
   bool dense_result = true;
@@ -34,6 +43,9 @@ struct ZoomOutResult {
   std::vector<double> orthogonality;      // per iteration: ||C_k^T C_k - I||_F^2 / k
   std::vector<double> spectral_residual;  // per iteration: mean squared NN spectral distance
   int changed = 0;                        // source vertices whose target changed
+  int start = 0;                          // first basis size of the kept run
+  std::vector<int> starts;                // every run's first basis size (k_start first)
+  std::vector<double> start_residuals;    // with several: each run's residual at k_end (else 0)
   StageStatus status;
 };
 

@@ -4,6 +4,9 @@
 
 #include <cstdlib>
 
+#include "core/errors.h"
+#include "registry/options.h"
+
 namespace symembed {
 namespace {
 
@@ -180,6 +183,28 @@ TEST(Config, OutOfRangeNamesTheRange) {
       << msg;
   const std::string eval = ErrorOf(Replace(kConfig, "step: 0.0025", "step: 0.5"));
   EXPECT_NE(eval.find("evaluation.step: value 0.5 is out of range"), std::string::npos) << eval;
+}
+
+TEST(Config, IntListsAcceptAListOrOneIntegerAndCheckEachItem) {
+  OptionReader o(YAML::Load("{a: [3, 1], b: 4, c: [2, x], d: [0], e: {f: 1}}"), "f.yaml", "p");
+  EXPECT_EQ(o.GetIntList("a", {}), (std::vector<int>{3, 1}));
+  EXPECT_EQ(o.GetIntList("b", {}), (std::vector<int>{4}));
+  EXPECT_EQ(o.GetIntList("missing", {7, 8}), (std::vector<int>{7, 8}));
+  EXPECT_EQ(o.resolved()["a"].size(), 2u);
+  EXPECT_EQ(o.resolved()["missing"][1].as<int>(), 8);
+  auto error_of = [&](const std::string& key, int min) -> std::string {
+    try {
+      o.GetIntList(key, {}, min);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error_of("c", 0).find("p.c: expected a list of integers, got 'x'"), std::string::npos)
+      << error_of("c", 0);
+  EXPECT_NE(error_of("d", 1).find("p.d: value 0 is out of range [1, "), std::string::npos)
+      << error_of("d", 1);
+  EXPECT_NE(error_of("e", 0).find("expected a list of integers"), std::string::npos);
 }
 
 TEST(Config, MissingRequiredKeys) {
