@@ -166,6 +166,9 @@ const std::vector<std::pair<std::string, std::string>>& Variants() {
       {"zoomout", "{type: zoomout}"},
       {"zoomout_s500", "{type: zoomout, sample_count: 500}"},
       {"zoomout_s1000", "{type: zoomout, sample_count: 1000}"},
+      {"zoomout_s1000_t1000", "{type: zoomout, sample_count: 1000, target_sample_count: 1000}"},
+      {"zoomout_starts", "{type: zoomout, sample_count: 1000, target_sample_count: 1000, "
+                         "extra_k_starts: [10, 15]}"},
   };
   return variants;
 }
