@@ -92,24 +92,38 @@ double OptionReader::GetDouble(const std::string& key, double default_value, dou
   return value;
 }
 
-int OptionReader::GetInt(const std::string& key, int default_value, int min, int max) {
-  YAML::Node v = Lookup(key);
-  long long value = default_value;
-  if (v.IsDefined() && !v.IsNull()) {
-    try {
-      if (!v.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
-      value = v.as<long long>();
-    } catch (const YAML::Exception&) {
-      Fail(key, "expected an integer, got '" + Scalar(v) + "'");
-    }
+long long OptionReader::ReadInteger(const std::string& key, const YAML::Node& v, long long min,
+                                     long long max, const std::string& expected) const {
+  long long value = 0;
+  try {
+    if (!v.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
+    value = v.as<long long>();
+  } catch (const YAML::Exception&) {
+    Fail(key, "expected " + expected + ", got '" + Scalar(v) + "'");
   }
+  CheckIntRange(key, value, min, max);
+  return value;
+}
+
+void OptionReader::CheckIntRange(const std::string& key, long long value, long long min,
+                                 long long max) const {
   if (value < min || value > max) {
     std::ostringstream out;
     out << "value " << value << " is out of range [" << min << ", " << max << "]";
     Fail(key, out.str());
   }
-  resolved_[key] = static_cast<int>(value);
-  return static_cast<int>(value);
+}
+
+int OptionReader::GetInt(const std::string& key, int default_value, int min, int max) {
+  YAML::Node v = Lookup(key);
+  int value = default_value;
+  if (v.IsDefined() && !v.IsNull()) {
+    value = static_cast<int>(ReadInteger(key, v, min, max, "an integer"));
+  } else {
+    CheckIntRange(key, value, min, max);
+  }
+  resolved_[key] = value;
+  return value;
 }
 
 bool OptionReader::GetBool(const std::string& key, bool default_value) {
@@ -175,29 +189,13 @@ std::vector<int> OptionReader::GetIntList(const std::string& key,
                                           int max) {
   YAML::Node v = Lookup(key);
   std::vector<int> value = default_value;
-  if (v.IsDefined() && !v.IsNull()) {
+  if (v.IsDefined() && v.IsSequence()) {
     value.clear();
-    std::vector<YAML::Node> items;
-    if (v.IsSequence()) {
-      for (const auto& item : v) items.push_back(item);
-    } else {
-      items.push_back(v);
+    for (const auto& item : v) {
+      value.push_back(static_cast<int>(ReadInteger(key, item, min, max, "a list of integers")));
     }
-    for (const auto& item : items) {
-      long long x = 0;
-      try {
-        if (!item.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
-        x = item.as<long long>();
-      } catch (const YAML::Exception&) {
-        Fail(key, "expected a list of integers, got '" + Scalar(item) + "'");
-      }
-      if (x < min || x > max) {
-        std::ostringstream out;
-        out << "value " << x << " is out of range [" << min << ", " << max << "]";
-        Fail(key, out.str());
-      }
-      value.push_back(static_cast<int>(x));
-    }
+  } else if (v.IsDefined() && !v.IsNull()) {
+    value = {static_cast<int>(ReadInteger(key, v, min, max, "a list of integers"))};
   }
   YAML::Node out(YAML::NodeType::Sequence);
   for (int x : value) out.push_back(x);

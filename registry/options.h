@@ -81,6 +81,12 @@ class OptionReader {
 
  private:
   YAML::Node Lookup(const std::string& key);
+  // The integer in the scalar `v` (the value of `key`, or an item of its list), checked against
+  // [min, max]; fails with "expected <expected>" when v is not an integer.
+  long long ReadInteger(const std::string& key, const YAML::Node& v, long long min, long long max,
+                        const std::string& expected) const;
+  // Fails with "value V is out of range [min, max]" unless min <= value <= max.
+  void CheckIntRange(const std::string& key, long long value, long long min, long long max) const;
   std::string KeyPath(const std::string& key) const;
 
   YAML::Node node_;

@@ -131,19 +131,18 @@ void RegisterRefineStages(Registry& registry) {
         const int target_sample_count = reader.GetInt("target_sample_count", 0, 0);
         std::string error;
         if (!options.IsValid(&error)) reader.Fail("", error);
-        if (sample_count > 0 && sample_count < options.k_end) {
-          reader.Fail("sample_count", "must be 0 (every vertex) or >= k_end (" +
-                                          std::to_string(options.k_end) + "), got " +
-                                          std::to_string(sample_count));
+        // A sample must determine k_end coefficients.
+        for (const auto& [key, count] : {std::pair<std::string, int>{"sample_count", sample_count},
+                                         {"target_sample_count", target_sample_count}}) {
+          if (count > 0 && count < options.k_end) {
+            reader.Fail(key, "must be 0 (every vertex) or >= k_end (" +
+                                 std::to_string(options.k_end) + "), got " +
+                                 std::to_string(count));
+          }
         }
         if (target_sample_count > 0 && sample_count == 0) {
           reader.Fail("target_sample_count",
                       "needs sample_count (the dense variant maps onto every target vertex)");
-        }
-        if (target_sample_count > 0 && target_sample_count < options.k_end) {
-          reader.Fail("target_sample_count", "must be 0 (every vertex) or >= k_end (" +
-                                                 std::to_string(options.k_end) + "), got " +
-                                                 std::to_string(target_sample_count));
         }
         return std::make_unique<ZoomOutRefine>(options, sample_count, target_sample_count);
       });

@@ -1,7 +1,6 @@
 #include "stages/refine/zoomout.h"
 
 #include <algorithm>
-#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -19,13 +18,15 @@ bool ZoomOutOptions::IsValid(std::string* error) const {
   } else if (step < 1) {
     out << "step must be >= 1, got " << step;
   }
-  for (int k : extra_k_starts) {
-    if (!out.str().empty()) break;
+  for (size_t i = 0; i < extra_k_starts.size() && out.str().empty(); ++i) {
+    const int k = extra_k_starts[i];
+    const auto earlier = extra_k_starts.begin() + i;
     if (k < 1 || k > k_end) {
       out << "extra_k_starts must lie in [1, k_end = " << k_end << "], got " << k;
-    } else if (k == k_start || std::count(extra_k_starts.begin(), extra_k_starts.end(), k) > 1) {
-      out << "extra_k_starts must differ from k_start and from each other, got " << k
-          << " twice";
+    } else if (k == k_start) {
+      out << "extra_k_starts must differ from k_start (" << k_start << ")";
+    } else if (std::find(extra_k_starts.begin(), earlier, k) != earlier) {
+      out << "extra_k_starts lists " << k << " twice";
     }
   }
   if (out.str().empty()) return true;
@@ -48,15 +49,13 @@ std::vector<int> BasisSizes(int start, const ZoomOutOptions& options) {
   return sizes;
 }
 
-// One ZoomOut run from one start on the active points, up to and including the fit of C at
-// k_end. When `score` is set, the last iteration's query also runs on the active points, so that
-// runs from different starts can be compared by their spectral residual at k_end.
+// One ZoomOut run from one start on the active points: its trace and the functional map at k_end.
 struct Run {
   int start = 0;
   std::vector<int> k;
   std::vector<double> orthogonality, spectral_residual;
-  Eigen::MatrixXd C;           // the functional map at k_end
-  std::vector<int> active_map;  // the map of the active points before (or, scored, after) C
+  Eigen::MatrixXd C;            // the functional map at k_end
+  std::vector<int> active_map;  // the map of the active points (after C when it was queried)
 };
 
 }  // namespace
@@ -100,18 +99,22 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
 
   std::vector<int> starts = {options.k_start};
   starts.insert(starts.end(), options.extra_k_starts.begin(), options.extra_k_starts.end());
-  const bool compare = starts.size() > 1;
+  // The sampled variant's result maps every source vertex with the last functional map. A
+  // single run goes straight to that query; several are first compared on the active points.
+  const bool dense_last = sampled && options.dense_result;
+  const bool query_last_on_active = !dense_last || starts.size() > 1;
 
   // The same points and weights at every basis size: A^T W A once, at the largest.
   const Eigen::MatrixXd gram = WeightedGram(source.evecs.leftCols(options.k_end), active, weights);
-  auto fit = [&](int k, const std::vector<int>& active_map) {
-    return FitFunctionalMap(source.evecs.leftCols(k), target.evecs.leftCols(k), active,
-                            active_map, weights, &gram);
-  };
-  auto record = [](Run* run, int k, const Eigen::MatrixXd& C, const std::vector<double>& sq) {
+  auto query = [&](Run* run, int k, const Eigen::MatrixXd& C, const std::vector<int>& ids,
+                   const std::vector<int>& target_ids) {
+    std::vector<double> sq;
+    std::vector<int> mapped = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass,
+                                                        C, ids, &sq, target_ids);
     run->k.push_back(k);
     run->orthogonality.push_back(OrthogonalityDefect(C));
     run->spectral_residual.push_back(Mean(sq));
+    return mapped;
   };
 
   std::vector<Run> runs(starts.size());
@@ -122,16 +125,11 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
     for (size_t r = 0; r < active.size(); ++r) run.active_map[r] = initial_map[active[r]];
     const std::vector<int> sizes = BasisSizes(run.start, options);
     for (size_t it = 0; it < sizes.size(); ++it) {
-      const Eigen::MatrixXd C = fit(sizes[it], run.active_map);
-      if (it + 1 == sizes.size()) {
-        run.C = C;
-        // Without a comparison the last query is the result's (below).
-        if (!compare) break;
+      run.C = FitFunctionalMap(source.evecs.leftCols(sizes[it]), target.evecs.leftCols(sizes[it]),
+                               active, run.active_map, weights, &gram);
+      if (it + 1 < sizes.size() || query_last_on_active) {
+        run.active_map = query(&run, sizes[it], run.C, active, active_targets);
       }
-      std::vector<double> sq;
-      run.active_map = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, C,
-                                                 active, &sq, active_targets);
-      record(&run, sizes[it], C, sq);
     }
   }
   // The kept run: the lowest mean spectral residual at k_end on the active points.
@@ -139,56 +137,45 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
   for (size_t s = 1; s < runs.size(); ++s) {
     if (runs[s].spectral_residual.back() < runs[kept].spectral_residual.back()) kept = s;
   }
-  Run& run = runs[kept];
 
   ZoomOutResult result;
-  result.start = run.start;
-  for (const Run& r : runs) {
-    result.starts.push_back(r.start);
-    result.start_residuals.push_back(compare ? r.spectral_residual.back() : 0.0);
+  if (starts.size() > 1) {
+    for (const Run& r : runs) result.start_residuals.push_back(r.spectral_residual.back());
   }
-  const bool dense_query = !sampled || options.dense_result;
-  if (compare && !(sampled && options.dense_result)) {
-    // The comparison's query on the active points is the result.
-    result.map = sampled ? initial_map : run.active_map;
-    if (sampled) {
-      for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = run.active_map[r];
-    }
-  } else {
-    // The last query: every source vertex (dense), or the samples only.
-    std::vector<double> sq;
-    std::vector<int> mapped = PointMapFromFunctionalMap(
-        source.evecs, target.evecs, target.mass, run.C, dense_query ? all : active, &sq,
-        dense_query ? no_ids : active_targets);
-    if (compare) {
-      // The scored entry at k_end was measured on the samples; report the dense query's.
+  Run& run = runs[kept];
+  result.start = run.start;
+  if (dense_last) {
+    // The trace reports the dense query at k_end, not the comparison's on the samples.
+    if (query_last_on_active) {
       run.k.pop_back();
       run.orthogonality.pop_back();
       run.spectral_residual.pop_back();
     }
-    record(&run, options.k_end, run.C, sq);
-    if (dense_query) {
-      result.map = std::move(mapped);
-    } else {
-      result.map = initial_map;
-      for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = mapped[r];
-    }
+    result.map = query(&run, options.k_end, run.C, all, no_ids);
+  } else if (sampled) {
+    result.map = initial_map;
+    for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = run.active_map[r];
+  } else {
+    result.map = run.active_map;
   }
-  result.k = run.k;
-  result.orthogonality = run.orthogonality;
-  result.spectral_residual = run.spectral_residual;
+  result.k = std::move(run.k);
+  result.orthogonality = std::move(run.orthogonality);
+  result.spectral_residual = std::move(run.spectral_residual);
   for (int i = 0; i < ns; ++i) result.changed += result.map[i] != initial_map[i];
 
   std::ostringstream message;
-  message << "zoomout k " << run.start << ".." << options.k_end << " step " << options.step
-          << (sampled ? " on " + std::to_string(samples.size()) + " samples" : "");
+  message << "zoomout k " << result.start << ".." << options.k_end << " step " << options.step
+          << (sampled ? " on " + std::to_string(samples.size()) + " samples" : "")
+          << (sampled && !target_samples.empty()
+                  ? " onto " + std::to_string(target_samples.size()) + " target samples"
+                  : "");
   message.precision(3);
-  if (compare) {
+  if (!result.start_residuals.empty()) {
     message << "; starts (k: residual at k_end)";
-    for (size_t s = 0; s < runs.size(); ++s) {
-      message << " " << result.starts[s] << ":" << result.start_residuals[s];
+    for (size_t s = 0; s < starts.size(); ++s) {
+      message << " " << starts[s] << ":" << result.start_residuals[s];
     }
-    message << ", kept " << run.start;
+    message << ", kept " << result.start;
   }
   message << "; changed " << result.changed << "/" << ns
           << "; per k: orthogonality defect ||C^T C - I||^2/k, mean NN spectral residual:";

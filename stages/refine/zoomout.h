@@ -44,8 +44,9 @@ struct ZoomOutResult {
   std::vector<double> spectral_residual;  // per iteration: mean squared NN spectral distance
   int changed = 0;                        // source vertices whose target changed
   int start = 0;                          // first basis size of the kept run
-  std::vector<int> starts;                // every run's first basis size (k_start first)
-  std::vector<double> start_residuals;    // with several: each run's residual at k_end (else 0)
+  // With extra_k_starts: each run's residual at k_end on the active points, in the order
+  // k_start, extra_k_starts...; empty for a single run.
+  std::vector<double> start_residuals;
   StageStatus status;
 };
 
