@@ -97,7 +97,9 @@ std::array<Eigen::Matrix3d, 4> CandidateRotations();
 
 struct FlipResult {
   std::array<double, 4> scores{};     // per candidate, lower is better
-  int chosen = 0;                     // index into CandidateRotations()
+  // Index into CandidateRotations(): the argmin of scores unless the stage's last step decides
+  // otherwise (the extrinsic scorer's refined term, stages/flip/refined_agreement.h).
+  int chosen = 0;
   StageStatus status;
 };
 

@@ -17,11 +17,11 @@
 // orientation of candidate k's map after a short ZoomOut (stages/flip/orientation.h): the
 // features above cannot tell the right candidate from the one whose map lies near the
 // left-right mirrored correspondence (the human classes of TOSCA), orientation can.
-// It then adds refined_weight * (score_k - min score) (default weight 10) to the two best
-// candidates, score_k the curvature disagreement and orientation of candidate k's map after a
-// longer ZoomOut from k = 20 (stages/flip/refined_agreement.h): the refined maps of a human's
-// right candidate and of its front-back partner are accurate enough for the face, feet and torso
-// to tell them apart.
+// With `refined` (default on) the best candidate's front-back partner (turned by pi about the
+// vertical axis) then replaces it when the partner's map, after a longer ZoomOut from k = 20,
+// agrees better with the surfaces by at least refined_margin (stages/flip/refined_agreement.h):
+// the refined maps of a human's right candidate and of its front-back partner are accurate
+// enough for the face, feet and torso to tell them apart.
 #pragma once
 
 #include <Eigen/Core>

@@ -24,8 +24,7 @@ bool RefinedAgreementOptions::IsValid(std::string* error) const {
   if (k_start < 1 || k_end < k_start) out << "need 1 <= k_start <= k_end";
   else if (step < 1) out << "step must be >= 1, got " << step;
   else if (samples < k_end) out << "samples must be >= k_end (" << k_end << "), got " << samples;
-  else if (candidates < 1 || candidates > 4)
-    out << "candidates must be in [1, 4], got " << candidates;
+  else if (!(margin >= 0.0)) out << "margin must be >= 0";
   else if (target_samples < k_end)
     out << "target_samples must be >= k_end (" << k_end << "), got " << target_samples;
   else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0";
@@ -33,14 +32,14 @@ bool RefinedAgreementOptions::IsValid(std::string* error) const {
   return out.str().empty();
 }
 
-RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
-                             const ShapeData& source, const ShapeData& target,
-                             const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,
-                             const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
-                             const RefinedAgreementOptions& options) {
+RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
+                                     const ShapeData& source, const ShapeData& target,
+                                     const LaplaceBasis& source_basis,
+                                     const LaplaceBasis& target_basis, const Eigen::MatrixXd& Fs,
+                                     const Eigen::MatrixXd& Ft,
+                                     const RefinedAgreementOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip refined: " + error);
-  if (!(weight >= 0.0)) throw ConfigError("flip refined: weight must be >= 0");
   if (Fs.rows() != source.surface.NumVertices() || Ft.rows() != target.surface.NumVertices()) {
     throw InvalidInputError("flip refined: features do not match the surfaces");
   }
@@ -71,15 +70,13 @@ RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
   const Eigen::MatrixX3d target_normals = VertexNormals(target.surface);
   const auto rotations = CandidateRotations();
 
-  const std::array<int, 4> order = CandidateOrder(scores);
-  RefinedScores out;
-  out.total = scores;
+  RefinedChoice out;
+  out.best = CandidateOrder(scores)[0];
+  out.partner = FrontBackPartner(out.best);
   out.disagreement.fill(std::numeric_limits<double>::quiet_NaN());
   out.orientation.fill(std::numeric_limits<double>::quiet_NaN());
-  std::array<double, 4> score{};
-  double best = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < options.candidates; ++r) {
-    const int k = order[r];
+  out.score.fill(std::numeric_limits<double>::quiet_NaN());
+  for (const int k : {out.best, out.partner}) {
     // The candidate's rotation applied to the target, as the matching stage gets it.
     const MatchResult matched = MatchNearest(source_points, Rotated(target_points, rotations[k]),
                                              options.normal_weight, /*threads=*/1);
@@ -90,13 +87,10 @@ RefinedScores AddRefinedTerm(const std::array<double, 4>& scores, double weight,
     out.disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
     out.orientation[k] =
         TriangleOrientation(triangles, target.surface, target_normals, refined.map);
-    score[k] = out.disagreement[k] + (1.0 - out.orientation[k]) / 4.0;
-    best = std::min(best, score[k]);
+    out.score[k] = out.disagreement[k] + (1.0 - out.orientation[k]) / 4.0;
   }
-  for (int r = 0; r < options.candidates; ++r) {
-    const int k = order[r];
-    out.total[k] += weight * (score[k] - best);
-  }
+  out.chosen = out.score[out.best] - out.score[out.partner] >= options.margin ? out.partner
+                                                                               : out.best;
   return out;
 }
 

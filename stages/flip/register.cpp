@@ -39,6 +39,9 @@ void ReadZoomOutSchedule(OptionReader& o, const std::string& prefix, int target_
       o.GetInt(prefix + "target_samples", out->target_samples, target_min, 100000);
 }
 
+// CandidateRotations() in order, for messages.
+constexpr const char* kCandidateNames[4] = {"I", "Rx", "Ry", "Rz"};
+
 // The descriptor term's per-shape products (WksProducts).
 constexpr const char* kWksPKey = "extrinsic_wks_P";
 constexpr const char* kWksQKey = "extrinsic_wks_Q";
@@ -51,11 +54,11 @@ class ExtrinsicStage : public FlipStage {
  public:
   ExtrinsicStage(ExtrinsicFlipOptions options, double orientation_weight,
                  OrientationOptions orientation, double descriptor_weight,
-                 DescriptorMapOptions descriptor, double refined_weight,
+                 DescriptorMapOptions descriptor, bool refined_on,
                  RefinedAgreementOptions refined)
       : options_(options), orientation_weight_(orientation_weight), orientation_(orientation),
         descriptor_weight_(descriptor_weight), descriptor_(descriptor),
-        refined_weight_(refined_weight), refined_(refined) {}
+        refined_on_(refined_on), refined_(refined) {}
   void PrepareShape(ShapeData& shape) const override {
     shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
     LaplaceBasisOptions basis;
@@ -101,13 +104,14 @@ class ExtrinsicStage : public FlipStage {
       orientation = AddOrientationTerm(s.total, orientation_weight_, maps, measure);
       s.total = orientation.total;
     }
-    RefinedScores refined;
-    if (refined_weight_ > 0.0) {
-      refined = AddRefinedTerm(s.total, refined_weight_, pair.source, pair.target, source_basis,
-                               target_basis, Fs, Ft, refined_);
-      s.total = refined.total;
-    }
     FlipResult result = MakeFlipResult(s.total, "extrinsic");
+    RefinedChoice refined;
+    if (refined_on_) {
+      refined = RefinedFrontBackChoice(s.total, pair.source, pair.target, source_basis,
+                                       target_basis, Fs, Ft, refined_);
+      result.chosen = refined.chosen;
+      result.status.residual = s.total[refined.chosen];
+    }
     std::ostringstream detail;
     detail << "; local";
     for (double v : s.local) detail << " " << v;
@@ -125,12 +129,17 @@ class ExtrinsicStage : public FlipStage {
         else detail << " " << v;
       }
     }
-    if (refined_weight_ > 0.0) {
-      // Disagreement / orientation of each refined candidate ("-": not refined).
+    if (refined_on_) {
+      // Disagreement / orientation of the best candidate and its partner ("-": not refined).
       detail << "; refined";
       for (int k = 0; k < 4; ++k) {
         if (std::isnan(refined.disagreement[k])) detail << " -";
         else detail << " " << refined.disagreement[k] << "/" << refined.orientation[k];
+      }
+      if (refined.chosen != refined.best) {
+        detail << "; refined maps choose " << kCandidateNames[refined.chosen] << " over "
+               << kCandidateNames[refined.best] << " (score " << refined.score[refined.chosen]
+               << " against " << refined.score[refined.best] << ")";
       }
     }
     result.status.message += detail.str();
@@ -142,7 +151,7 @@ class ExtrinsicStage : public FlipStage {
   int BasisSize() const {
     return std::max({orientation_weight_ > 0.0 ? orientation_.k_end : 0,
                      descriptor_weight_ > 0.0 ? descriptor_.eigenpairs : 0,
-                     refined_weight_ > 0.0 ? refined_.k_end : 0});
+                     refined_on_ ? refined_.k_end : 0});
   }
 
   ExtrinsicFlipOptions options_;
@@ -150,7 +159,7 @@ class ExtrinsicStage : public FlipStage {
   OrientationOptions orientation_;
   double descriptor_weight_;
   DescriptorMapOptions descriptor_;
-  double refined_weight_;
+  bool refined_on_;
   RefinedAgreementOptions refined_;
 };
 
@@ -205,8 +214,8 @@ void RegisterFlipStages(Registry& registry) {
                "candidate's NN map and globally (front/back, top/bottom distributions), plus "
                "the orientation of each candidate's map after a short ZoomOut, plus its "
                "agreement with a wave-kernel-signature functional map, plus the curvature "
-               "agreement and orientation of the two best candidates' maps after ZoomOut from "
-               "k = 20",
+               "agreement and orientation, after ZoomOut from k = 20, of the maps of the best "
+               "candidate and of its front-back partner, which replaces it when clearly better",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  ExtrinsicFlipOptions e;
                  e.local_weight = o.GetDouble("local_weight", e.local_weight, 0.0);
@@ -229,10 +238,10 @@ void RegisterFlipStages(Registry& registry) {
                  d.mu = o.GetDouble("descriptor_mu", d.mu, 0.0);
                  d.samples = o.GetInt("descriptor_samples", d.samples, 1, 100000);
                  d.axes = o.GetInt("descriptor_axes", d.axes, 1, 2);
-                 const double refined_weight = o.GetDouble("refined_weight", 10.0, 0.0);
+                 const bool refined_on = o.GetBool("refined", true);
                  RefinedAgreementOptions f;
                  ReadZoomOutSchedule(o, "refined_", /*target_min=*/1, &f);
-                 f.candidates = o.GetInt("refined_candidates", f.candidates, 1, 4);
+                 f.margin = o.GetDouble("refined_margin", f.margin, 0.0);
                  f.normal_weight =
                      o.GetDouble("refined_normal_weight", f.normal_weight, 0.0);
                  std::string error;
@@ -241,7 +250,7 @@ void RegisterFlipStages(Registry& registry) {
                  if (!d.IsValid(&error)) o.Fail("", "descriptor: " + error);
                  if (!f.IsValid(&error)) o.Fail("", "refined: " + error);
                  return std::make_unique<ExtrinsicStage>(e, orientation_weight, r,
-                                                         descriptor_weight, d, refined_weight, f);
+                                                         descriptor_weight, d, refined_on, f);
                });
   registry.Add("flip", "chamfer", "symmetric Chamfer distance of the embeddings only",
                [](OptionReader& o) -> std::unique_ptr<Stage> {

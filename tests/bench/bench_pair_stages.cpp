@@ -165,7 +165,8 @@ int main(int argc, char** argv) {
       ->Unit(benchmark::kMillisecond);
   // Each added term's cost: the scorer without it.
   for (const char* term : {"refined", "orientation", "descriptor"}) {
-    const std::string options = std::string("{type: extrinsic, ") + term + "_weight: 0}";
+    const std::string off = std::string(term) == "refined" ? ": false" : "_weight: 0";
+    const std::string options = std::string("{type: extrinsic, ") + term + off + "}";
     benchmark::RegisterBenchmark(("BM_Flip/extrinsic_no_" + std::string(term)).c_str(), BM_Flip,
                                  &registry, options)
         ->Unit(benchmark::kMillisecond);

@@ -98,8 +98,8 @@ INSTANTIATE_TEST_SUITE_P(All, FlipScorers,
                                            "{type: extrinsic, orientation_weight: 0}",
                                            "{type: extrinsic, descriptor_weight: 0}",
                                            "{type: extrinsic, descriptor_axes: 2}",
-                                           "{type: extrinsic, refined_weight: 0}",
-                                           "{type: extrinsic, refined_candidates: 4}",
+                                           "{type: extrinsic, refined: false}",
+                                           "{type: extrinsic, refined_margin: 0}",
                                            "{type: chamfer}", "{type: hks}", "{type: oracle}"));
 
 // The vertex of `surface` nearest to each vertex mirrored by x -> -x.
@@ -292,51 +292,64 @@ RefinedInputs HumanoidRefinedInputs(int vertices) {
           std::move(Ft)};
 }
 
-TEST(RefinedFlip, RightCandidateAgreesBestWhateverTheTurn) {
-  // Every candidate refined (candidates 4) and no other term: the refined term alone must pick
-  // the oracle's candidate for each turn R_j of the target's canonical embedding.
+TEST(RefinedFlip, RightCandidateScoresBelowItsFrontBackPartnerWhateverTheTurn) {
+  // No other term: scores that make each candidate in turn the best, for each turn R_j of the
+  // target's canonical embedding. When the best and its partner include the oracle's candidate,
+  // that one must have the lower refined score and, with margin 0, be chosen.
   const RefinedInputs in = HumanoidRefinedInputs(1500);
   RefinedAgreementOptions options;
-  options.candidates = 4;
+  options.margin = 0.0;
   const auto rotations = CandidateRotations();
   for (int j = 0; j < 4; ++j) {
     ShapeData target = in.target;
     target.Y = in.target.Y * rotations[j];
     const int right = OracleChoice(in.source, target);
-    const RefinedScores r = AddRefinedTerm({0, 0, 0, 0}, 1.0, in.source, target,
-                                           in.source_basis, in.target_basis, in.Fs, in.Ft,
-                                           options);
-    EXPECT_EQ(r.total[right], 0.0) << "turn " << j;
-    EXPECT_GT(r.orientation[right], 0.5) << "turn " << j;
-    for (int k = 0; k < 4; ++k) {
-      if (k != right) {
-        EXPECT_GT(r.total[k], 0.0) << "turn " << j << " candidate " << k;
-      }
+    for (const int best : {right, FrontBackPartner(right)}) {
+      std::array<double, 4> scores{1, 1, 1, 1};
+      scores[best] = 0;
+      const RefinedChoice r = RefinedFrontBackChoice(scores, in.source, target, in.source_basis,
+                                                     in.target_basis, in.Fs, in.Ft, options);
+      EXPECT_EQ(r.best, best);
+      EXPECT_EQ(r.partner, FrontBackPartner(best));
+      EXPECT_EQ(r.chosen, right) << "turn " << j << " best " << best;
+      EXPECT_LT(r.score[right], r.score[FrontBackPartner(right)]) << "turn " << j;
+      EXPECT_GT(r.orientation[right], 0.5) << "turn " << j;
     }
   }
 }
 
-TEST(RefinedFlip, OnlyTheBestCandidatesAreRefinedAndTheChoiceStaysAmongThem) {
+TEST(RefinedFlip, OnlyTheBestAndItsPartnerAreRefinedAndTheMarginDecides) {
   const RefinedInputs in = HumanoidRefinedInputs(1200);
-  const RefinedAgreementOptions options;
-  const std::array<double, 4> scores{0.3, 0.1, 0.2, 0.0};  // best two: 3, then 1
-  for (double weight : {0.0, 1.0, 100.0}) {
-    const RefinedScores r = AddRefinedTerm(scores, weight, in.source, in.target, in.source_basis,
-                                           in.target_basis, in.Fs, in.Ft, options);
+  const std::array<double, 4> scores{0.3, 0.1, 0.2, 0.0};  // best 3 (Rz), its partner 1 (Rx)
+  RefinedAgreementOptions options;
+  RefinedChoice first;
+  for (double margin : {0.0, 0.05, 1e9}) {
+    options.margin = margin;
+    const RefinedChoice r = RefinedFrontBackChoice(scores, in.source, in.target, in.source_basis,
+                                                   in.target_basis, in.Fs, in.Ft, options);
+    EXPECT_EQ(r.best, 3);
+    EXPECT_EQ(r.partner, 1);
     for (int k : {0, 2}) {
-      EXPECT_TRUE(std::isnan(r.disagreement[k]) && std::isnan(r.orientation[k])) << k;
-      EXPECT_EQ(r.total[k], scores[k]);
+      EXPECT_TRUE(std::isnan(r.disagreement[k]) && std::isnan(r.orientation[k]) &&
+                  std::isnan(r.score[k]))
+          << k;
     }
     for (int k : {1, 3}) {
       EXPECT_FALSE(std::isnan(r.disagreement[k]) || std::isnan(r.orientation[k])) << k;
-      EXPECT_GE(r.total[k], scores[k]);
+      EXPECT_DOUBLE_EQ(r.score[k], r.disagreement[k] + (1.0 - r.orientation[k]) / 4.0) << k;
     }
-    // The better refined candidate keeps its score, so the choice is one of the two.
-    EXPECT_TRUE(r.total[1] == scores[1] || r.total[3] == scores[3]);
-    const int chosen = static_cast<int>(std::min_element(r.total.begin(), r.total.end()) -
-                                        r.total.begin());
-    EXPECT_TRUE(chosen == 1 || chosen == 3) << "weight " << weight;
+    // The partner replaces the best exactly when it scores lower by at least the margin.
+    EXPECT_EQ(r.chosen, r.score[3] - r.score[1] >= margin ? 1 : 3) << "margin " << margin;
+    if (margin == 0.0) first = r;
+    // The scores do not depend on the margin.
+    EXPECT_EQ(r.score[1], first.score[1]);
+    EXPECT_EQ(r.score[3], first.score[3]);
   }
+  EXPECT_EQ(options.margin, 1e9);
+  EXPECT_EQ(RefinedFrontBackChoice(scores, in.source, in.target, in.source_basis, in.target_basis,
+                                   in.Fs, in.Ft, options)
+                .chosen,
+            3);
 }
 
 TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {
@@ -344,11 +357,11 @@ TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {
   const RefinedAgreementOptions options;
   auto run = [&](const RefinedAgreementOptions& o, const ShapeData& source,
                  const Eigen::MatrixXd& features) {
-    AddRefinedTerm({0, 0, 0, 0}, 1.0, source, in.target, in.source_basis, in.target_basis,
-                   features, in.Ft, o);
+    RefinedFrontBackChoice({0, 0, 0, 0}, source, in.target, in.source_basis, in.target_basis,
+                           features, in.Ft, o);
   };
   RefinedAgreementOptions bad = options;
-  bad.candidates = 0;
+  bad.margin = -0.1;
   EXPECT_THROW(run(bad, in.source, in.Fs), ConfigError);
   bad = options;
   bad.samples = options.k_end - 1;
@@ -359,9 +372,13 @@ TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {
   EXPECT_THROW(run(options, in.source, in.Fs.topRows(5)), InvalidInputError);
   Registry registry;
   RegisterBuiltinStages(registry);
-  EXPECT_THROW(registry.CreateAs<FlipStage>(
-                   "flip", YAML::Load("{type: extrinsic, refined_candidates: 5}"), "t.yaml", "f"),
-               ConfigError);
+  for (const char* yaml : {"{type: extrinsic, refined_margin: -1}",
+                           "{type: extrinsic, refined: maybe}",
+                           "{type: extrinsic, refined_weight: 10}"}) {
+    EXPECT_THROW(registry.CreateAs<FlipStage>("flip", YAML::Load(yaml), "t.yaml", "f"),
+                 ConfigError)
+        << yaml;
+  }
 }
 
 TEST(ExtrinsicFlip, FeatureDisagreementOverAllVerticesOrASubset) {
