@@ -98,7 +98,7 @@ std::array<Eigen::Matrix3d, 4> CandidateRotations();
 struct FlipResult {
   std::array<double, 4> scores{};     // per candidate, lower is better
   // Index into CandidateRotations(): the argmin of scores unless the stage's last step decides
-  // otherwise (the extrinsic scorer's refined term, stages/flip/refined_agreement.h).
+  // otherwise (MakeFlipResult; the extrinsic scorer's refined term).
   int chosen = 0;
   StageStatus status;
 };

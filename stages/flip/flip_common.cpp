@@ -54,14 +54,21 @@ std::vector<int> SamplePrefix(const std::vector<int>& samples, int count, int k_
   return {samples.begin(), samples.begin() + std::min<size_t>(samples.size(), count)};
 }
 
-FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name) {
+FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name,
+                          int chosen) {
   FlipResult result;
   result.scores = scores;
-  for (int k = 1; k < 4; ++k) {
-    if (scores[k] < scores[result.chosen]) result.chosen = k;
+  if (chosen >= 0) {
+    result.chosen = chosen;
+  } else {
+    for (int k = 1; k < 4; ++k) {
+      if (scores[k] < scores[result.chosen]) result.chosen = k;
+    }
   }
   std::ostringstream message;
-  message << name << " scores [I, Rx, Ry, Rz]:";
+  message << name << " scores [";
+  for (int k = 0; k < 4; ++k) message << (k > 0 ? ", " : "") << kCandidateNames[k];
+  message << "]:";
   for (double s : scores) message << " " << s;
   result.status.message = message.str();
   result.status.residual = scores[result.chosen];

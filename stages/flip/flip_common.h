@@ -33,8 +33,14 @@ std::array<int, 4> CandidateOrder(const std::array<double, 4>& scores);
 std::vector<int> SamplePrefix(const std::vector<int>& samples, int count, int k_end,
                               const std::string& what);
 
-// chosen = argmin of scores (first on ties); message lists the scores.
-FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name);
+// The names of CandidateRotations() in order, for messages.
+inline constexpr const char* kCandidateNames[4] = {"I", "Rx", "Ry", "Rz"};
+
+// chosen = argmin of scores (first on ties), or `chosen` when it is >= 0 (a stage whose last
+// step decides without scores, stages/flip/refined_agreement.h); residual = scores[chosen];
+// message lists the scores.
+FlipResult MakeFlipResult(const std::array<double, 4>& scores, const std::string& name,
+                          int chosen = -1);
 
 // Throws InvalidInputError when a shape's canonical embedding Y does not match its surface.
 void CheckFlipPair(const PairInput& pair);

@@ -1,6 +1,5 @@
 #include "stages/flip/refined_agreement.h"
 
-#include <algorithm>
 #include <limits>
 #include <sstream>
 

@@ -39,9 +39,6 @@ void ReadZoomOutSchedule(OptionReader& o, const std::string& prefix, int target_
       o.GetInt(prefix + "target_samples", out->target_samples, target_min, 100000);
 }
 
-// CandidateRotations() in order, for messages.
-constexpr const char* kCandidateNames[4] = {"I", "Rx", "Ry", "Rz"};
-
 // The descriptor term's per-shape products (WksProducts).
 constexpr const char* kWksPKey = "extrinsic_wks_P";
 constexpr const char* kWksQKey = "extrinsic_wks_Q";
@@ -104,14 +101,12 @@ class ExtrinsicStage : public FlipStage {
       orientation = AddOrientationTerm(s.total, orientation_weight_, maps, measure);
       s.total = orientation.total;
     }
-    FlipResult result = MakeFlipResult(s.total, "extrinsic");
     RefinedChoice refined;
     if (refined_on_) {
       refined = RefinedFrontBackChoice(s.total, pair.source, pair.target, source_basis,
                                        target_basis, Fs, Ft, refined_);
-      result.chosen = refined.chosen;
-      result.status.residual = s.total[refined.chosen];
     }
+    FlipResult result = MakeFlipResult(s.total, "extrinsic", refined_on_ ? refined.chosen : -1);
     std::ostringstream detail;
     detail << "; local";
     for (double v : s.local) detail << " " << v;

@@ -345,11 +345,6 @@ TEST(RefinedFlip, OnlyTheBestAndItsPartnerAreRefinedAndTheMarginDecides) {
     EXPECT_EQ(r.score[1], first.score[1]);
     EXPECT_EQ(r.score[3], first.score[3]);
   }
-  EXPECT_EQ(options.margin, 1e9);
-  EXPECT_EQ(RefinedFrontBackChoice(scores, in.source, in.target, in.source_basis, in.target_basis,
-                                   in.Fs, in.Ft, options)
-                .chosen,
-            3);
 }
 
 TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {

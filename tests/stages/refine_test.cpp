@@ -91,6 +91,19 @@ class RefineTest : public ::testing::Test {
     stage->PrepareShape(pair_->target);
   }
   static void TearDownTestSuite() { delete pair_; }
+
+  // What the tests that call ZoomOut directly run on: the bases (60 eigenpairs) and Euclidean
+  // farthest points of the source (400) and of the target (800).
+  struct ZoomOutInputs {
+    LaplaceBasis s, t;
+    std::vector<int> samples, target_samples;
+  };
+  static ZoomOutInputs SampledInputs() {
+    return {GetLaplaceBasis(pair_->source.aux, 60), GetLaplaceBasis(pair_->target.aux, 60),
+            EuclideanFarthestPoints(pair_->source.surface.V, 400),
+            EuclideanFarthestPoints(pair_->target.surface.V, 800)};
+  }
+
   static Pair* pair_;
 };
 Pair* RefineTest::pair_ = nullptr;
@@ -146,11 +159,8 @@ TEST_F(RefineTest, ZoomOutLowersTheErrorOfANoisyTruth) {
 }
 
 TEST_F(RefineTest, ZoomOutOnSamplesOnlyMapsTheSamplesOntoTheTargetSamples) {
-  const LaplaceBasis s = GetLaplaceBasis(pair_->source.aux, 60);
-  const LaplaceBasis t = GetLaplaceBasis(pair_->target.aux, 60);
+  const auto [s, t, samples, target_samples] = SampledInputs();
   const std::vector<int> noisy = PerturbedTruth(*pair_, 0.5, 3, 7);
-  const std::vector<int> samples = EuclideanFarthestPoints(pair_->source.surface.V, 400);
-  const std::vector<int> target_samples = EuclideanFarthestPoints(pair_->target.surface.V, 800);
   ZoomOutOptions options;
   options.k_start = 10;
   options.k_end = 60;
@@ -184,12 +194,9 @@ TEST_F(RefineTest, ZoomOutOnSamplesOnlyMapsTheSamplesOntoTheTargetSamples) {
 }
 
 TEST_F(RefineTest, ZoomOutFromSeveralStartsKeepsTheRunWithTheLowestResidual) {
-  const LaplaceBasis s = GetLaplaceBasis(pair_->source.aux, 60);
-  const LaplaceBasis t = GetLaplaceBasis(pair_->target.aux, 60);
+  const auto [s, t, samples, target_samples] = SampledInputs();
   // Coarse noise (up to 8 rings), so that the runs from different starts end apart.
   const std::vector<int> noisy = PerturbedTruth(*pair_, 0.7, 8, 11);
-  const std::vector<int> samples = EuclideanFarthestPoints(pair_->source.surface.V, 400);
-  const std::vector<int> target_samples = EuclideanFarthestPoints(pair_->target.surface.V, 800);
   for (const bool sampled : {false, true}) {
     for (const bool dense_result : {true, false}) {
       if (!sampled && !dense_result) continue;
