@@ -16,8 +16,9 @@ SpectralNearest::SpectralNearest(const Eigen::MatrixXd& points, std::vector<int>
       ids_.empty() || ids_.size() == static_cast<size_t>(points.rows()),
       "nearest-neighbour search: " << ids_.size() << " ids for " << points.rows() << " points");
   if (method == Method::kBruteForce || (method == Method::kAuto && dims_ >= kBruteForceMinDims)) {
-    points_f_ = points.cast<float>();
-    sq_norms_f_ = points_f_.rowwise().squaredNorm();
+    const Eigen::MatrixXf points_f = points.cast<float>();
+    packed_ = PackPoints(points_f.data(), static_cast<int>(points_f.rows()), dims_,
+                         static_cast<int>(points_f.rows()));
     return;
   }
   flann::Matrix<double> data(points_.data(), points_.rows(), points_.cols());
@@ -30,27 +31,10 @@ SpectralNearest::~SpectralNearest() = default;
 
 void SpectralNearest::QueryBruteForce(const Eigen::MatrixXd& queries,
                                       std::vector<int>* rows) const {
-  // Blocks of queries keep the n x block product in cache-friendly size (n ~ 5k: 1 MB). The
-  // product is stored one query per column, so that each query's distances ||p_j||^2 - 2 q.p_j
-  // (||q||^2 is common to all j) are contiguous: their minimum is a vectorized reduction, and the
-  // first point that attains it (ties to the lower row) is found by a scan that stops there.
-  constexpr int kBlock = 64;
-  const int m = static_cast<int>(queries.rows());
-  const Eigen::MatrixXf q = queries.cast<float>();
-  Eigen::MatrixXf products;
-  Eigen::VectorXf d;
-  for (int begin = 0; begin < m; begin += kBlock) {
-    const int b = std::min(kBlock, m - begin);
-    products.noalias() = points_f_ * q.middleRows(begin, b).transpose();
-    for (int r = 0; r < b; ++r) {
-      d.noalias() = sq_norms_f_ - 2.0f * products.col(r);
-      const float best = d.minCoeff();
-      int arg = 0;
-      const int last = static_cast<int>(d.size()) - 1;
-      while (arg < last && !(d(arg) == best)) ++arg;  // bounded: NaN equals nothing
-      (*rows)[begin + r] = arg;
-    }
-  }
+  // Row-major single precision: one query's coordinates contiguous.
+  const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> q =
+      queries.cast<float>();
+  NearestPacked(packed_, q.data(), static_cast<int>(q.rows()), rows->data());
 }
 
 void SpectralNearest::Query(const Eigen::MatrixXd& queries, std::vector<int>* nearest,

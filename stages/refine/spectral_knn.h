@@ -2,18 +2,19 @@
 // #V x k with k up to a few hundred); exact, up to single-precision rounding in high dimensions.
 //
 // Low dimensions use a FLANN single kd-tree. From kBruteForceMinDims dimensions on (the measured
-// crossover on 5k vertices), a blocked brute force in single precision (one matrix product per
-// block of queries, ||q||^2 + ||p||^2 - 2 q.p) is used instead: M-orthonormal eigenvectors make
-// a spectral embedding's covariance isotropic, so a kd-tree, which bounds distances by the few
-// coordinates it splits on, prunes almost nothing at k ~ 100 and spends its time in per-point
-// distance loops (5,048 queries among 5,048 points at k = 120: 0.93 s CPU with the kd-tree,
-// 0.20 s with the blocked product; BM_SpectralNearest in bench_refine). The squared distance of
+// crossover on 5k vertices), a brute force in single precision (nearest_kernel.h: ||p||^2 - 2 q.p
+// for tiles of queries against blocks of points, in registers) is used instead: M-orthonormal
+// eigenvectors make a spectral embedding's covariance isotropic, so a kd-tree, which bounds
+// distances by the few coordinates it splits on, prunes almost nothing at k ~ 100 and spends its
+// time in per-point distance loops (BM_SpectralNearest in bench_refine). The squared distance of
 // the winner of the single-precision comparison is recomputed in double precision.
 #pragma once
 
 #include <Eigen/Core>
 #include <memory>
 #include <vector>
+
+#include "stages/refine/nearest_kernel.h"
 
 namespace flann {
 template <typename T>
@@ -53,8 +54,7 @@ class SpectralNearest {
   RowMatrix points_;
   std::vector<int> ids_;
   std::unique_ptr<flann::Index<flann::L2<double>>> index_;  // low dimensions only
-  Eigen::MatrixXf points_f_;    // brute force: n x d single-precision copy
-  Eigen::VectorXf sq_norms_f_;  // brute force: ||p||^2 per point
+  PackedPoints packed_;  // brute force: the points in single precision, packed for the kernel
 };
 
 }  // namespace symembed

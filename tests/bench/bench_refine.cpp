@@ -7,6 +7,8 @@
 //   BM_LaplaceBasis/<k>            ComputeLaplaceBasis on the 5,048-vertex blob
 //   BM_SpectralNearest/<method>/<k> build + query of all 5,048 source rows among the 5,048
 //                                  target rows of the first k eigenvectors (kd-tree vs brute force)
+//   BM_NearestKernel/<isa>/<k>    the brute-force kernel alone (nearest_kernel.h) on the same
+//                                  rows, each instruction-set build (AVX2 skipped without it)
 //   BM_Refine/<variant>            RefineStage::Run per pair; counter `error`: mean Euclidean
 //                                  error / sqrt(area) after refinement (`error_before`: before)
 //
@@ -26,6 +28,7 @@
 #include "core/spectral.h"
 #include "registry/registry.h"
 #include "stages/preprocess/standard.h"
+#include "stages/refine/nearest_kernel.h"
 #include "stages/refine/spectral_knn.h"
 #include "tests/test_util.h"
 
@@ -137,6 +140,36 @@ BENCHMARK_CAPTURE(BM_SpectralNearest, brute_force, SpectralNearest::Method::kBru
     ->Arg(20)
     ->Arg(40)
     ->Arg(120)
+    ->Unit(benchmark::kMillisecond);
+
+void BM_NearestKernel(benchmark::State& state, NearestIsa isa) {
+  if (isa == NearestIsa::kAvx2 && !NearestKernelHasAvx2()) {
+    state.SkipWithError("no AVX2 on this processor");
+    return;
+  }
+  const BenchPair& p = BlobPair();
+  const int k = static_cast<int>(state.range(0));
+  const Eigen::MatrixXf target = p.target.aux.at(kLbEvecsKey).leftCols(k).cast<float>();
+  const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> source =
+      p.source.aux.at(kLbEvecsKey).leftCols(k).cast<float>();
+  const PackedPoints packed = PackPoints(target.data(), static_cast<int>(target.rows()), k,
+                                         static_cast<int>(target.rows()));
+  std::vector<int> nearest(source.rows());
+  for (auto _ : state) {
+    NearestPacked(packed, source.data(), static_cast<int>(source.rows()), nearest.data(), isa);
+    benchmark::DoNotOptimize(nearest.data());
+  }
+  // Multiply-adds per second (one per dimension per query-point pair).
+  state.counters["madd_per_s"] = benchmark::Counter(
+      static_cast<double>(source.rows()) * target.rows() * k, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK_CAPTURE(BM_NearestKernel, avx2, NearestIsa::kAvx2)
+    ->Arg(20)
+    ->Arg(60)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_NearestKernel, baseline, NearestIsa::kBaseline)
+    ->Arg(20)
+    ->Arg(60)
     ->Unit(benchmark::kMillisecond);
 
 void BM_Refine(benchmark::State& state, const BenchPair* pair, const std::string& yaml) {
