@@ -179,6 +179,12 @@ void PositiveEigenvalueRange(const Eigen::VectorXd& evals, double* lambda_1, dou
 }
 
 LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k) {
+  LaplaceBasis basis;
+  GetLaplaceBasis(aux, k, &basis);
+  return basis;
+}
+
+void GetLaplaceBasis(const AuxMap& aux, int k, LaplaceBasis* basis) {
   const auto evals = aux.find(kLbEvalsKey);
   const auto evecs = aux.find(kLbEvecsKey);
   const auto mass = aux.find(kLbMassKey);
@@ -196,11 +202,9 @@ LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k) {
     throw InvalidInputError(out.str());
   }
   const int used = k < 0 ? static_cast<int>(evals->second.rows()) : k;
-  LaplaceBasis basis;
-  basis.evals = evals->second.col(0).head(used);
-  basis.evecs = evecs->second.leftCols(used);
-  basis.mass = mass->second.col(0);
-  return basis;
+  basis->evals = evals->second.col(0).head(used);
+  basis->evecs = evecs->second.leftCols(used);
+  basis->mass = mass->second.col(0);
 }
 
 namespace {

@@ -81,6 +81,11 @@ void PositiveEigenvalueRange(const Eigen::VectorXd& evals, double* lambda_1, dou
 // keys are missing, inconsistent, or hold fewer than k eigenpairs.
 LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k = -1);
 
+// The same into *basis, reusing its storage when it already has the sizes: a per-pair stage that
+// keeps one basis per thread copies it without allocating (fresh megabytes of eigenvectors cost
+// more in page faults than in copying).
+void GetLaplaceBasis(const AuxMap& aux, int k, LaplaceBasis* basis);
+
 // Computes the basis with options into aux unless aux already holds at least options.k
 // eigenpairs for this surface. Returns true when it computed.
 bool EnsureLaplaceBasis(const Surface& surface, const LaplaceBasisOptions& options, AuxMap* aux);

@@ -77,11 +77,12 @@ class ExtrinsicStage : public FlipStage {
     const Eigen::MatrixXd& Fs = AuxOf(pair.source, kExtrinsicFeaturesKey, "extrinsic");
     const Eigen::MatrixXd& Ft = AuxOf(pair.target, kExtrinsicFeaturesKey, "extrinsic");
     ExtrinsicScores s = ExtrinsicFlipScores(pair.source.Y, pair.target.Y, Fs, Ft, options_, maps);
-    // One copy of each basis for both spectral terms.
-    LaplaceBasis source_basis, target_basis;
+    // One copy of each basis for all spectral terms, into storage the thread keeps from pair to
+    // pair.
+    thread_local LaplaceBasis source_basis, target_basis;
     if (BasisSize() > 0) {
-      source_basis = GetLaplaceBasis(pair.source.aux, BasisSize());
-      target_basis = GetLaplaceBasis(pair.target.aux, BasisSize());
+      GetLaplaceBasis(pair.source.aux, BasisSize(), &source_basis);
+      GetLaplaceBasis(pair.target.aux, BasisSize(), &target_basis);
     }
     DescriptorAgreement descriptor;
     if (descriptor_weight_ > 0.0) {

@@ -44,14 +44,15 @@ Eigen::MatrixXd Rows(const BasisRef& Phi, const std::vector<int>& ids, int cols 
   return A;
 }
 
-// A^T W B for A = rows source_ids of Phi_s, B = rows target_ids of Phi_t, W = the weights.
-Eigen::MatrixXd WeightedCross(const BasisRef& Phi_s, const BasisRef& Phi_t,
-                              const std::vector<int>& source_ids,
-                              const std::vector<int>& target_ids, const Eigen::VectorXd& weights) {
+// The pairs' weights (PairWeights), after checking the target ids against Phi_t.
+Eigen::VectorXd CheckedPairWeights(const BasisRef& Phi_s, const BasisRef& Phi_t,
+                                   const std::vector<int>& source_ids,
+                                   const std::vector<int>& target_ids,
+                                   const Eigen::VectorXd& weights) {
   if (target_ids.size() != source_ids.size()) {
     throw InvalidInputError("functional map: source and target id lists differ in length");
   }
-  const Eigen::VectorXd w = PairWeights(Phi_s, source_ids, weights);
+  Eigen::VectorXd w = PairWeights(Phi_s, source_ids, weights);
   for (size_t r = 0; r < target_ids.size(); ++r) {
     const int j = target_ids[r];
     if (j < 0 || j >= Phi_t.rows()) {
@@ -61,7 +62,7 @@ Eigen::MatrixXd WeightedCross(const BasisRef& Phi_s, const BasisRef& Phi_t,
       throw InvalidInputError(out.str());
     }
   }
-  return (w.asDiagonal() * Rows(Phi_s, source_ids)).transpose() * Rows(Phi_t, target_ids);
+  return w;
 }
 
 }  // namespace
@@ -77,23 +78,45 @@ Eigen::MatrixXd FitFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
                                  const std::vector<int>& source_ids,
                                  const std::vector<int>& target_ids,
                                  const Eigen::VectorXd& weights, const Eigen::MatrixXd* gram) {
-  const int ks = static_cast<int>(Phi_s.cols());
+  const Eigen::VectorXd w = CheckedPairWeights(Phi_s, Phi_t, source_ids, target_ids, weights);
+  return FitFunctionalMapFromRows(Rows(Phi_s, source_ids), Rows(Phi_t, target_ids), w, gram);
+}
+
+Eigen::MatrixXd FitFunctionalMapFromRows(const BasisRef& A, const BasisRef& B,
+                                         const Eigen::VectorXd& w, const Eigen::MatrixXd* gram) {
+  const int ks = static_cast<int>(A.cols());
+  SYMEMBED_CHECK(A.rows() == B.rows() && w.size() == A.rows(),
+                 "functional map: " << A.rows() << " source rows, " << B.rows()
+                                    << " target rows, " << w.size() << " weights");
   SYMEMBED_CHECK(gram == nullptr || (gram->rows() >= ks && gram->cols() >= ks),
                  "functional map: the Gram matrix is smaller than the basis");
-  const Eigen::MatrixXd AtWB = WeightedCross(Phi_s, Phi_t, source_ids, target_ids, weights);
+  const Eigen::MatrixXd AtWB = (w.asDiagonal() * A).transpose() * B;
   const Eigen::MatrixXd AtWA = gram != nullptr ? Eigen::MatrixXd(gram->topLeftCorner(ks, ks))
-                                               : WeightedGram(Phi_s, source_ids, weights);
+                                               : Eigen::MatrixXd((w.asDiagonal() * A).transpose() * A);
   // For the dense map with mass weights A^T W A = I; for a sample it is near I when the sample
   // covers the surface. LDL^T with a pivot check detects too small a sample.
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(AtWA);
   const double max_pivot = ldlt.vectorD().cwiseAbs().maxCoeff();
   if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-10 * max_pivot)) {
     std::ostringstream out;
-    out << "functional map: the " << source_ids.size() << " points do not determine a "
-        << Phi_s.cols() << "-dimensional basis (singular normal equations)";
+    out << "functional map: the " << A.rows() << " points do not determine a " << ks
+        << "-dimensional basis (singular normal equations)";
     throw InvalidInputError(out.str());
   }
   return ldlt.solve(AtWB);
+}
+
+Eigen::MatrixXd BasisRows(const BasisRef& Phi, const std::vector<int>& ids, int cols) {
+  for (size_t r = 0; r < ids.size(); ++r) {
+    if (ids[r] < 0 || ids[r] >= Phi.rows()) {
+      std::ostringstream out;
+      out << "basis rows: id " << ids[r] << " (entry " << r << ") out of range 0.."
+          << Phi.rows() - 1;
+      throw InvalidInputError(out.str());
+    }
+  }
+  SYMEMBED_CHECK(cols <= Phi.cols(), "basis rows: " << cols << " columns of " << Phi.cols());
+  return Rows(Phi, ids, cols);
 }
 
 Eigen::MatrixXd FitOrthogonalFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
@@ -101,7 +124,9 @@ Eigen::MatrixXd FitOrthogonalFunctionalMap(const BasisRef& Phi_s, const BasisRef
                                            const std::vector<int>& target_ids,
                                            const Eigen::VectorXd& weights) {
   SYMEMBED_CHECK(Phi_s.cols() == Phi_t.cols(), "orthogonal functional map needs ks == kt");
-  const Eigen::MatrixXd AtWB = WeightedCross(Phi_s, Phi_t, source_ids, target_ids, weights);
+  const Eigen::VectorXd w = CheckedPairWeights(Phi_s, Phi_t, source_ids, target_ids, weights);
+  const Eigen::MatrixXd AtWB =
+      (w.asDiagonal() * Rows(Phi_s, source_ids)).transpose() * Rows(Phi_t, target_ids);
   // min ||A C - B||_W over orthogonal C = max trace(C^T A^T W B): C = U V^T.
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(AtWB, Eigen::ComputeFullU | Eigen::ComputeFullV);
   return svd.matrixU() * svd.matrixV().transpose();
@@ -118,26 +143,42 @@ std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s,
                  "C is " << ks << " x " << kt << " for bases of " << Phi_s.cols() << " and "
                          << Phi_t.cols() << " columns");
   SYMEMBED_CHECK(mass_t.size() == Phi_t.rows(), "mass_t must have one entry per target vertex");
-  // The candidate target vertices: target_ids, or every vertex when it is empty.
+  for (const int i : source_ids) {
+    SYMEMBED_CHECK(i >= 0 && i < Phi_s.rows(), "source id " << i << " out of range");
+  }
+  const std::vector<int> targets = MatchableTargets(mass_t, target_ids);
+  return NearestUnderMap(Rows(Phi_s, source_ids, ks), Rows(Phi_t, targets, kt), targets, C,
+                         sq_dist);
+}
+
+std::vector<int> MatchableTargets(const Eigen::VectorXd& mass_t,
+                                  const std::vector<int>& target_ids) {
   const bool every_vertex = target_ids.empty();
-  const int candidates = every_vertex ? static_cast<int>(Phi_t.rows())
+  const int candidates = every_vertex ? static_cast<int>(mass_t.size())
                                       : static_cast<int>(target_ids.size());
   std::vector<int> ids;
   for (int r = 0; r < candidates; ++r) {
     const int j = every_vertex ? r : target_ids[r];
-    SYMEMBED_CHECK(j >= 0 && j < Phi_t.rows(), "target id " << j << " out of range");
+    SYMEMBED_CHECK(j >= 0 && j < mass_t.size(), "target id " << j << " out of range");
     if (mass_t(j) > 0.0) ids.push_back(j);
   }
   if (ids.empty()) throw InvalidInputError("target surface has no vertex with positive area");
-  const Eigen::MatrixXd points = Rows(Phi_t, ids, kt) * C.transpose();
-  const SpectralNearest tree(points, std::move(ids));
+  return ids;
+}
 
-  for (const int i : source_ids) {
-    SYMEMBED_CHECK(i >= 0 && i < Phi_s.rows(), "source id " << i << " out of range");
-  }
-  const Eigen::MatrixXd queries = Rows(Phi_s, source_ids, ks);
+std::vector<int> NearestUnderMap(const BasisRef& Q, const BasisRef& P,
+                                 const std::vector<int>& targets, const Eigen::MatrixXd& C,
+                                 std::vector<double>* sq_dist) {
+  SYMEMBED_CHECK(Q.cols() == C.rows() && P.cols() == C.cols() &&
+                     P.rows() == static_cast<Eigen::Index>(targets.size()),
+                 "nearest under a map: C is " << C.rows() << " x " << C.cols() << ", queries "
+                                              << Q.cols() << " columns, " << P.rows() << " x "
+                                              << P.cols() << " target rows for "
+                                              << targets.size() << " targets");
+  const Eigen::MatrixXd points = P * C.transpose();
+  const SpectralNearest tree(points, targets);
   std::vector<int> nearest;
-  tree.Query(queries, &nearest, sq_dist);
+  tree.Query(Q, &nearest, sq_dist);
   return nearest;
 }
 

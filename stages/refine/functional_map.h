@@ -40,6 +40,16 @@ Eigen::MatrixXd FitFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
                                  const Eigen::VectorXd& weights,
                                  const Eigen::MatrixXd* gram = nullptr);
 
+// FitFunctionalMap from rows already gathered: A (pairs x ks) the source basis at the pairs'
+// source points, B (pairs x kt) the target basis at their targets, w (pairs) their weights.
+Eigen::MatrixXd FitFunctionalMapFromRows(const BasisRef& A, const BasisRef& B,
+                                         const Eigen::VectorXd& w,
+                                         const Eigen::MatrixXd* gram = nullptr);
+
+// The rows `ids` of the first `cols` columns of Phi (all by default). Throws InvalidInputError
+// for an id out of range.
+Eigen::MatrixXd BasisRows(const BasisRef& Phi, const std::vector<int>& ids, int cols = -1);
+
 // A^T W A of FitFunctionalMap: A the rows source_ids of Phi_s, W their weights.
 Eigen::MatrixXd WeightedGram(const BasisRef& Phi_s, const std::vector<int>& source_ids,
                              const Eigen::VectorXd& weights);
@@ -63,6 +73,18 @@ std::vector<int> PointMapFromFunctionalMap(const Eigen::MatrixXd& Phi_s,
                                            const std::vector<int>& source_ids,
                                            std::vector<double>* sq_dist = nullptr,
                                            const std::vector<int>& target_ids = {});
+
+// The target vertices a point map may land on: target_ids (every vertex when empty) that have
+// positive mass_t. Throws InvalidInputError when none has.
+std::vector<int> MatchableTargets(const Eigen::VectorXd& mass_t,
+                                  const std::vector<int>& target_ids = {});
+
+// PointMapFromFunctionalMap from rows already gathered: for each row of Q (queries x ks, the
+// source basis at the query points), the entry of `targets` whose row of P (targets x kt, the
+// target basis at those vertices) times C^T is nearest.
+std::vector<int> NearestUnderMap(const BasisRef& Q, const BasisRef& P,
+                                 const std::vector<int>& targets, const Eigen::MatrixXd& C,
+                                 std::vector<double>* sq_dist = nullptr);
 
 // ||C^T C - I||_F^2 / k for a k x k functional map: the per-scale term of the ZoomOut energy,
 // 0 for an area-preserving (orthogonal) map.

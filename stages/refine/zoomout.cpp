@@ -104,17 +104,19 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
   const bool dense_last = sampled && options.dense_result;
   const bool query_last_on_active = !dense_last || starts.size() > 1;
 
-  // The same points and weights at every basis size: A^T W A once, at the largest.
+  // The same points and weights at every basis size: A^T W A once, at the largest, and the basis
+  // rows of the active points and of the targets they may land on gathered once; each basis size
+  // uses their first columns.
   const Eigen::MatrixXd gram = WeightedGram(source.evecs.leftCols(options.k_end), active, weights);
-  auto query = [&](Run* run, int k, const Eigen::MatrixXd& C, const std::vector<int>& ids,
-                   const std::vector<int>& target_ids) {
-    std::vector<double> sq;
-    std::vector<int> mapped = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass,
-                                                        C, ids, &sq, target_ids);
+  Eigen::VectorXd active_weights(active.size());
+  for (size_t r = 0; r < active.size(); ++r) active_weights(r) = weights(active[r]);
+  const Eigen::MatrixXd source_rows = BasisRows(source.evecs, active, options.k_end);
+  const std::vector<int> targets = MatchableTargets(target.mass, active_targets);
+  const Eigen::MatrixXd target_rows = BasisRows(target.evecs, targets, options.k_end);
+  auto record = [&](Run* run, int k, const Eigen::MatrixXd& C, const std::vector<double>& sq) {
     run->k.push_back(k);
     run->orthogonality.push_back(OrthogonalityDefect(C));
     run->spectral_residual.push_back(Mean(sq));
-    return mapped;
   };
 
   std::vector<Run> runs(starts.size());
@@ -125,10 +127,15 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
     for (size_t r = 0; r < active.size(); ++r) run.active_map[r] = initial_map[active[r]];
     const std::vector<int> sizes = BasisSizes(run.start, options);
     for (size_t it = 0; it < sizes.size(); ++it) {
-      run.C = FitFunctionalMap(source.evecs.leftCols(sizes[it]), target.evecs.leftCols(sizes[it]),
-                               active, run.active_map, weights, &gram);
+      const int k = sizes[it];
+      run.C = FitFunctionalMapFromRows(source_rows.leftCols(k),
+                                       BasisRows(target.evecs, run.active_map, k), active_weights,
+                                       &gram);
       if (it + 1 < sizes.size() || query_last_on_active) {
-        run.active_map = query(&run, sizes[it], run.C, active, active_targets);
+        std::vector<double> sq;
+        run.active_map =
+            NearestUnderMap(source_rows.leftCols(k), target_rows.leftCols(k), targets, run.C, &sq);
+        record(&run, k, run.C, sq);
       }
     }
   }
@@ -151,7 +158,10 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
       run.orthogonality.pop_back();
       run.spectral_residual.pop_back();
     }
-    result.map = query(&run, options.k_end, run.C, all, no_ids);
+    std::vector<double> sq;
+    result.map = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, run.C, all,
+                                           &sq, no_ids);
+    record(&run, options.k_end, run.C, sq);
   } else if (sampled) {
     result.map = initial_map;
     for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = run.active_map[r];
