@@ -153,6 +153,12 @@ TEST(LaplaceBasis, AuxRoundTripAndReuse) {
   EXPECT_EQ(five.NumEigenpairs(), 5);
   EXPECT_EQ(five.evecs, aux.at(kLbEvecsKey).leftCols(5));
   EXPECT_THROW(GetLaplaceBasis(aux, 11), InvalidInputError);
+  // Into a basis that held more eigenpairs (a thread's reused storage): the same five.
+  LaplaceBasis reused = GetLaplaceBasis(aux, 10);
+  GetLaplaceBasis(aux, 5, &reused);
+  EXPECT_EQ(reused.evecs, five.evecs);
+  EXPECT_EQ(reused.evals, five.evals);
+  EXPECT_EQ(reused.mass, five.mass);
   // More eigenpairs than stored: recomputed.
   options.k = 12;
   EXPECT_TRUE(EnsureLaplaceBasis(s, options, &aux));

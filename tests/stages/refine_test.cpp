@@ -132,6 +132,34 @@ TEST_F(RefineTest, FunctionalMapOfTruthIsNearlyOrthogonal) {
   EXPECT_LT(MeanError(*pair_, map), 0.003);  // measured 0
 }
 
+TEST_F(RefineTest, StepsOnGatheredRowsEqualTheGatheringOnes) {
+  // ZoomOut gathers the basis rows once and calls the steps on them; the results must be those
+  // of FitFunctionalMap and PointMapFromFunctionalMap bit for bit.
+  const ZoomOutInputs in = SampledInputs();
+  const int k = 30;
+  const std::vector<int> targets = PerturbedTruth(*pair_, 0.5, 2, 7);
+  std::vector<int> sample_targets(in.samples.size());
+  for (size_t r = 0; r < in.samples.size(); ++r) sample_targets[r] = targets[in.samples[r]];
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(in.s.NumVertices());
+  const Eigen::MatrixXd C = FitFunctionalMap(in.s.evecs.leftCols(k), in.t.evecs.leftCols(k),
+                                             in.samples, sample_targets, ones);
+  const Eigen::MatrixXd source_rows = BasisRows(in.s.evecs, in.samples);
+  EXPECT_EQ(FitFunctionalMapFromRows(source_rows.leftCols(k),
+                                     BasisRows(in.t.evecs, sample_targets, k),
+                                     Eigen::VectorXd::Ones(in.samples.size())),
+            C);
+  std::vector<double> sq, sq_rows;
+  const std::vector<int> map = PointMapFromFunctionalMap(in.s.evecs, in.t.evecs, in.t.mass, C,
+                                                         in.samples, &sq, in.target_samples);
+  const std::vector<int> matchable = MatchableTargets(in.t.mass, in.target_samples);
+  EXPECT_EQ(NearestUnderMap(source_rows.leftCols(k), BasisRows(in.t.evecs, matchable, k),
+                            matchable, C, &sq_rows),
+            map);
+  EXPECT_EQ(sq_rows, sq);
+  // Bad ids are named.
+  EXPECT_THROW(BasisRows(in.t.evecs, {0, in.t.NumVertices()}), InvalidInputError);
+}
+
 TEST_F(RefineTest, ZoomOutFromTruthStaysAtTruth) {
   for (const std::string yaml : {"{type: zoomout, k_start: 10, k_end: 60, step: 5}",
                                  "{type: zoomout, k_start: 10, k_end: 60, step: 5, "
