@@ -1,0 +1,89 @@
+#include "core/nearest3d.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "core/errors.h"
+#include "core/knn.h"
+
+namespace symembed {
+namespace {
+
+// The nearest point by scanning all of them, the lowest index among equally near ones.
+int ScanNearest(const Eigen::MatrixX3d& points, const Eigen::RowVector3d& q, double* sq) {
+  int best_id = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < points.rows(); ++i) {
+    const double dx = points(i, 0) - q(0), dy = points(i, 1) - q(1), dz = points(i, 2) - q(2);
+    const double d = dx * dx + dy * dy + dz * dz;
+    if (d < best) {
+      best = d;
+      best_id = i;
+    }
+  }
+  *sq = best;
+  return best_id;
+}
+
+TEST(Nearest3d, MatchesAScanOnASurfaceAndOnQueriesAwayFromIt) {
+  // Points on a bumpy sphere (a surface, as the flip scorers search), queries on it, inside it
+  // and far outside it.
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::MatrixX3d points(2000, 3), queries(600, 3);
+  for (int i = 0; i < points.rows(); ++i) {
+    Eigen::RowVector3d p(normal(rng), normal(rng), normal(rng));
+    p *= (1.0 + 0.1 * std::sin(5.0 * p(0) / p.norm())) / p.norm();
+    points.row(i) = p;
+  }
+  for (int r = 0; r < queries.rows(); ++r) {
+    const double scale = r < 200 ? 1.0 : r < 400 ? 0.3 : 4.0;
+    queries.row(r) = scale * points.row((r * 7) % points.rows());
+    queries.row(r) += 0.05 * Eigen::RowVector3d(normal(rng), normal(rng), normal(rng));
+  }
+  const Nearest3d index(points);
+  Eigen::VectorXd dist;
+  const std::vector<int> nearest = index.Nearest(queries, &dist);
+  for (int r = 0; r < queries.rows(); ++r) {
+    double sq = 0.0;
+    EXPECT_EQ(nearest[r], ScanNearest(points, queries.row(r), &sq)) << "query " << r;
+    EXPECT_EQ(dist(r), std::sqrt(sq)) << "query " << r;
+  }
+  // The same answers as the general kd-tree it replaces for these searches.
+  EXPECT_EQ(KnnIndex(points).Nearest(queries), nearest);
+}
+
+TEST(Nearest3d, EquallyNearPointsGoToTheLowestIndex) {
+  // A grid of 5 x 5 x 5 points, each present three times (indices i, i + 125, i + 250) and
+  // queries at the grid points and halfway between neighbours (two or more equally near).
+  Eigen::MatrixX3d points(375, 3);
+  for (int copy = 0; copy < 3; ++copy) {
+    for (int i = 0; i < 125; ++i) {
+      points.row(copy * 125 + (copy == 1 ? 124 - i : i)) << i % 5, (i / 5) % 5, i / 25;
+    }
+  }
+  Eigen::MatrixX3d queries(250, 3);
+  for (int i = 0; i < 125; ++i) {
+    queries.row(i) = points.row(i);
+    queries.row(125 + i) = points.row(i) + Eigen::RowVector3d(0.5, 0.5, 0.0);
+  }
+  const std::vector<int> nearest = Nearest3d(points).Nearest(queries);
+  for (int r = 0; r < queries.rows(); ++r) {
+    double sq = 0.0;
+    EXPECT_EQ(nearest[r], ScanNearest(points, queries.row(r), &sq)) << "query " << r;
+    EXPECT_LT(nearest[r], 125) << "query " << r;
+  }
+}
+
+TEST(Nearest3d, RejectsEmptyAndNonFinitePoints) {
+  EXPECT_THROW(Nearest3d(Eigen::MatrixX3d(0, 3)), InvalidInputError);
+  Eigen::MatrixX3d bad = Eigen::MatrixX3d::Zero(4, 3);
+  bad(2, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(Nearest3d{bad}, InvalidInputError);
+}
+
+}  // namespace
+}  // namespace symembed
