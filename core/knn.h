@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace flann {
@@ -16,6 +17,8 @@ class Index;
 }  // namespace flann
 
 namespace symembed {
+
+class Nearest3d;
 
 class KnnIndex {
  public:
@@ -36,6 +39,8 @@ class KnnIndex {
              Eigen::MatrixXd* distances, int threads = 0) const;
 
   // The nearest point of every query row (#Q); its distance through *distances when given.
+  // In 3D by Nearest3d (nearest3d.h; built on the first call), which gives equally near points
+  // to the lowest index; otherwise Query with k = 1.
   std::vector<int> Nearest(const Eigen::MatrixXd& queries, Eigen::VectorXd* distances = nullptr,
                            int threads = 0) const;
 
@@ -44,6 +49,8 @@ class KnnIndex {
   int dims_ = 0;
   std::vector<double> data_;  // row-major copy the index points into
   std::unique_ptr<flann::Index<flann::L2<double>>> index_;
+  mutable std::once_flag nearest3d_once_;
+  mutable std::unique_ptr<Nearest3d> nearest3d_;  // 3D points: the tree of Nearest
 };
 
 }  // namespace symembed

@@ -101,6 +101,15 @@ void Nearest3d::Search(int index, const double q[3], double off[3], double bound
   }
 }
 
+int Nearest3d::Nearest(const double q[3], double* sq_dist) const {
+  double off[3] = {0.0, 0.0, 0.0};
+  double best = std::numeric_limits<double>::infinity();
+  int best_id = std::numeric_limits<int>::max();
+  Search(0, q, off, 0.0, &best, &best_id);
+  *sq_dist = best;
+  return best_id;
+}
+
 std::vector<int> Nearest3d::Nearest(const Eigen::MatrixX3d& queries,
                                     Eigen::VectorXd* distances) const {
   const int m = static_cast<int>(queries.rows());
@@ -108,12 +117,9 @@ std::vector<int> Nearest3d::Nearest(const Eigen::MatrixX3d& queries,
   if (distances != nullptr) distances->resize(m);
   for (int r = 0; r < m; ++r) {
     const double q[3] = {queries(r, 0), queries(r, 1), queries(r, 2)};
-    double off[3] = {0.0, 0.0, 0.0};
-    double best = std::numeric_limits<double>::infinity();
-    int best_id = std::numeric_limits<int>::max();
-    Search(0, q, off, 0.0, &best, &best_id);
-    nearest[r] = best_id;
-    if (distances != nullptr) (*distances)(r) = std::sqrt(best);
+    double sq = 0.0;
+    nearest[r] = Nearest(q, &sq);
+    if (distances != nullptr) (*distances)(r) = std::sqrt(sq);
   }
   return nearest;
 }

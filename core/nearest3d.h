@@ -23,6 +23,9 @@ class Nearest3d {
   std::vector<int> Nearest(const Eigen::MatrixX3d& queries,
                            Eigen::VectorXd* distances = nullptr) const;
 
+  // One query: the nearest point's index, its squared distance through *sq_dist.
+  int Nearest(const double q[3], double* sq_dist) const;
+
  private:
   struct Node {
     double split = 0.0;

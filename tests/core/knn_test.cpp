@@ -50,6 +50,38 @@ TEST(KnnIndex, NearestOfItselfIsItself) {
   EXPECT_EQ(dist.maxCoeff(), 0.0);
 }
 
+TEST_P(KnnIndexDims, NearestAgreesWithQueryOnOneNeighbour) {
+  // In 3D Nearest searches its own tree (Nearest3d), elsewhere Query's; random points have no
+  // equally near pairs, so both give the same points, on one thread or several.
+  const int d = GetParam();
+  const Eigen::MatrixXd P = RandomPoints(3000, d, 5), Q = RandomPoints(1500, d, 6);
+  const KnnIndex index(P);
+  Eigen::MatrixXi nn;
+  Eigen::MatrixXd dist;
+  index.Query(Q, 1, &nn, &dist, 1);
+  for (const int threads : {1, 2}) {
+    Eigen::VectorXd nearest_dist;
+    const std::vector<int> nearest = index.Nearest(Q, &nearest_dist, threads);
+    ASSERT_EQ(nearest.size(), static_cast<size_t>(Q.rows()));
+    for (int q = 0; q < Q.rows(); ++q) {
+      EXPECT_EQ(nearest[q], nn(q, 0)) << "query " << q;
+      EXPECT_EQ(nearest_dist(q), dist(q, 0)) << "query " << q;
+    }
+  }
+}
+
+TEST(KnnIndex, NearestIn3dGivesEquallyNearPointsToTheLowestIndex) {
+  // Every point twice (i and i + 64): each query's nearest distance is attained at both.
+  Eigen::MatrixXd P(128, 3);
+  for (int i = 0; i < 64; ++i) {
+    P.row(i) << i % 4, (i / 4) % 4, i / 16;
+    P.row(64 + i) = P.row(i);
+  }
+  const Eigen::MatrixXd Q = P.bottomRows(64).rowwise() + Eigen::RowVector3d(0.1, 0.2, 0.3);
+  const std::vector<int> nearest = KnnIndex(P).Nearest(Q);
+  for (int q = 0; q < 64; ++q) EXPECT_EQ(nearest[q], q);
+}
+
 TEST(KnnIndex, RejectsEmptyAndNonFinite) {
   EXPECT_THROW(KnnIndex(Eigen::MatrixXd(0, 3)), InvalidInputError);
   Eigen::MatrixXd P = RandomPoints(10, 3, 4);
