@@ -23,10 +23,7 @@ KnnIndex::KnnIndex(const Eigen::MatrixXd& points, int leaf_size)
   for (int i = 0; i < num_points_; ++i) {
     for (int c = 0; c < dims_; ++c) data_[static_cast<size_t>(i) * dims_ + c] = points(i, c);
   }
-  flann::Matrix<double> dataset(data_.data(), num_points_, dims_);
-  index_ = std::make_unique<flann::Index<flann::L2<double>>>(
-      dataset, flann::KDTreeSingleIndexParams(leaf_size));
-  index_->buildIndex();
+  leaf_size_ = leaf_size;
 }
 
 KnnIndex::~KnnIndex() = default;
@@ -39,6 +36,12 @@ void KnnIndex::Query(const Eigen::MatrixXd& queries, int k, Eigen::MatrixXi* ind
   if (indices) indices->resize(num_queries, k);
   if (distances) distances->resize(num_queries, k);
   if (num_queries == 0) return;
+  std::call_once(index_once_, [&] {
+    flann::Matrix<double> dataset(const_cast<double*>(data_.data()), num_points_, dims_);
+    index_ = std::make_unique<flann::Index<flann::L2<double>>>(
+        dataset, flann::KDTreeSingleIndexParams(leaf_size_));
+    index_->buildIndex();
+  });
   // Chunks of queries, each searched single-threaded by FLANN into its own buffers.
   constexpr int kChunk = 512;
   const int num_chunks = (num_queries + kChunk - 1) / kChunk;

@@ -47,10 +47,12 @@ class KnnIndex {
  private:
   int num_points_ = 0;
   int dims_ = 0;
+  int leaf_size_ = 10;
   std::vector<double> data_;  // row-major copy the index points into
-  std::unique_ptr<flann::Index<flann::L2<double>>> index_;
-  mutable std::once_flag nearest3d_once_;
-  mutable std::unique_ptr<Nearest3d> nearest3d_;  // 3D points: the tree of Nearest
+  // Each tree is built on its first use: FLANN's by Query, Nearest3d by Nearest in 3D.
+  mutable std::once_flag index_once_, nearest3d_once_;
+  mutable std::unique_ptr<flann::Index<flann::L2<double>>> index_;
+  mutable std::unique_ptr<Nearest3d> nearest3d_;
 };
 
 }  // namespace symembed

@@ -6,26 +6,20 @@
 
 #include "core/errors.h"
 #include "core/knn.h"
-#include "core/nearest3d.h"
-#include "core/parallel.h"
 #include "core/procrustes.h"
 
 namespace symembed {
 
 CandidateMaps ComputeCandidateMaps(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                    int threads) {
-  // ||R y_t - y_s|| = ||y_t - R^T y_s||: one tree on Yt, queries R^T y_s (rows y_s^T R); the
-  // four candidates on up to `threads` threads.
-  const Nearest3d index(Yt);
+  // ||R y_t - y_s|| = ||y_t - R^T y_s||: one tree on Yt, queries R^T y_s (rows y_s^T R).
+  const KnnIndex index(Yt);
   const auto rotations = CandidateRotations();
   CandidateMaps out;
-  ParallelFor(
-      4,
-      [&](int k) {
-        const Eigen::MatrixX3d Q = Ys * rotations[k];
-        out.map[k] = index.Nearest(Q, &out.dist[k]);
-      },
-      threads);
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::MatrixX3d Q = Ys * rotations[k];
+    out.map[k] = index.Nearest(Q, &out.dist[k], threads);
+  }
   return out;
 }
 
