@@ -1,7 +1,6 @@
 #include "core/nearest3d.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -108,20 +107,6 @@ int Nearest3d::Nearest(const double q[3], double* sq_dist) const {
   Search(0, q, off, 0.0, &best, &best_id);
   *sq_dist = best;
   return best_id;
-}
-
-std::vector<int> Nearest3d::Nearest(const Eigen::MatrixX3d& queries,
-                                    Eigen::VectorXd* distances) const {
-  const int m = static_cast<int>(queries.rows());
-  std::vector<int> nearest(m, 0);
-  if (distances != nullptr) distances->resize(m);
-  for (int r = 0; r < m; ++r) {
-    const double q[3] = {queries(r, 0), queries(r, 1), queries(r, 2)};
-    double sq = 0.0;
-    nearest[r] = Nearest(q, &sq);
-    if (distances != nullptr) (*distances)(r) = std::sqrt(sq);
-  }
-  return nearest;
 }
 
 }  // namespace symembed

@@ -18,12 +18,8 @@ class Nearest3d {
   // points: #N x 3 (#N >= 1, finite), copied. Throws InvalidInputError otherwise.
   explicit Nearest3d(const Eigen::MatrixX3d& points);
 
-  // For each query row, the index of the nearest point (the lowest index among equally near
-  // ones); its Euclidean distance through *distances when given.
-  std::vector<int> Nearest(const Eigen::MatrixX3d& queries,
-                           Eigen::VectorXd* distances = nullptr) const;
-
-  // One query: the nearest point's index, its squared distance through *sq_dist.
+  // The index of the point nearest to q (the lowest index among equally near ones); its
+  // squared distance through *sq_dist. KnnIndex::Nearest runs it over a matrix of queries.
   int Nearest(const double q[3], double* sq_dist) const;
 
  private:

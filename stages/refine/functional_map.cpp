@@ -67,10 +67,9 @@ Eigen::VectorXd CheckedPairWeights(const BasisRef& Phi_s, const BasisRef& Phi_t,
 
 }  // namespace
 
-Eigen::MatrixXd WeightedGram(const BasisRef& Phi_s, const std::vector<int>& source_ids,
-                             const Eigen::VectorXd& weights) {
-  const Eigen::VectorXd w = PairWeights(Phi_s, source_ids, weights);
-  const Eigen::MatrixXd A = Rows(Phi_s, source_ids);
+Eigen::MatrixXd WeightedGram(const BasisRef& A, const Eigen::VectorXd& w) {
+  SYMEMBED_CHECK(w.size() == A.rows(), "weighted Gram: " << A.rows() << " rows, " << w.size()
+                                                         << " weights");
   return (w.asDiagonal() * A).transpose() * A;
 }
 
@@ -91,8 +90,8 @@ Eigen::MatrixXd FitFunctionalMapFromRows(const BasisRef& A, const BasisRef& B,
   SYMEMBED_CHECK(gram == nullptr || (gram->rows() >= ks && gram->cols() >= ks),
                  "functional map: the Gram matrix is smaller than the basis");
   const Eigen::MatrixXd AtWB = (w.asDiagonal() * A).transpose() * B;
-  const Eigen::MatrixXd AtWA = gram != nullptr ? Eigen::MatrixXd(gram->topLeftCorner(ks, ks))
-                                               : Eigen::MatrixXd((w.asDiagonal() * A).transpose() * A);
+  const Eigen::MatrixXd AtWA =
+      gram != nullptr ? Eigen::MatrixXd(gram->topLeftCorner(ks, ks)) : WeightedGram(A, w);
   // For the dense map with mass weights A^T W A = I; for a sample it is near I when the sample
   // covers the surface. LDL^T with a pivot check detects too small a sample.
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(AtWA);

@@ -31,7 +31,7 @@ using BasisRef = Eigen::Ref<const Eigen::MatrixXd>;
 // i.e. C = (A^T W A)^{-1} A^T W B. Phi_s: #Vs x ks, Phi_t: #Vt x kt, weights: #Vs (the lumped
 // mass for the dense map, ones for a uniform sample). Returns ks x kt. Throws InvalidInputError
 // when the ids are out of range or A^T W A is singular (too few points for ks). `gram`, when
-// given, is WeightedGram of the same source ids and weights for Phi_s or a basis it is the first
+// given, is WeightedGram of the same rows and weights, of Phi_s or a basis it is the first
 // columns of: its top-left ks x ks block is A^T W A (ZoomOut fits one map per basis size on the
 // same points).
 Eigen::MatrixXd FitFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
@@ -50,9 +50,8 @@ Eigen::MatrixXd FitFunctionalMapFromRows(const BasisRef& A, const BasisRef& B,
 // for an id out of range.
 Eigen::MatrixXd BasisRows(const BasisRef& Phi, const std::vector<int>& ids, int cols = -1);
 
-// A^T W A of FitFunctionalMap: A the rows source_ids of Phi_s, W their weights.
-Eigen::MatrixXd WeightedGram(const BasisRef& Phi_s, const std::vector<int>& source_ids,
-                             const Eigen::VectorXd& weights);
+// A^T W A of FitFunctionalMap for gathered rows A (pairs x ks) and the pairs' weights w.
+Eigen::MatrixXd WeightedGram(const BasisRef& A, const Eigen::VectorXd& w);
 
 // The orthogonal C (ks == kt) minimising the same weighted energy: the Procrustes solution
 // C = U V^T of A^T W B = U S V^T [Ovsjanikov et al. 2012] Functional maps: a flexible

@@ -107,10 +107,10 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
   // The same points and weights at every basis size: A^T W A once, at the largest, and the basis
   // rows of the active points and of the targets they may land on gathered once; each basis size
   // uses their first columns.
-  const Eigen::MatrixXd gram = WeightedGram(source.evecs.leftCols(options.k_end), active, weights);
   Eigen::VectorXd active_weights(active.size());
   for (size_t r = 0; r < active.size(); ++r) active_weights(r) = weights(active[r]);
   const Eigen::MatrixXd source_rows = BasisRows(source.evecs, active, options.k_end);
+  const Eigen::MatrixXd gram = WeightedGram(source_rows, active_weights);
   const std::vector<int> targets = MatchableTargets(target.mass, active_targets);
   const Eigen::MatrixXd target_rows = BasisRows(target.evecs, targets, options.k_end);
   auto record = [&](Run* run, int k, const Eigen::MatrixXd& C, const std::vector<double>& sq) {

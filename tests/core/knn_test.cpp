@@ -38,6 +38,17 @@ TEST_P(KnnIndexDims, MatchesBruteForce) {
       EXPECT_NEAR(all(nn(q, j)), sorted[j], 1e-12);
     }
   }
+  // Nearest (in 3D its own tree, Nearest3d) gives Query's first neighbour, on one thread or
+  // several: random points have no equally near pairs.
+  for (const int threads : {1, 2}) {
+    Eigen::VectorXd nearest_dist;
+    const std::vector<int> nearest = index.Nearest(Q, &nearest_dist, threads);
+    ASSERT_EQ(nearest.size(), static_cast<size_t>(Q.rows()));
+    for (int q = 0; q < Q.rows(); ++q) {
+      EXPECT_EQ(nearest[q], nn(q, 0)) << "query " << q;
+      EXPECT_EQ(nearest_dist(q), dist(q, 0)) << "query " << q;
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(TwoAndThree, KnnIndexDims, ::testing::Values(2, 3));
@@ -48,26 +59,6 @@ TEST(KnnIndex, NearestOfItselfIsItself) {
   const std::vector<int> nn = KnnIndex(P).Nearest(P, &dist);
   for (int i = 0; i < 500; ++i) EXPECT_EQ(nn[i], i);
   EXPECT_EQ(dist.maxCoeff(), 0.0);
-}
-
-TEST_P(KnnIndexDims, NearestAgreesWithQueryOnOneNeighbour) {
-  // In 3D Nearest searches its own tree (Nearest3d), elsewhere Query's; random points have no
-  // equally near pairs, so both give the same points, on one thread or several.
-  const int d = GetParam();
-  const Eigen::MatrixXd P = RandomPoints(3000, d, 5), Q = RandomPoints(1500, d, 6);
-  const KnnIndex index(P);
-  Eigen::MatrixXi nn;
-  Eigen::MatrixXd dist;
-  index.Query(Q, 1, &nn, &dist, 1);
-  for (const int threads : {1, 2}) {
-    Eigen::VectorXd nearest_dist;
-    const std::vector<int> nearest = index.Nearest(Q, &nearest_dist, threads);
-    ASSERT_EQ(nearest.size(), static_cast<size_t>(Q.rows()));
-    for (int q = 0; q < Q.rows(); ++q) {
-      EXPECT_EQ(nearest[q], nn(q, 0)) << "query " << q;
-      EXPECT_EQ(nearest_dist(q), dist(q, 0)) << "query " << q;
-    }
-  }
 }
 
 TEST(KnnIndex, NearestIn3dGivesEquallyNearPointsToTheLowestIndex) {
