@@ -143,8 +143,8 @@ BENCHMARK_CAPTURE(BM_SpectralNearest, brute_force, SpectralNearest::Method::kBru
     ->Unit(benchmark::kMillisecond);
 
 void BM_NearestKernel(benchmark::State& state, NearestIsa isa) {
-  if (isa == NearestIsa::kAvx2 && !NearestKernelHasAvx2()) {
-    state.SkipWithError("no AVX2 on this processor");
+  if (!NearestKernelSupports(isa)) {
+    state.SkipWithError("this processor does not run that build");
     return;
   }
   const BenchPair& p = BlobPair();
@@ -163,6 +163,10 @@ void BM_NearestKernel(benchmark::State& state, NearestIsa isa) {
   state.counters["madd_per_s"] = benchmark::Counter(
       static_cast<double>(source.rows()) * target.rows() * k, benchmark::Counter::kIsIterationInvariantRate);
 }
+BENCHMARK_CAPTURE(BM_NearestKernel, avx512, NearestIsa::kAvx512)
+    ->Arg(20)
+    ->Arg(60)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_NearestKernel, avx2, NearestIsa::kAvx2)
     ->Arg(20)
     ->Arg(60)

@@ -36,16 +36,20 @@ std::vector<int> ScalarNearest(const std::vector<float>& points, int n, int dims
 
 std::vector<NearestIsa> AvailableIsas() {
   std::vector<NearestIsa> isas = {NearestIsa::kAuto, NearestIsa::kBaseline};
-  if (NearestKernelHasAvx2()) isas.push_back(NearestIsa::kAvx2);
+  for (const NearestIsa isa : {NearestIsa::kAvx2, NearestIsa::kAvx512}) {
+    if (NearestKernelSupports(isa)) isas.push_back(isa);
+  }
   return isas;
 }
 
 TEST(NearestKernel, EveryBuildMatchesTheScalarArithmeticExactly) {
   std::mt19937 rng(5);
   std::normal_distribution<float> normal(0.0f, 1.0f);
-  // Point counts off the block size and query counts off the tile size; one dimension and many.
+  // Point counts off the block (48) and its parts (24 and 48 points), query counts off the tiles
+  // (2, 4 and 8 queries); one dimension and many.
   for (const auto& [n, dims, m] :
        std::vector<std::array<int, 3>>{{1, 1, 1}, {23, 3, 5}, {24, 7, 4}, {25, 20, 9},
+                                       {47, 5, 8}, {48, 11, 17}, {49, 2, 3},
                                        {97, 64, 31}, {500, 120, 7}}) {
     std::vector<float> points(static_cast<size_t>(n) * dims), queries(static_cast<size_t>(m) * dims);
     for (float& x : points) x = normal(rng);
@@ -61,10 +65,46 @@ TEST(NearestKernel, EveryBuildMatchesTheScalarArithmeticExactly) {
   }
 }
 
+TEST(NearestKernel, NearTiesDecidedByRoundingMatchTheScalarArithmetic) {
+  // Every point lies on a sphere around the query, so the values ||p||^2 - 2 q.p differ only by
+  // rounding and the nearest point is decided by it: a build that fused a multiply and an add,
+  // or summed in another order, picks other points for many of the queries.
+  std::mt19937 rng(11);
+  std::normal_distribution<float> normal(0.0f, 1.0f);
+  const int n = 200, dims = 16, m = 64;
+  std::vector<float> queries(static_cast<size_t>(m) * dims);
+  for (float& x : queries) x = normal(rng);
+  for (int r = 0; r < m; ++r) {
+    std::vector<float> points(static_cast<size_t>(n) * dims);
+    for (int i = 0; i < n; ++i) {
+      std::vector<double> u(dims);
+      double norm = 0.0;
+      for (double& x : u) {
+        x = normal(rng);
+        norm += x * x;
+      }
+      for (int c = 0; c < dims; ++c) {
+        points[i + static_cast<size_t>(c) * n] =
+            static_cast<float>(queries[static_cast<size_t>(r) * dims + c] + 3.0 * u[c] / std::sqrt(norm));
+      }
+    }
+    const std::vector<float> query(queries.begin() + static_cast<long>(r) * dims,
+                                   queries.begin() + static_cast<long>(r + 1) * dims);
+    const std::vector<int> expected = ScalarNearest(points, n, dims, query, 1);
+    const PackedPoints packed = PackPoints(points.data(), n, dims, n);
+    for (const NearestIsa isa : AvailableIsas()) {
+      int nearest = -1;
+      NearestPacked(packed, query.data(), 1, &nearest, isa);
+      EXPECT_EQ(nearest, expected[0]) << "query " << r << " isa " << static_cast<int>(isa);
+    }
+  }
+}
+
 TEST(NearestKernel, TiesGoToTheLowestIndexAcrossLanesAndBlocks) {
-  // 60 points, 10 distinct ones repeated six times (index i is point i % 10): every query's
-  // nearest value is attained at six indices in different lanes and blocks; the lowest is i % 10.
-  const int n = 60, dims = 4, m = 10;
+  // 130 points, 10 distinct ones repeated 13 times (index i is point i % 10): every query's
+  // nearest value is attained at 13 indices in different lanes, parts of blocks and blocks; the
+  // lowest is i % 10.
+  const int n = 130, dims = 4, m = 10;
   std::vector<float> points(n * dims), queries(m * dims);
   for (int i = 0; i < n; ++i) {
     for (int c = 0; c < dims; ++c) points[i + c * n] = static_cast<float>((i % 10) * (c + 1));
@@ -90,6 +130,15 @@ TEST(NearestKernel, StrideSkipsRowsAndNanQueriesGetZero) {
   std::vector<int> nearest(4, -1);
   NearestPacked(packed, queries.data(), 4, nearest.data());
   EXPECT_EQ(nearest, (std::vector<int>{2, 1, 0, 0}));
+}
+
+TEST(NearestKernel, AutoIsSupportedAndPacksWholeBlocks) {
+  EXPECT_TRUE(NearestKernelSupports(NearestIsa::kAuto));
+  EXPECT_TRUE(NearestKernelSupports(NearestIsa::kBaseline));
+  const std::vector<float> points(49 * 2, 1.0f);
+  const PackedPoints packed = PackPoints(points.data(), 49, 2, 49);
+  EXPECT_EQ(packed.sq_norms.size(), 2u * kNearestBlock);
+  EXPECT_EQ(packed.coords.size(), 2u * 2 * kNearestBlock);
 }
 
 TEST(NearestKernel, RejectsEmptyPointSets) {
