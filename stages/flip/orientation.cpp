@@ -109,8 +109,7 @@ CandidateOrientation::CandidateOrientation(const Surface& source, const Surface&
                                            const std::vector<int>& samples,
                                            const std::vector<int>& target_samples,
                                            const OrientationOptions& options)
-    : source_(source), target_(target), source_basis_(source_basis),
-      target_basis_(target_basis) {
+    : source_(source), target_(target) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
   samples_ = SamplePrefix(samples, options.samples, options.k_end, "flip orientation: the source");
@@ -119,19 +118,20 @@ CandidateOrientation::CandidateOrientation(const Surface& source, const Surface&
         SamplePrefix(target_samples, options.target_samples, options.k_end,
                      "flip orientation: the target");
   }
-  zoomout_.k_start = options.k_start;
-  zoomout_.k_end = options.k_end;
-  zoomout_.step = options.step;
+  ZoomOutOptions zoomout;
+  zoomout.k_start = options.k_start;
+  zoomout.k_end = options.k_end;
+  zoomout.step = options.step;
   // The triangles are made of samples only: the map of the other vertices is not needed.
-  zoomout_.dense_result = false;
+  zoomout.dense_result = false;
+  zoomout_.emplace(source_basis, target_basis, samples_, zoomout, target_samples_);
   triangles_ = MakeSourceTriangles(source, samples_, options.neighbors);
   target_normals_ = VertexNormals(target);
 }
 
 double CandidateOrientation::operator()(const std::vector<int>& map) const {
   CheckOrientationInput(source_, map, samples_);
-  const ZoomOutResult refined =
-      ZoomOut(source_basis_, target_basis_, map, samples_, zoomout_, target_samples_);
+  const ZoomOutResult refined = zoomout_->Run(map);
   return TriangleOrientation(triangles_, target_, target_normals_, refined.map);
 }
 

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,7 +78,8 @@ double MapOrientation(const Surface& source, const Surface& target, const std::v
 
 // The orientation of a candidate's nearest-neighbour map (from ComputeCandidateMaps of the
 // canonical embeddings) after ZoomOut in the given bases. Built once per pair: it holds what does
-// not depend on the candidate (sample prefixes, source triangles, target normals). samples:
+// not depend on the candidate (sample prefixes, ZoomOut's setup, source triangles, target
+// normals). samples:
 // source vertex ids (the first options.samples are used); target_samples: target vertex ids (the
 // first options.target_samples are used; all target vertices when that is 0). The surfaces and
 // bases are referenced, not copied: they must outlive it. Throws ConfigError for invalid
@@ -95,10 +97,8 @@ class CandidateOrientation {
  private:
   const Surface& source_;
   const Surface& target_;
-  const LaplaceBasis& source_basis_;
-  const LaplaceBasis& target_basis_;
   std::vector<int> samples_, target_samples_;
-  ZoomOutOptions zoomout_;
+  std::optional<ZoomOutSetup> zoomout_;  // set in the constructor, after the sample prefixes
   SourceTriangles triangles_;
   Eigen::MatrixX3d target_normals_;
 };

@@ -52,9 +52,10 @@ RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
   zoomout.k_end = options.k_end;
   zoomout.step = options.step;
   zoomout.dense_result = false;
-  // What does not depend on the candidate, once: the feature scales, the embedded points of the
-  // source samples (ZoomOut reads the initial map at the samples only) and of the target, and
-  // the triangles and normals of the orientation.
+  // What does not depend on the candidate, once: ZoomOut's setup, the feature scales, the
+  // embedded points of the source samples (ZoomOut reads the initial map at the samples only) and
+  // of the target, and the triangles and normals of the orientation.
+  const ZoomOutSetup zoomout_setup(source_basis, target_basis, prefix, zoomout, target_prefix);
   const std::array<double, 2> scales = FeatureScales(Fs, Ft);
   const EmbeddedPoints source_all = EmbeddedShape(source);
   EmbeddedPoints source_points;
@@ -81,8 +82,7 @@ RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
                                              options.normal_weight, /*threads=*/1);
     std::vector<int> initial(source.surface.NumVertices(), 0);
     for (size_t i = 0; i < prefix.size(); ++i) initial[prefix[i]] = matched.map[i];
-    const ZoomOutResult refined =
-        ZoomOut(source_basis, target_basis, initial, prefix, zoomout, target_prefix);
+    const ZoomOutResult refined = zoomout_setup.Run(initial);
     out.disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
     out.orientation[k] =
         TriangleOrientation(triangles, target.surface, target_normals, refined.map);

@@ -50,7 +50,7 @@ std::vector<int> BasisSizes(int start, const ZoomOutOptions& options) {
 }
 
 // One ZoomOut run from one start on the active points: its trace and the functional map at k_end.
-struct Run {
+struct StartRun {
   int start = 0;
   std::vector<int> k;
   std::vector<double> orthogonality, spectral_residual;
@@ -60,9 +60,11 @@ struct Run {
 
 }  // namespace
 
-ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
-                      const std::vector<int>& initial_map, const std::vector<int>& samples,
-                      const ZoomOutOptions& options, const std::vector<int>& target_samples) {
+ZoomOutSetup::ZoomOutSetup(const LaplaceBasis& source, const LaplaceBasis& target,
+                           const std::vector<int>& samples, const ZoomOutOptions& options,
+                           const std::vector<int>& target_samples)
+    : source_(source), target_(target), options_(options), samples_(samples),
+      target_samples_(target_samples) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("zoomout: " + error);
   const int ns = source.NumVertices(), nt = target.NumVertices();
@@ -72,16 +74,14 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
         << " and " << target.NumEigenpairs() << " eigenpairs";
     throw InvalidInputError(out.str());
   }
-  CheckPointMap(initial_map, ns, nt);
-
   // The vertices the iterations run on, and their least-squares weights.
-  std::vector<int> active = samples;
+  active_ = samples;
   Eigen::VectorXd weights = source.mass;
-  if (active.empty()) {
-    active.resize(ns);
-    std::iota(active.begin(), active.end(), 0);
+  if (active_.empty()) {
+    active_.resize(ns);
+    std::iota(active_.begin(), active_.end(), 0);
   } else {
-    for (int i : active) {
+    for (int i : active_) {
       if (i < 0 || i >= ns) throw InvalidInputError("zoomout: sample id out of range");
     }
     for (int j : target_samples) {
@@ -89,52 +89,79 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
     }
     weights.setOnes();
   }
-  std::vector<int> all(ns);
-  std::iota(all.begin(), all.end(), 0);
-  const bool sampled = !samples.empty();
   // A query on the samples lands on the target samples; a query on every source vertex (the
   // dense variant, and the last query of the sampled one) on every target vertex.
   const std::vector<int> no_ids;
-  const std::vector<int>& active_targets = sampled ? target_samples : no_ids;
-
-  std::vector<int> starts = {options.k_start};
-  starts.insert(starts.end(), options.extra_k_starts.begin(), options.extra_k_starts.end());
-  // The sampled variant's result maps every source vertex with the last functional map. A
-  // single run goes straight to that query; several are first compared on the active points.
-  const bool dense_last = sampled && options.dense_result;
-  const bool query_last_on_active = !dense_last || starts.size() > 1;
-
+  const std::vector<int>& active_targets = samples.empty() ? no_ids : target_samples;
   // The same points and weights at every basis size: A^T W A once, at the largest, and the basis
   // rows of the active points and of the targets they may land on gathered once; each basis size
   // uses their first columns.
-  Eigen::VectorXd active_weights(active.size());
-  for (size_t r = 0; r < active.size(); ++r) active_weights(r) = weights(active[r]);
-  const Eigen::MatrixXd source_rows = BasisRows(source.evecs, active, options.k_end);
-  const Eigen::MatrixXd gram = WeightedGram(source_rows, active_weights);
-  const std::vector<int> targets = MatchableTargets(target.mass, active_targets);
-  const Eigen::MatrixXd target_rows = BasisRows(target.evecs, targets, options.k_end);
-  auto record = [&](Run* run, int k, const Eigen::MatrixXd& C, const std::vector<double>& sq) {
+  active_weights_.resize(active_.size());
+  for (size_t r = 0; r < active_.size(); ++r) active_weights_(r) = weights(active_[r]);
+  source_rows_ = BasisRows(source.evecs, active_, options.k_end);
+  gram_ = WeightedGram(source_rows_, active_weights_);
+  targets_ = MatchableTargets(target.mass, active_targets);
+  target_rows_ = BasisRows(target.evecs, targets_, options.k_end);
+  target_row_.assign(nt, -1);
+  for (size_t r = 0; r < targets_.size(); ++r) target_row_[targets_[r]] = static_cast<int>(r);
+}
+
+Eigen::MatrixXd ZoomOutSetup::TargetRows(const std::vector<int>& ids, int k) const {
+  Eigen::MatrixXd B(ids.size(), k);
+  for (int c = 0; c < k; ++c) {
+    const double* gathered = target_rows_.col(c).data();
+    const double* column = target_.evecs.col(c).data();
+    for (size_t r = 0; r < ids.size(); ++r) {
+      const int row = target_row_[ids[r]];
+      B(r, c) = row >= 0 ? gathered[row] : column[ids[r]];
+    }
+  }
+  return B;
+}
+
+ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
+                      const std::vector<int>& initial_map, const std::vector<int>& samples,
+                      const ZoomOutOptions& options, const std::vector<int>& target_samples) {
+  return ZoomOutSetup(source, target, samples, options, target_samples).Run(initial_map);
+}
+
+ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
+  const int ns = source_.NumVertices();
+  CheckPointMap(initial_map, ns, target_.NumVertices());
+  std::vector<int> all(ns);
+  std::iota(all.begin(), all.end(), 0);
+  const bool sampled = !samples_.empty();
+  const std::vector<int> no_ids;
+
+  std::vector<int> starts = {options_.k_start};
+  starts.insert(starts.end(), options_.extra_k_starts.begin(), options_.extra_k_starts.end());
+  // The sampled variant's result maps every source vertex with the last functional map. A
+  // single run goes straight to that query; several are first compared on the active points.
+  const bool dense_last = sampled && options_.dense_result;
+  const bool query_last_on_active = !dense_last || starts.size() > 1;
+  auto record = [](StartRun* run, int k, const Eigen::MatrixXd& C,
+                   const std::vector<double>& sq) {
     run->k.push_back(k);
     run->orthogonality.push_back(OrthogonalityDefect(C));
     run->spectral_residual.push_back(Mean(sq));
   };
 
-  std::vector<Run> runs(starts.size());
+  std::vector<StartRun> runs(starts.size());
   for (size_t s = 0; s < starts.size(); ++s) {
-    Run& run = runs[s];
+    StartRun& run = runs[s];
     run.start = starts[s];
-    run.active_map.resize(active.size());
-    for (size_t r = 0; r < active.size(); ++r) run.active_map[r] = initial_map[active[r]];
-    const std::vector<int> sizes = BasisSizes(run.start, options);
+    run.active_map.resize(active_.size());
+    for (size_t r = 0; r < active_.size(); ++r) run.active_map[r] = initial_map[active_[r]];
+    const std::vector<int> sizes = BasisSizes(run.start, options_);
     for (size_t it = 0; it < sizes.size(); ++it) {
       const int k = sizes[it];
-      run.C = FitFunctionalMapFromRows(source_rows.leftCols(k),
-                                       BasisRows(target.evecs, run.active_map, k), active_weights,
-                                       &gram);
+      run.C = FitFunctionalMapFromRows(source_rows_.leftCols(k), TargetRows(run.active_map, k),
+                                       active_weights_, &gram_);
       if (it + 1 < sizes.size() || query_last_on_active) {
         std::vector<double> sq;
         run.active_map =
-            NearestUnderMap(source_rows.leftCols(k), target_rows.leftCols(k), targets, run.C, &sq);
+            NearestUnderMap(source_rows_.leftCols(k), target_rows_.leftCols(k), targets_, run.C,
+                            &sq);
         record(&run, k, run.C, sq);
       }
     }
@@ -147,9 +174,9 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
 
   ZoomOutResult result;
   if (starts.size() > 1) {
-    for (const Run& r : runs) result.start_residuals.push_back(r.spectral_residual.back());
+    for (const StartRun& r : runs) result.start_residuals.push_back(r.spectral_residual.back());
   }
-  Run& run = runs[kept];
+  StartRun& run = runs[kept];
   result.start = run.start;
   if (dense_last) {
     // The trace reports the dense query at k_end, not the comparison's on the samples.
@@ -159,12 +186,12 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
       run.spectral_residual.pop_back();
     }
     std::vector<double> sq;
-    result.map = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass, run.C, all,
+    result.map = PointMapFromFunctionalMap(source_.evecs, target_.evecs, target_.mass, run.C, all,
                                            &sq, no_ids);
-    record(&run, options.k_end, run.C, sq);
+    record(&run, options_.k_end, run.C, sq);
   } else if (sampled) {
     result.map = initial_map;
-    for (size_t r = 0; r < active.size(); ++r) result.map[active[r]] = run.active_map[r];
+    for (size_t r = 0; r < active_.size(); ++r) result.map[active_[r]] = run.active_map[r];
   } else {
     result.map = run.active_map;
   }
@@ -174,10 +201,10 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
   for (int i = 0; i < ns; ++i) result.changed += result.map[i] != initial_map[i];
 
   std::ostringstream message;
-  message << "zoomout k " << result.start << ".." << options.k_end << " step " << options.step
-          << (sampled ? " on " + std::to_string(samples.size()) + " samples" : "")
-          << (sampled && !target_samples.empty()
-                  ? " onto " + std::to_string(target_samples.size()) + " target samples"
+  message << "zoomout k " << result.start << ".." << options_.k_end << " step " << options_.step
+          << (sampled ? " on " + std::to_string(samples_.size()) + " samples" : "")
+          << (sampled && !target_samples_.empty()
+                  ? " onto " + std::to_string(target_samples_.size()) + " target samples"
                   : "");
   message.precision(3);
   if (!result.start_residuals.empty()) {

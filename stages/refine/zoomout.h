@@ -50,6 +50,40 @@ struct ZoomOutResult {
   StageStatus status;
 };
 
+// What ZoomOut computes from the bases, the samples and the options alone: the active points'
+// basis rows and their Gram matrix, and the targets they may land on with those targets' rows.
+// Built once, it refines several initial maps between the same bases (the flip terms refine two
+// to four candidate maps of a pair); Run gives what ZoomOut gives for the same arguments. Keeps
+// references to the bases, which must outlive it.
+class ZoomOutSetup {
+ public:
+  // Arguments as for ZoomOut below; throws what it throws for them.
+  ZoomOutSetup(const LaplaceBasis& source, const LaplaceBasis& target,
+               const std::vector<int>& samples, const ZoomOutOptions& options,
+               const std::vector<int>& target_samples = {});
+
+  // ZoomOut from initial_map (#Vs entries in [0, #Vt)).
+  ZoomOutResult Run(const std::vector<int>& initial_map) const;
+
+ private:
+  // The first k columns of the target basis at the rows `ids`: from target_rows_ for the
+  // matchable targets (every id after a first query), from the basis for the others.
+  Eigen::MatrixXd TargetRows(const std::vector<int>& ids, int k) const;
+
+  const LaplaceBasis& source_;
+  const LaplaceBasis& target_;
+  ZoomOutOptions options_;
+  std::vector<int> samples_;
+  std::vector<int> target_samples_;
+  std::vector<int> active_;           // the source vertices the iterations run on
+  Eigen::VectorXd active_weights_;    // their least-squares weights
+  Eigen::MatrixXd source_rows_;       // their basis rows, k_end columns
+  Eigen::MatrixXd gram_;              // A^T W A of source_rows_
+  std::vector<int> targets_;          // the target vertices they may land on
+  Eigen::MatrixXd target_rows_;       // their basis rows, k_end columns
+  std::vector<int> target_row_;       // per target vertex: its row in target_rows_, or -1
+};
+
 // source, target: bases with at least k_end eigenpairs (first k_end used). initial_map: #Vs
 // entries in [0, #Vt). samples: source vertex ids to iterate on (empty: every vertex, with the
 // lumped mass as least-squares weights; else uniform weights, and enough well-spread vertices to

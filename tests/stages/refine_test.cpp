@@ -221,6 +221,52 @@ TEST_F(RefineTest, ZoomOutOnSamplesOnlyMapsTheSamplesOntoTheTargetSamples) {
   EXPECT_THROW(ZoomOut(s, t, noisy, samples, options, bad), InvalidInputError);
 }
 
+TEST_F(RefineTest, ZoomOutSetupRefinesSeveralMapsAsTheStepsWrittenOutDo) {
+  // The steps written out with the functions that gather from the full bases: a functional map
+  // of the samples' current matches, then each sample's nearest target sample under it.
+  const auto [s, t, samples, target_samples] = SampledInputs();
+  ZoomOutOptions options;
+  options.k_start = 10;
+  options.k_end = 60;
+  options.dense_result = false;
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(s.NumVertices());
+  const Eigen::MatrixXd gram =
+      WeightedGram(BasisRows(s.evecs, samples, options.k_end), Eigen::VectorXd::Ones(samples.size()));
+  auto written_out = [&](const std::vector<int>& initial) {
+    std::vector<int> current(samples.size());
+    for (size_t r = 0; r < samples.size(); ++r) current[r] = initial[samples[r]];
+    std::vector<double> residuals;
+    for (int k = options.k_start; k <= options.k_end; k += options.step) {
+      const Eigen::MatrixXd C = FitFunctionalMap(s.evecs.leftCols(k), t.evecs.leftCols(k),
+                                                 samples, current, ones, &gram);
+      std::vector<double> sq;
+      current = PointMapFromFunctionalMap(s.evecs, t.evecs, t.mass, C, samples, &sq,
+                                          target_samples);
+      double sum = 0.0;
+      for (const double d : sq) sum += d;
+      residuals.push_back(sum / sq.size());
+    }
+    std::vector<int> map = initial;
+    for (size_t r = 0; r < samples.size(); ++r) map[samples[r]] = current[r];
+    return std::make_pair(map, residuals);
+  };
+  // One setup for three maps; the second starts from the first's result (its matches are all
+  // target samples, whose rows the setup gathered), the third from a map far from the truth.
+  const ZoomOutSetup setup(s, t, samples, options, target_samples);
+  const std::vector<int> first = PerturbedTruth(*pair_, 0.5, 3, 7);
+  const ZoomOutResult a = setup.Run(first);
+  const ZoomOutResult b = setup.Run(a.map);
+  const ZoomOutResult c = setup.Run(PerturbedTruth(*pair_, 0.9, 10, 3));
+  for (const auto& [result, initial] :
+       {std::make_pair(&a, first), std::make_pair(&b, a.map),
+        std::make_pair(&c, PerturbedTruth(*pair_, 0.9, 10, 3))}) {
+    const auto [map, residuals] = written_out(initial);
+    EXPECT_EQ(result->map, map);
+    EXPECT_EQ(result->spectral_residual, residuals);
+  }
+  EXPECT_NE(a.map, c.map);
+}
+
 TEST_F(RefineTest, ZoomOutFromSeveralStartsKeepsTheRunWithTheLowestResidual) {
   const auto [s, t, samples, target_samples] = SampledInputs();
   // Coarse noise (up to 8 rings), so that the runs from different starts end apart.
