@@ -103,7 +103,9 @@ std::vector<int> KnnIndex::Nearest(const Eigen::MatrixXd& queries, Eigen::Vector
         for (int r = chunk * kChunk; r < end; ++r) {
           const double q[3] = {queries(r, 0), queries(r, 1), queries(r, 2)};
           double sq = 0.0;
-          nearest[r] = nearest3d_->Nearest(q, &sq);
+          // Consecutive queries (vertices of a mesh, in its order) tend to be near each other:
+          // the previous answer is the hint.
+          nearest[r] = nearest3d_->Nearest(q, &sq, r > chunk * kChunk ? nearest[r - 1] : -1);
           if (distances) (*distances)(r) = std::sqrt(sq);
         }
       },

@@ -33,6 +33,8 @@ Nearest3d::Nearest3d(const Eigen::MatrixX3d& points) {
   x_.swap(x);
   y_.swap(y);
   z_.swap(z);
+  slots_.resize(n);
+  for (int s = 0; s < n; ++s) slots_[ids_[s]] = s;
 }
 
 int Nearest3d::Build(int begin, int end) {
@@ -100,10 +102,17 @@ void Nearest3d::Search(int index, const double q[3], double off[3], double bound
   }
 }
 
-int Nearest3d::Nearest(const double q[3], double* sq_dist) const {
+int Nearest3d::Nearest(const double q[3], double* sq_dist, int hint) const {
   double off[3] = {0.0, 0.0, 0.0};
   double best = std::numeric_limits<double>::infinity();
   int best_id = std::numeric_limits<int>::max();
+  if (hint >= 0 && hint < static_cast<int>(slots_.size())) {
+    // The leaf scan's arithmetic, so the hint's distance is the one the scan would find.
+    const int s = slots_[hint];
+    const double dx = x_[s] - q[0], dy = y_[s] - q[1], dz = z_[s] - q[2];
+    best = dx * dx + dy * dy + dz * dz;
+    best_id = hint;
+  }
   Search(0, q, off, 0.0, &best, &best_id);
   *sq_dist = best;
   return best_id;

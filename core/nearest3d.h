@@ -20,7 +20,9 @@ class Nearest3d {
 
   // The index of the point nearest to q (the lowest index among equally near ones); its
   // squared distance through *sq_dist. KnnIndex::Nearest runs it over a matrix of queries.
-  int Nearest(const double q[3], double* sq_dist) const;
+  // hint (optional): a point index, measured first; a hint near q (the answer of a neighbouring
+  // query) prunes more cells. The answer does not depend on it.
+  int Nearest(const double q[3], double* sq_dist, int hint = -1) const;
 
  private:
   struct Node {
@@ -35,6 +37,7 @@ class Nearest3d {
 
   std::vector<Node> nodes_;
   std::vector<int> ids_;           // point index of each slot, in tree order
+  std::vector<int> slots_;         // slot of each point index
   std::vector<double> x_, y_, z_;  // coordinates in tree order
 };
 

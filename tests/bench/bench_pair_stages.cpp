@@ -12,6 +12,9 @@
 //   BM_Symmetrize/<stage>       SymmetrizeStage::Run, 1,000 samples (ceres_without_warm_start:
 //                               100 Levenberg-Marquardt iterations from the embedding)
 //   BM_CanonicalFrame           CanonicalFrame of one shape
+//   BM_Nearest3d/<hint>/<k>     Nearest3d: every source vertex of the canonical frame, turned by
+//                               candidate k, among the target's (a flip candidate map), with or
+//                               without the previous query's answer as the hint
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -19,6 +22,7 @@
 #include <vector>
 
 #include "core/canonical_frame.h"
+#include "core/nearest3d.h"
 #include "registry/pair_pipeline.h"
 #include "registry/registry.h"
 #include "stages/refine/functional_map.h"
@@ -140,6 +144,23 @@ void BM_CanonicalFrame(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_CanonicalFrame)->Unit(benchmark::kMillisecond);
+
+void BM_Nearest3d(benchmark::State& state, bool hint) {
+  const Pair& p = TestPair();
+  const Nearest3d tree(p.target.Y);
+  const Eigen::MatrixX3d Q = p.source.Y * CandidateRotations()[state.range(0)];
+  for (auto _ : state) {
+    int previous = -1;
+    for (int r = 0; r < Q.rows(); ++r) {
+      const double q[3] = {Q(r, 0), Q(r, 1), Q(r, 2)};
+      double sq = 0.0;
+      previous = tree.Nearest(q, &sq, hint ? previous : -1);
+    }
+    benchmark::DoNotOptimize(previous);
+  }
+}
+BENCHMARK_CAPTURE(BM_Nearest3d, no_hint, false)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Nearest3d, hint, true)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace symembed

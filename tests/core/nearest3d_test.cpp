@@ -52,6 +52,12 @@ TEST(Nearest3d, MatchesAScanOnASurfaceAndOnQueriesAwayFromIt) {
     nearest[r] = index.Nearest(q, &sq);
     EXPECT_EQ(nearest[r], ScanNearest(points, queries.row(r), &scan_sq)) << "query " << r;
     EXPECT_EQ(sq, scan_sq) << "query " << r;
+    // A hint changes nothing: the previous answer, a point anywhere, the answer itself, none.
+    for (const int hint : {r > 0 ? nearest[r - 1] : 0, (r * 131) % 2000, nearest[r], -1}) {
+      double hinted_sq = 0.0;
+      EXPECT_EQ(index.Nearest(q, &hinted_sq, hint), nearest[r]) << "query " << r << " hint " << hint;
+      EXPECT_EQ(hinted_sq, sq) << "query " << r << " hint " << hint;
+    }
   }
   // KnnIndex::Nearest, which runs it in 3D, gives the same points.
   EXPECT_EQ(KnnIndex(points).Nearest(queries), nearest);
@@ -78,6 +84,10 @@ TEST(Nearest3d, EquallyNearPointsGoToTheLowestIndex) {
     const int nearest = index.Nearest(q, &sq);
     EXPECT_EQ(nearest, ScanNearest(points, queries.row(r), &scan_sq)) << "query " << r;
     EXPECT_LT(nearest, 125) << "query " << r;
+    // Hinted with an equally near copy of a higher index, the lowest index still wins.
+    for (const int hint : {nearest + 125, nearest + 250}) {
+      EXPECT_EQ(index.Nearest(q, &sq, hint), nearest) << "query " << r << " hint " << hint;
+    }
   }
 }
 
