@@ -79,11 +79,10 @@ double MapOrientation(const Surface& source, const Surface& target, const std::v
 // The orientation of a candidate's nearest-neighbour map (from ComputeCandidateMaps of the
 // canonical embeddings) after ZoomOut in the given bases. Built once per pair: it holds what does
 // not depend on the candidate (sample prefixes, ZoomOut's setup, source triangles, target
-// normals). samples:
-// source vertex ids (the first options.samples are used); target_samples: target vertex ids (the
-// first options.target_samples are used; all target vertices when that is 0). The surfaces and
-// bases are referenced, not copied: they must outlive it. Throws ConfigError for invalid
-// options, InvalidInputError for too few samples.
+// normals). samples: source vertex ids (the first options.samples are used); target_samples:
+// target vertex ids (the first options.target_samples are used; all target vertices when that is
+// 0). The surfaces and bases are referenced, not copied: they must outlive it. Throws
+// ConfigError for invalid options, InvalidInputError for too few samples.
 class CandidateOrientation {
  public:
   CandidateOrientation(const Surface& source, const Surface& target,
