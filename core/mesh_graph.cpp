@@ -44,15 +44,18 @@ namespace {
 template <typename Scalar>
 struct MinHeap {
   std::vector<std::pair<Scalar, int>>& items;
-  static bool Greater(const std::pair<Scalar, int>& a, const std::pair<Scalar, int>& b) {
-    return a.first > b.first;
-  }
+  // A function object, not a function pointer, so that the heap operations inline it.
+  struct Greater {
+    bool operator()(const std::pair<Scalar, int>& a, const std::pair<Scalar, int>& b) const {
+      return a.first > b.first;
+    }
+  };
   void Push(Scalar d, int v) {
     items.emplace_back(d, v);
-    std::push_heap(items.begin(), items.end(), Greater);
+    std::push_heap(items.begin(), items.end(), Greater());
   }
   std::pair<Scalar, int> Pop() {
-    std::pop_heap(items.begin(), items.end(), Greater);
+    std::pop_heap(items.begin(), items.end(), Greater());
     auto top = items.back();
     items.pop_back();
     return top;
