@@ -113,10 +113,11 @@ CandidateOrientation::CandidateOrientation(const Surface& source, const Surface&
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
   samples_ = SamplePrefix(samples, options.samples, options.k_end, "flip orientation: the source");
+  // ZoomOut maps onto this prefix of the target's samples (all target vertices when empty).
+  std::vector<int> target_prefix;
   if (options.target_samples > 0) {
-    target_samples_ =
-        SamplePrefix(target_samples, options.target_samples, options.k_end,
-                     "flip orientation: the target");
+    target_prefix = SamplePrefix(target_samples, options.target_samples, options.k_end,
+                                 "flip orientation: the target");
   }
   ZoomOutOptions zoomout;
   zoomout.k_start = options.k_start;
@@ -124,7 +125,7 @@ CandidateOrientation::CandidateOrientation(const Surface& source, const Surface&
   zoomout.step = options.step;
   // The triangles are made of samples only: the map of the other vertices is not needed.
   zoomout.dense_result = false;
-  zoomout_.emplace(source_basis, target_basis, samples_, zoomout, target_samples_);
+  zoomout_.emplace(source_basis, target_basis, samples_, zoomout, target_prefix);
   triangles_ = MakeSourceTriangles(source, samples_, options.neighbors);
   target_normals_ = VertexNormals(target);
 }

@@ -96,7 +96,7 @@ class CandidateOrientation {
  private:
   const Surface& source_;
   const Surface& target_;
-  std::vector<int> samples_, target_samples_;
+  std::vector<int> samples_;
   std::optional<ZoomOutSetup> zoomout_;  // set in the constructor, after the sample prefixes
   SourceTriangles triangles_;
   Eigen::MatrixX3d target_normals_;

@@ -65,12 +65,17 @@ Eigen::VectorXd CheckedPairWeights(const BasisRef& Phi_s, const BasisRef& Phi_t,
   return w;
 }
 
+// A^T W B for gathered rows A, B and the pairs' weights w.
+Eigen::MatrixXd WeightedCross(const BasisRef& A, const BasisRef& B, const Eigen::VectorXd& w) {
+  return (w.asDiagonal() * A).transpose() * B;
+}
+
 }  // namespace
 
 Eigen::MatrixXd WeightedGram(const BasisRef& A, const Eigen::VectorXd& w) {
   SYMEMBED_CHECK(w.size() == A.rows(), "weighted Gram: " << A.rows() << " rows, " << w.size()
                                                          << " weights");
-  return (w.asDiagonal() * A).transpose() * A;
+  return WeightedCross(A, A, w);
 }
 
 Eigen::MatrixXd FitFunctionalMap(const BasisRef& Phi_s, const BasisRef& Phi_t,
@@ -89,7 +94,7 @@ Eigen::MatrixXd FitFunctionalMapFromRows(const BasisRef& A, const BasisRef& B,
                                     << " target rows, " << w.size() << " weights");
   SYMEMBED_CHECK(gram == nullptr || (gram->rows() >= ks && gram->cols() >= ks),
                  "functional map: the Gram matrix is smaller than the basis");
-  const Eigen::MatrixXd AtWB = (w.asDiagonal() * A).transpose() * B;
+  const Eigen::MatrixXd AtWB = WeightedCross(A, B, w);
   const Eigen::MatrixXd AtWA =
       gram != nullptr ? Eigen::MatrixXd(gram->topLeftCorner(ks, ks)) : WeightedGram(A, w);
   // For the dense map with mass weights A^T W A = I; for a sample it is near I when the sample
@@ -125,7 +130,7 @@ Eigen::MatrixXd FitOrthogonalFunctionalMap(const BasisRef& Phi_s, const BasisRef
   SYMEMBED_CHECK(Phi_s.cols() == Phi_t.cols(), "orthogonal functional map needs ks == kt");
   const Eigen::VectorXd w = CheckedPairWeights(Phi_s, Phi_t, source_ids, target_ids, weights);
   const Eigen::MatrixXd AtWB =
-      (w.asDiagonal() * Rows(Phi_s, source_ids)).transpose() * Rows(Phi_t, target_ids);
+      WeightedCross(Rows(Phi_s, source_ids), Rows(Phi_t, target_ids), w);
   // min ||A C - B||_W over orthogonal C = max trace(C^T A^T W B): C = U V^T.
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(AtWB, Eigen::ComputeFullU | Eigen::ComputeFullV);
   return svd.matrixU() * svd.matrixV().transpose();

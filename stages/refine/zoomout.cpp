@@ -63,8 +63,8 @@ struct StartRun {
 ZoomOutSetup::ZoomOutSetup(const LaplaceBasis& source, const LaplaceBasis& target,
                            const std::vector<int>& samples, const ZoomOutOptions& options,
                            const std::vector<int>& target_samples)
-    : source_(source), target_(target), options_(options), samples_(samples),
-      target_samples_(target_samples) {
+    : source_(source), target_(target), options_(options), sampled_(!samples.empty()),
+      target_sample_count_(samples.empty() ? 0 : static_cast<int>(target_samples.size())) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("zoomout: " + error);
   const int ns = source.NumVertices(), nt = target.NumVertices();
@@ -107,16 +107,13 @@ ZoomOutSetup::ZoomOutSetup(const LaplaceBasis& source, const LaplaceBasis& targe
 }
 
 Eigen::MatrixXd ZoomOutSetup::TargetRows(const std::vector<int>& ids, int k) const {
-  Eigen::MatrixXd B(ids.size(), k);
-  for (int c = 0; c < k; ++c) {
-    const double* gathered = target_rows_.col(c).data();
-    const double* column = target_.evecs.col(c).data();
-    for (size_t r = 0; r < ids.size(); ++r) {
-      const int row = target_row_[ids[r]];
-      B(r, c) = row >= 0 ? gathered[row] : column[ids[r]];
-    }
+  std::vector<int> rows(ids.size());
+  for (size_t r = 0; r < ids.size(); ++r) {
+    rows[r] = target_row_[ids[r]];
+    // An initial map may land off the matchable targets: then the basis itself.
+    if (rows[r] < 0) return BasisRows(target_.evecs, ids, k);
   }
-  return B;
+  return BasisRows(target_rows_, rows, k);
 }
 
 ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
@@ -128,16 +125,11 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
 ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
   const int ns = source_.NumVertices();
   CheckPointMap(initial_map, ns, target_.NumVertices());
-  std::vector<int> all(ns);
-  std::iota(all.begin(), all.end(), 0);
-  const bool sampled = !samples_.empty();
-  const std::vector<int> no_ids;
-
   std::vector<int> starts = {options_.k_start};
   starts.insert(starts.end(), options_.extra_k_starts.begin(), options_.extra_k_starts.end());
   // The sampled variant's result maps every source vertex with the last functional map. A
   // single run goes straight to that query; several are first compared on the active points.
-  const bool dense_last = sampled && options_.dense_result;
+  const bool dense_last = sampled_ && options_.dense_result;
   const bool query_last_on_active = !dense_last || starts.size() > 1;
   auto record = [](StartRun* run, int k, const Eigen::MatrixXd& C,
                    const std::vector<double>& sq) {
@@ -185,11 +177,13 @@ ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
       run.orthogonality.pop_back();
       run.spectral_residual.pop_back();
     }
+    std::vector<int> all(ns);
+    std::iota(all.begin(), all.end(), 0);
     std::vector<double> sq;
-    result.map = PointMapFromFunctionalMap(source_.evecs, target_.evecs, target_.mass, run.C, all,
-                                           &sq, no_ids);
+    result.map =
+        PointMapFromFunctionalMap(source_.evecs, target_.evecs, target_.mass, run.C, all, &sq);
     record(&run, options_.k_end, run.C, sq);
-  } else if (sampled) {
+  } else if (sampled_) {
     result.map = initial_map;
     for (size_t r = 0; r < active_.size(); ++r) result.map[active_[r]] = run.active_map[r];
   } else {
@@ -202,9 +196,9 @@ ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
 
   std::ostringstream message;
   message << "zoomout k " << result.start << ".." << options_.k_end << " step " << options_.step
-          << (sampled ? " on " + std::to_string(samples_.size()) + " samples" : "")
-          << (sampled && !target_samples_.empty()
-                  ? " onto " + std::to_string(target_samples_.size()) + " target samples"
+          << (sampled_ ? " on " + std::to_string(active_.size()) + " samples" : "")
+          << (target_sample_count_ > 0
+                  ? " onto " + std::to_string(target_sample_count_) + " target samples"
                   : "");
   message.precision(3);
   if (!result.start_residuals.empty()) {

@@ -73,8 +73,8 @@ class ZoomOutSetup {
   const LaplaceBasis& source_;
   const LaplaceBasis& target_;
   ZoomOutOptions options_;
-  std::vector<int> samples_;
-  std::vector<int> target_samples_;
+  bool sampled_;                      // iterations on given samples (else on every vertex)
+  int target_sample_count_;           // target samples they map to (0: every target vertex)
   std::vector<int> active_;           // the source vertices the iterations run on
   Eigen::VectorXd active_weights_;    // their least-squares weights
   Eigen::MatrixXd source_rows_;       // their basis rows, k_end columns

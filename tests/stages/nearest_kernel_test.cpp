@@ -132,9 +132,7 @@ TEST(NearestKernel, StrideSkipsRowsAndNanQueriesGetZero) {
   EXPECT_EQ(nearest, (std::vector<int>{2, 1, 0, 0}));
 }
 
-TEST(NearestKernel, AutoIsSupportedAndPacksWholeBlocks) {
-  EXPECT_TRUE(NearestKernelSupports(NearestIsa::kAuto));
-  EXPECT_TRUE(NearestKernelSupports(NearestIsa::kBaseline));
+TEST(NearestKernel, PacksWholeBlocks) {
   const std::vector<float> points(49 * 2, 1.0f);
   const PackedPoints packed = PackPoints(points.data(), 49, 2, 49);
   EXPECT_EQ(packed.sq_norms.size(), 2u * kNearestBlock);

@@ -254,12 +254,12 @@ TEST_F(RefineTest, ZoomOutSetupRefinesSeveralMapsAsTheStepsWrittenOutDo) {
   // target samples, whose rows the setup gathered), the third from a map far from the truth.
   const ZoomOutSetup setup(s, t, samples, options, target_samples);
   const std::vector<int> first = PerturbedTruth(*pair_, 0.5, 3, 7);
+  const std::vector<int> far = PerturbedTruth(*pair_, 0.9, 10, 3);
   const ZoomOutResult a = setup.Run(first);
   const ZoomOutResult b = setup.Run(a.map);
-  const ZoomOutResult c = setup.Run(PerturbedTruth(*pair_, 0.9, 10, 3));
+  const ZoomOutResult c = setup.Run(far);
   for (const auto& [result, initial] :
-       {std::make_pair(&a, first), std::make_pair(&b, a.map),
-        std::make_pair(&c, PerturbedTruth(*pair_, 0.9, 10, 3))}) {
+       {std::make_pair(&a, first), std::make_pair(&b, a.map), std::make_pair(&c, far)}) {
     const auto [map, residuals] = written_out(initial);
     EXPECT_EQ(result->map, map);
     EXPECT_EQ(result->spectral_residual, residuals);
