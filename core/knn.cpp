@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "core/errors.h"
-#include "core/nearest3d.h"
+#include "core/nearest_kd.h"
 #include "core/parallel.h"
 
 namespace symembed {
@@ -77,21 +77,16 @@ void KnnIndex::Query(const Eigen::MatrixXd& queries, int k, Eigen::MatrixXi* ind
 
 std::vector<int> KnnIndex::Nearest(const Eigen::MatrixXd& queries, Eigen::VectorXd* distances,
                                    int threads) const {
-  if (dims_ != 3) {
+  if (dims_ > kMaxNearestKdDims) {
     Eigen::MatrixXi idx;
     Eigen::MatrixXd dist;
     Query(queries, 1, &idx, distances ? &dist : nullptr, threads);
     if (distances) *distances = dist.col(0);
     return std::vector<int>(idx.data(), idx.data() + idx.rows());
   }
-  SYMEMBED_CHECK(queries.cols() == 3, "query dims " << queries.cols() << " != 3");
-  std::call_once(nearest3d_once_, [&] {
-    Eigen::MatrixX3d points(num_points_, 3);
-    for (int i = 0; i < num_points_; ++i) {
-      for (int c = 0; c < 3; ++c) points(i, c) = data_[static_cast<size_t>(i) * 3 + c];
-    }
-    nearest3d_ = std::make_unique<Nearest3d>(points);
-  });
+  SYMEMBED_CHECK(queries.cols() == dims_, "query dims " << queries.cols() << " != " << dims_);
+  std::call_once(nearest_once_,
+                 [&] { nearest_ = MakeNearestSearch(data_.data(), num_points_, dims_); });
   const int num_queries = static_cast<int>(queries.rows());
   std::vector<int> nearest(num_queries);
   if (distances) distances->resize(num_queries);
@@ -100,12 +95,13 @@ std::vector<int> KnnIndex::Nearest(const Eigen::MatrixXd& queries, Eigen::Vector
       (num_queries + kChunk - 1) / kChunk,
       [&](int chunk) {
         const int end = std::min(num_queries, (chunk + 1) * kChunk);
+        double q[kMaxNearestKdDims];
         for (int r = chunk * kChunk; r < end; ++r) {
-          const double q[3] = {queries(r, 0), queries(r, 1), queries(r, 2)};
+          for (int c = 0; c < dims_; ++c) q[c] = queries(r, c);
           double sq = 0.0;
           // Consecutive queries (vertices of a mesh, in its order) tend to be near each other:
           // the previous answer is the hint.
-          nearest[r] = nearest3d_->Nearest(q, &sq, r > chunk * kChunk ? nearest[r - 1] : -1);
+          nearest[r] = nearest_->Nearest(q, &sq, r > chunk * kChunk ? nearest[r - 1] : -1);
           if (distances) (*distances)(r) = std::sqrt(sq);
         }
       },

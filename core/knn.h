@@ -1,4 +1,5 @@
-// Exact k-nearest-neighbour queries on a fixed point set (FLANN kd-tree).
+// Exact k-nearest-neighbour queries on a fixed point set (FLANN kd-tree), and the nearest point
+// alone by a kd-tree of its own in up to kMaxNearestKdDims dimensions (nearest_kd.h).
 //
 // [Muja & Lowe 2014] Scalable nearest neighbor algorithms for high dimensional data. A single
 // kd-tree (KDTreeSingleIndex) is exact and fast in low dimension (2D and 3D embeddings).
@@ -18,7 +19,7 @@ class Index;
 
 namespace symembed {
 
-class Nearest3d;
+class NearestSearch;
 
 class KnnIndex {
  public:
@@ -39,8 +40,8 @@ class KnnIndex {
              Eigen::MatrixXd* distances, int threads = 0) const;
 
   // The nearest point of every query row (#Q); its distance through *distances when given.
-  // In 3D by Nearest3d (nearest3d.h; built on the first call), which gives equally near points
-  // to the lowest index; otherwise Query with k = 1.
+  // In up to kMaxNearestKdDims dimensions by NearestKd (nearest_kd.h; built on the first call),
+  // which gives equally near points to the lowest index; otherwise Query with k = 1.
   std::vector<int> Nearest(const Eigen::MatrixXd& queries, Eigen::VectorXd* distances = nullptr,
                            int threads = 0) const;
 
@@ -49,10 +50,10 @@ class KnnIndex {
   int dims_ = 0;
   int leaf_size_ = 10;
   std::vector<double> data_;  // row-major copy the index points into
-  // Each tree is built on its first use: FLANN's by Query, Nearest3d by Nearest in 3D.
-  mutable std::once_flag index_once_, nearest3d_once_;
+  // Each tree is built on its first use: FLANN's by Query, NearestKd's by Nearest.
+  mutable std::once_flag index_once_, nearest_once_;
   mutable std::unique_ptr<flann::Index<flann::L2<double>>> index_;
-  mutable std::unique_ptr<Nearest3d> nearest3d_;
+  mutable std::unique_ptr<NearestSearch> nearest_;
 };
 
 }  // namespace symembed

@@ -12,7 +12,7 @@
 //   BM_Symmetrize/<stage>       SymmetrizeStage::Run, 1,000 samples (ceres_without_warm_start:
 //                               100 Levenberg-Marquardt iterations from the embedding)
 //   BM_CanonicalFrame           CanonicalFrame of one shape
-//   BM_Nearest3d/<hint>/<k>     Nearest3d: every source vertex of the canonical frame, turned by
+//   BM_Nearest3d/<hint>/<k>     NearestKd<3>: every source vertex of the canonical frame, turned by
 //                               candidate k, among the target's (a flip candidate map), with or
 //                               without the previous query's answer as the hint
 #include <benchmark/benchmark.h>
@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "core/canonical_frame.h"
-#include "core/nearest3d.h"
+#include "core/nearest_kd.h"
 #include "registry/pair_pipeline.h"
 #include "registry/registry.h"
 #include "stages/refine/functional_map.h"
@@ -147,7 +147,8 @@ BENCHMARK(BM_CanonicalFrame)->Unit(benchmark::kMillisecond);
 
 void BM_Nearest3d(benchmark::State& state, bool hint) {
   const Pair& p = TestPair();
-  const Nearest3d tree(p.target.Y);
+  const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> points = p.target.Y;
+  const NearestKd<3> tree(points.data(), static_cast<int>(points.rows()));
   const Eigen::MatrixX3d Q = p.source.Y * CandidateRotations()[state.range(0)];
   for (auto _ : state) {
     int previous = -1;

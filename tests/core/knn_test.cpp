@@ -38,8 +38,8 @@ TEST_P(KnnIndexDims, MatchesBruteForce) {
       EXPECT_NEAR(all(nn(q, j)), sorted[j], 1e-12);
     }
   }
-  // Nearest (in 3D its own tree, Nearest3d) gives Query's first neighbour, on one thread or
-  // several: random points have no equally near pairs.
+  // Nearest (its own tree, NearestKd) gives Query's first neighbour, on one thread or several:
+  // random points have no equally near pairs.
   for (const int threads : {1, 2}) {
     Eigen::VectorXd nearest_dist;
     const std::vector<int> nearest = index.Nearest(Q, &nearest_dist, threads);
@@ -61,16 +61,23 @@ TEST(KnnIndex, NearestOfItselfIsItself) {
   EXPECT_EQ(dist.maxCoeff(), 0.0);
 }
 
-TEST(KnnIndex, NearestIn3dGivesEquallyNearPointsToTheLowestIndex) {
+TEST(KnnIndex, NearestGivesEquallyNearPointsToTheLowestIndex) {
   // Every point twice (i and i + 64): each query's nearest distance is attained at both.
-  Eigen::MatrixXd P(128, 3);
-  for (int i = 0; i < 64; ++i) {
-    P.row(i) << i % 4, (i / 4) % 4, i / 16;
-    P.row(64 + i) = P.row(i);
+  for (const int dims : {2, 3, 6}) {
+    Eigen::MatrixXd P = Eigen::MatrixXd::Zero(128, dims);
+    for (int i = 0; i < 64; ++i) {
+      // Distinct grid points: 8 x 8 in 2D, 4 x 4 x 4 in the first three coordinates otherwise.
+      const int base = dims == 2 ? 8 : 4;
+      for (int c = 0; c < dims; ++c) {
+        P(i, c) = (c % 3 == 0 ? i : c % 3 == 1 ? i / base : i / (base * base)) % base + c / 3;
+      }
+      P.row(64 + i) = P.row(i);
+    }
+    Eigen::MatrixXd Q = P.bottomRows(64);
+    for (int c = 0; c < dims; ++c) Q.col(c).array() += 0.05 * (c + 1);
+    const std::vector<int> nearest = KnnIndex(P).Nearest(Q);
+    for (int q = 0; q < 64; ++q) EXPECT_EQ(nearest[q], q) << dims << "D, query " << q;
   }
-  const Eigen::MatrixXd Q = P.bottomRows(64).rowwise() + Eigen::RowVector3d(0.1, 0.2, 0.3);
-  const std::vector<int> nearest = KnnIndex(P).Nearest(Q);
-  for (int q = 0; q < 64; ++q) EXPECT_EQ(nearest[q], q);
 }
 
 TEST(KnnIndex, RejectsEmptyAndNonFinite) {
