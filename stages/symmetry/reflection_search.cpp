@@ -36,14 +36,17 @@ bool FitReflection(const Eigen::MatrixXd& P, const std::vector<int>& sigma,
   Eigen::MatrixXd scatter = Eigen::MatrixXd::Zero(d, d);
   Eigen::VectorXd mid_sum = Eigen::VectorXd::Zero(d);
   double w_sum = 0.0;
+  // Element by element, without temporaries: scatter += (w_i (a - b)) (a - b)^T and
+  // mid_sum += (w_i / 2) (a + b) for a = P_i, b = P_sigma(i).
   for (int i = 0; i < P.rows(); ++i) {
-    if (w(i) <= 0.0) continue;
-    const Eigen::VectorXd a = P.row(i).transpose();
-    const Eigen::VectorXd b = P.row(sigma[i]).transpose();
-    const Eigen::VectorXd diff = a - b;
-    scatter += w(i) * diff * diff.transpose();
-    mid_sum += w(i) * 0.5 * (a + b);
-    w_sum += w(i);
+    const double wi = w(i);
+    if (wi <= 0.0) continue;
+    for (int r = 0; r < d; ++r) {
+      const double diff_r = P(i, r) - P(sigma[i], r);
+      for (int c = 0; c < d; ++c) scatter(r, c) += (wi * diff_r) * (P(i, c) - P(sigma[i], c));
+      mid_sum(r) += (wi * 0.5) * (P(i, r) + P(sigma[i], r));
+    }
+    w_sum += wi;
   }
   if (w_sum <= 0.0 || scatter.trace() <= 0.0) return false;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(scatter);

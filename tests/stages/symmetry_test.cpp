@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -50,6 +51,40 @@ TEST(ReflectionSearch, FitIsExactOnAnExactlySymmetricSet) {
   EXPECT_LT(AngleDeg(normal, expected), 1e-6);
   EXPECT_NEAR(std::abs(offset), std::abs(expected.dot(kShift.transpose())), 1e-9);
   EXPECT_NEAR((Reflect(P, normal, offset) - P(mirror, Eigen::all)).norm(), 0.0, 1e-9);
+}
+
+TEST(ReflectionSearch, FitSumsEachPairAsTheVectorFormulaDoes) {
+  // Weighted (some weights 0), far from symmetric, in 2D and 3D: the fit is the eigenvector of
+  // sum_i w_i (a - b)(a - b)^T and the offset of the weighted midpoints, bit for bit.
+  for (const int d : {2, 3}) {
+    Eigen::MatrixXd P = Eigen::MatrixXd::Random(300, d);
+    std::vector<int> sigma(P.rows());
+    Eigen::VectorXd w(P.rows());
+    for (int i = 0; i < P.rows(); ++i) {
+      sigma[i] = (i * 37 + 11) % P.rows();
+      w(i) = i % 5 == 0 ? 0.0 : 0.25 + (i % 7) / 3.0;
+    }
+    Eigen::MatrixXd scatter = Eigen::MatrixXd::Zero(d, d);
+    Eigen::VectorXd mid_sum = Eigen::VectorXd::Zero(d);
+    double w_sum = 0.0;
+    for (int i = 0; i < P.rows(); ++i) {
+      if (w(i) <= 0.0) continue;
+      const Eigen::VectorXd a = P.row(i).transpose(), b = P.row(sigma[i]).transpose();
+      const Eigen::VectorXd diff = a - b;
+      scatter += w(i) * diff * diff.transpose();
+      mid_sum += w(i) * 0.5 * (a + b);
+      w_sum += w(i);
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(scatter);
+    Eigen::VectorXd expected = eig.eigenvectors().col(d - 1);
+    // A previous normal against the eigenvector: the fit turns it round.
+    Eigen::VectorXd normal = -expected;
+    double offset = 0.0;
+    ASSERT_TRUE(FitReflection(P, sigma, w, &normal, &offset));
+    expected = -expected;
+    EXPECT_EQ(normal, expected) << d << "D";
+    EXPECT_EQ(offset, expected.dot(mid_sum / w_sum)) << d << "D";
+  }
 }
 
 TEST(Plane3d, FindsThePlaneOfAnExactlySymmetricFigure) {
