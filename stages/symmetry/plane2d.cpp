@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "core/procrustes.h"
 #include "stages/embedding/classical_mds.h"
 #include "stages/embedding/smacof.h"
@@ -25,18 +26,19 @@ bool Plane2dOptions::IsValid(std::string* error) const {
   else if (refine_3d_iterations < 0)
     out << "refine_3d_iterations must be >= 0, got " << refine_3d_iterations;
   else if (num_directions < 0) out << "num_directions must be >= 0, got " << num_directions;
+  else if (threads < 0) out << "threads must be >= 0, got " << threads;
   if (error) *error = out.str();
   return out.str().empty();
 }
 
-Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations) {
+Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations, int threads) {
   ClassicalMdsOptions mds;
   mds.dims = 2;
   Eigen::MatrixXd X = ClassicalMds(Dss, mds).X;
   if (smacof_iterations > 0) {
     SmacofOptions options;
     options.max_iterations = smacof_iterations;
-    options.threads = 1;
+    options.threads = threads;
     X = Smacof(Dss, X, options).X;
   }
   return X;
@@ -71,7 +73,7 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
                             std::to_string(samples.size()) + " samples");
   }
   const Eigen::MatrixXd Dss = SampleDistances(D, samples);
-  const Eigen::MatrixXd X = EmbedSamples2d(Dss, options.smacof_iterations);
+  const Eigen::MatrixXd X = EmbedSamples2d(Dss, options.smacof_iterations, options.threads);
   const KnnIndex index2(X);
   const Eigen::Vector2d centroid = X.colwise().mean().transpose();
   Eigen::MatrixXd P(samples.size(), 3);
@@ -95,46 +97,59 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
     if (std::isfinite(c.total)) candidates.push_back(std::move(c));
   };
 
+  // Each line direction refined on its own (in parallel) into up to two candidates, then taken in
+  // order, so the candidates and the choice do not depend on the threads.
+  std::vector<std::vector<Candidate>> per_angle(options.num_angles);
+  std::vector<int> angle_iterations(options.num_angles, 0);
+  ParallelFor(
+      options.num_angles,
+      [&](int k) {
+        const double angle = M_PI * k / options.num_angles;
+        const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
+        const ReflectionFit fit = RefineReflection(X, index2, n, n.dot(centroid), options.search);
+        angle_iterations[k] += fit.iterations;
+        if (!std::isfinite(fit.score)) return;
+        // The 2D self map with the plane lifted to 3D.
+        Candidate lifted;
+        lifted.sigma = fit.sigma;
+        lifted.confidence = SymmetryConfidence(fit.residual, fit.sigma, size2);
+        if (!FitReflection(P, fit.sigma, lifted.confidence, &lifted.normal, &lifted.offset)) {
+          return;
+        }
+        lifted.score = fit.score;
+        lifted.intrinsic = intrinsic(fit.sigma);
+        lifted.converged = fit.converged;
+        std::ostringstream origin;
+        origin << "2D line from " << angle * 180.0 / M_PI << " deg";
+        lifted.origin = origin.str();
+        const Eigen::VectorXd n3 = lifted.normal;
+        const double c3 = lifted.offset;
+        per_angle[k].push_back(std::move(lifted));
+        // The lifted plane refined in 3D.
+        if (options.refine_3d_iterations > 0) {
+          ReflectionSearchOptions o = options.search;
+          o.max_iterations = options.refine_3d_iterations;
+          const ReflectionFit fit3 = RefineReflection(P, index3, n3, c3, o);
+          angle_iterations[k] += fit3.iterations;
+          if (std::isfinite(fit3.score)) {
+            Candidate refined;
+            refined.normal = fit3.normal;
+            refined.offset = fit3.offset;
+            refined.sigma = fit3.sigma;
+            refined.confidence = SymmetryConfidence(fit3.residual, fit3.sigma, size3);
+            refined.score = fit3.score;
+            refined.intrinsic = intrinsic(fit3.sigma);
+            refined.converged = fit3.converged;
+            refined.origin = origin.str() + ", refined in 3D";
+            per_angle[k].push_back(std::move(refined));
+          }
+        }
+      },
+      options.threads);
   int iterations = 0;
   for (int k = 0; k < options.num_angles; ++k) {
-    const double angle = M_PI * k / options.num_angles;
-    const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
-    const ReflectionFit fit = RefineReflection(X, index2, n, n.dot(centroid), options.search);
-    iterations += fit.iterations;
-    if (!std::isfinite(fit.score)) continue;
-    // The 2D self map with the plane lifted to 3D.
-    Candidate lifted;
-    lifted.sigma = fit.sigma;
-    lifted.confidence = SymmetryConfidence(fit.residual, fit.sigma, size2);
-    if (!FitReflection(P, fit.sigma, lifted.confidence, &lifted.normal, &lifted.offset)) continue;
-    lifted.score = fit.score;
-    lifted.intrinsic = intrinsic(fit.sigma);
-    lifted.converged = fit.converged;
-    std::ostringstream origin;
-    origin << "2D line from " << angle * 180.0 / M_PI << " deg";
-    lifted.origin = origin.str();
-    const Eigen::VectorXd n3 = lifted.normal;
-    const double c3 = lifted.offset;
-    consider(std::move(lifted));
-    // The lifted plane refined in 3D.
-    if (options.refine_3d_iterations > 0) {
-      ReflectionSearchOptions o = options.search;
-      o.max_iterations = options.refine_3d_iterations;
-      const ReflectionFit fit3 = RefineReflection(P, index3, n3, c3, o);
-      iterations += fit3.iterations;
-      if (std::isfinite(fit3.score)) {
-        Candidate refined;
-        refined.normal = fit3.normal;
-        refined.offset = fit3.offset;
-        refined.sigma = fit3.sigma;
-        refined.confidence = SymmetryConfidence(fit3.residual, fit3.sigma, size3);
-        refined.score = fit3.score;
-        refined.intrinsic = intrinsic(fit3.sigma);
-        refined.converged = fit3.converged;
-        refined.origin = origin.str() + ", refined in 3D";
-        consider(std::move(refined));
-      }
-    }
+    iterations += angle_iterations[k];
+    for (Candidate& c : per_angle[k]) consider(std::move(c));
   }
   if (options.candidates_3d) {
     Plane3dOptions o3;
@@ -143,6 +158,7 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
     o3.intrinsic_weight = options.intrinsic_weight;
     o3.intrinsic_pairs = options.intrinsic_pairs;
     o3.seed = options.seed;
+    o3.threads = options.threads;
     double total = 0.0, distortion = 0.0;
     const ReflectionFit fit3 = SearchPlanes3d(P, index3, Dss, o3, &total, &distortion, &iterations);
     if (std::isfinite(total)) {

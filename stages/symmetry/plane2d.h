@@ -59,12 +59,16 @@ struct Plane2dOptions {
   int num_directions = 32;
   // Spectral candidates and check (step 5).
   SpectralSymmetryOptions spectral;
+  // Threads of the 2D embedding's SMACOF and of the refinement of the line directions and of the
+  // 3D candidates (0: all cores). The result does not depend on it.
+  int threads = 0;
 
   bool IsValid(std::string* error) const;
 };
 
-// The 2D embedding of step 1: Dss #S x #S symmetric distances -> #S x 2 (centred).
-Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations);
+// The 2D embedding of step 1: Dss #S x #S symmetric distances -> #S x 2 (centred). SMACOF runs on
+// `threads` threads (0: all cores); its result does not depend on them.
+Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations, int threads = 1);
 
 // D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
 // embedding; G: #S x K spectral coordinates of the samples (SampleSpectralCoordinates), or empty

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 
 namespace symembed {
 
@@ -16,6 +17,7 @@ bool Plane3dOptions::IsValid(std::string* error) const {
   else if (num_directions < 0) out << "num_directions must be >= 0, got " << num_directions;
   else if (!(intrinsic_weight >= 0.0)) out << "intrinsic_weight must be >= 0, got " << intrinsic_weight;
   else if (intrinsic_pairs < 1) out << "intrinsic_pairs must be >= 1, got " << intrinsic_pairs;
+  else if (threads < 0) out << "threads must be >= 0, got " << threads;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -56,21 +58,32 @@ ReflectionFit SearchPlanes3d(const Eigen::MatrixXd& P, const KnnIndex& index,
   const Eigen::VectorXd centroid = P.colwise().mean().transpose();
   *total = std::numeric_limits<double>::infinity();
   *intrinsic = 0.0;
+  // Each start refined on its own (in parallel), then taken in order: the first of equal totals
+  // wins, whatever the threads.
+  const std::vector<Eigen::VectorXd> starts = StartingNormals(P, options.num_directions);
+  std::vector<ReflectionFit> fits(starts.size());
+  std::vector<double> distortions(starts.size(), 0.0);
+  ParallelFor(
+      static_cast<int>(starts.size()),
+      [&](int k) {
+        const Eigen::VectorXd& n = starts[k];
+        fits[k] = RefineReflection(P, index, n, n.dot(centroid), options.search);
+        if (std::isfinite(fits[k].score) && options.intrinsic_weight > 0.0) {
+          distortions[k] =
+              IntrinsicDistortion(Dss, fits[k].sigma, options.search.trim_fraction,
+                                  options.intrinsic_pairs, static_cast<unsigned>(options.seed));
+        }
+      },
+      options.threads);
   ReflectionFit best;
-  for (const Eigen::VectorXd& n : StartingNormals(P, options.num_directions)) {
-    ReflectionFit fit = RefineReflection(P, index, n, n.dot(centroid), options.search);
-    *iterations += fit.iterations;
-    if (!std::isfinite(fit.score)) continue;
-    const double distortion =
-        options.intrinsic_weight > 0.0
-            ? IntrinsicDistortion(Dss, fit.sigma, options.search.trim_fraction,
-                                  options.intrinsic_pairs, static_cast<unsigned>(options.seed))
-            : 0.0;
-    const double t = fit.score + options.intrinsic_weight * distortion;
+  for (size_t k = 0; k < starts.size(); ++k) {
+    *iterations += fits[k].iterations;
+    if (!std::isfinite(fits[k].score)) continue;
+    const double t = fits[k].score + options.intrinsic_weight * distortions[k];
     if (t < *total) {
       *total = t;
-      *intrinsic = distortion;
-      best = std::move(fit);
+      *intrinsic = distortions[k];
+      best = std::move(fits[k]);
     }
   }
   return best;

@@ -28,6 +28,8 @@ struct Plane3dOptions {
   int intrinsic_pairs = 4000;
   // Seed of the pair sampling.
   int seed = 1;
+  // Threads the starting planes are refined on (0: all cores). The result does not depend on it.
+  int threads = 0;
 
   bool IsValid(std::string* error) const;
 };

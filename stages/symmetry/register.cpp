@@ -68,6 +68,7 @@ void RegisterSymmetryStages(Registry& registry) {
                  p.spectral.min_consistency = o.GetDouble(
                      "spectral_min_consistency", p.spectral.min_consistency, 0.0, 1.0);
                  p.spectral.weight = o.GetDouble("spectral_weight", p.spectral.weight, 0.0);
+                 p.threads = o.GetInt("threads", p.threads, 0, 256);
                  std::string error;
                  if (!p.IsValid(&error)) o.Fail("", error);
                  return std::make_unique<Plane2dStage>(p);
@@ -82,6 +83,7 @@ void RegisterSymmetryStages(Registry& registry) {
                  p.intrinsic_weight = o.GetDouble("intrinsic_weight", p.intrinsic_weight, 0.0);
                  p.intrinsic_pairs = o.GetInt("intrinsic_pairs", p.intrinsic_pairs, 1);
                  p.seed = o.GetInt("seed", p.seed);
+                 p.threads = o.GetInt("threads", p.threads, 0, 256);
                  std::string error;
                  if (!p.IsValid(&error)) o.Fail("", error);
                  return std::make_unique<Plane3dStage>(p);
