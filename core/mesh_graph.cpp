@@ -1,6 +1,7 @@
 #include "core/mesh_graph.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 
 #include "core/errors.h"
@@ -32,6 +33,11 @@ MeshGraph BuildMeshGraph(const Surface& s) {
   for (size_t i = 0; i < edges.size(); ++i) {
     g.neighbors[i] = edges[i].second;
     g.lengths[i] = (s.V.row(edges[i].first) - s.V.row(edges[i].second)).norm();
+  }
+  if (!g.lengths.empty()) {
+    const auto [lo, hi] = std::minmax_element(g.lengths.begin(), g.lengths.end());
+    g.min_length = *lo;
+    g.max_length = *hi;
   }
   return g;
 }
@@ -66,7 +72,7 @@ struct MinHeap {
 }  // namespace
 
 template <typename Scalar>
-void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Scalar>* ws) {
+void DijkstraWithHeap(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Scalar>* ws) {
   const int n = g.NumVertices();
   SYMEMBED_CHECK(source >= 0 && source < n, "source " << source << " out of range");
   std::fill(dist, dist + n, std::numeric_limits<Scalar>::infinity());
@@ -88,8 +94,63 @@ void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Sc
   }
 }
 
+template <typename Scalar>
+void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Scalar>* ws) {
+  const int n = g.NumVertices();
+  SYMEMBED_CHECK(source >= 0 && source < n, "source " << source << " out of range");
+  // Buckets of width half the shortest edge: a relaxation from bucket i (a value at least
+  // i * width, up to rounding) adds at least two widths, so it lands in bucket i + 2 or later
+  // even after rounding, and nothing can lower a value in the lowest non-empty bucket.
+  constexpr double kMaxSpread = 1000.0;
+  const Scalar width = static_cast<Scalar>(0.5 * g.min_length);
+  if (!(g.min_length > 0.0) || g.max_length > kMaxSpread * g.min_length || !(width > 0)) {
+    DijkstraWithHeap(g, source, dist, ws);
+    return;
+  }
+  const Scalar inv_width = Scalar(1) / width;
+  // Values in the queue lie below the current bucket's start plus the longest edge plus a width
+  // (a relaxation from the current bucket), so this many buckets never wrap onto a live one.
+  const int num_buckets = static_cast<int>(std::ceil(g.max_length / (0.5 * g.min_length))) + 4;
+  auto& buckets = ws->buckets;
+  if (static_cast<int>(buckets.size()) < num_buckets) buckets.resize(num_buckets);
+  for (auto& b : buckets) b.clear();
+  ws->settled.assign(n, 0);
+  std::fill(dist, dist + n, std::numeric_limits<Scalar>::infinity());
+  auto bucket_of = [&](Scalar d) {
+    return static_cast<long long>(d * inv_width);
+  };
+  dist[source] = 0;
+  buckets[0].push_back(source);
+  long long queued = 1;  // entries in the buckets, stale ones included
+  for (long long current = 0; queued > 0; ++current) {
+    std::vector<int>& bucket = buckets[current % num_buckets];
+    // By index: nothing lands in the current bucket (see above), but an iterator would not
+    // survive it.
+    for (size_t i = 0; i < bucket.size(); ++i) {
+      const int v = bucket[i];
+      // A stale entry: v was settled already, or lowered into an earlier bucket and settled there.
+      if (ws->settled[v]) continue;
+      ws->settled[v] = 1;
+      const Scalar d = dist[v];
+      for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+        const int w = g.neighbors[k];
+        const Scalar nd = d + static_cast<Scalar>(g.lengths[k]);
+        if (nd < dist[w]) {
+          dist[w] = nd;
+          buckets[bucket_of(nd) % num_buckets].push_back(w);
+          ++queued;
+        }
+      }
+    }
+    queued -= static_cast<long long>(bucket.size());
+    bucket.clear();
+  }
+}
+
 template void Dijkstra<double>(const MeshGraph&, int, double*, DijkstraWorkspace<double>*);
 template void Dijkstra<float>(const MeshGraph&, int, float*, DijkstraWorkspace<float>*);
+template void DijkstraWithHeap<double>(const MeshGraph&, int, double*, DijkstraWorkspace<double>*);
+template void DijkstraWithHeap<float>(const MeshGraph&, int, float*, DijkstraWorkspace<float>*);
 
 void DijkstraBall(const MeshGraph& g, int source, double radius,
                   std::vector<std::pair<int, double>>* ball, DijkstraWorkspace<double>* ws) {

@@ -22,6 +22,8 @@ struct MeshGraph {
   std::vector<int> offsets;     // #V + 1
   std::vector<int> neighbors;   // 2 * #E
   std::vector<double> lengths;  // 2 * #E, Euclidean edge lengths
+  double min_length = 0.0;      // shortest and longest edge (0 without edges)
+  double max_length = 0.0;
 
   int NumVertices() const { return static_cast<int>(offsets.size()) - 1; }
 };
@@ -34,12 +36,27 @@ template <typename Scalar>
 struct DijkstraWorkspace {
   std::vector<std::pair<Scalar, int>> heap;
   std::vector<Scalar> ball_dist;  // used by DijkstraBall: +infinity except during a call
+  std::vector<std::vector<int>> buckets;  // used by Dijkstra's bucket queue
+  std::vector<char> settled;
 };
 
 // Single-source shortest paths. dist: #V values, on return the graph distance from `source`
-// (+infinity where unreachable).
+// (+infinity where unreachable): each value is the least of fl(dist[u] + length(u, v)) over the
+// neighbours u, the floating-point fixed point that every label-setting order reaches.
+//
+// The queue is a circular array of buckets of width half the shortest edge [Dial 1969,
+// Algorithm 360: shortest-path forest with topological ordering]: a relaxation from a vertex in
+// bucket i lands two buckets on at least, so every vertex of the lowest bucket is final and the
+// bucket is settled in any order, in constant time per vertex instead of a heap's logarithmic
+// time. Where the edges' lengths differ by more than a factor of 1,000 (or an edge has length
+// 0) a binary heap orders the vertices instead. Both give the same values, bit for bit.
 template <typename Scalar>
 void Dijkstra(const MeshGraph& graph, int source, Scalar* dist, DijkstraWorkspace<Scalar>* ws);
+
+// The binary-heap form of Dijkstra (the same values), for tests and benchmarks.
+template <typename Scalar>
+void DijkstraWithHeap(const MeshGraph& graph, int source, Scalar* dist,
+                      DijkstraWorkspace<Scalar>* ws);
 
 // The vertices within graph distance `radius` of `source` and their distances, in order of
 // increasing distance. Cost is proportional to the size of the ball, not to #V.

@@ -4,6 +4,8 @@
 //   BM_Geodesics/<solver>/<n>        Prepare + Distances for 1,000 sources, n = 29 (5,048 vertices)
 //   BM_GeodesicsPrepare/<solver>/<n> Prepare only (graph, stencils, factorisations)
 //   BM_GeodesicsScaling/<solver>/<n> Prepare + 100 sources at 5k, 20k, 50k (Complexity)
+//   BM_DijkstraQueue/<queue>/<n>     Dijkstra from 1,000 sources on one thread, with the bucket
+//                                    queue (`buckets`, what Dijkstra uses) or the binary heap
 //   BM_Sampling/<n>                  farthest point sampling, 1,000 samples
 //   BM_Curvature/<n>                 ComputeCurvature with default options
 //   BM_GeodesicsTosca/<solver>       Prepare + 1,000 farthest-point sources on TOSCA cat0
@@ -18,6 +20,7 @@
 #include <filesystem>
 
 #include "core/curvature.h"
+#include "core/mesh_graph.h"
 #include "core/mesh_io.h"
 #include "stages/preprocess/standard.h"
 #include "registry/registry.h"
@@ -85,6 +88,26 @@ void BM_GeodesicsPrepare(benchmark::State& state, const Registry* registry, std:
   }
   state.counters["vertices"] = s.NumVertices();
 }
+
+void BM_DijkstraQueue(benchmark::State& state, bool buckets) {
+  const Surface& s = Blob(static_cast<int>(state.range(0)));
+  const MeshGraph graph = BuildMeshGraph(s);
+  const std::vector<int> sources = SpreadSources(s.NumVertices(), 1000);
+  DijkstraWorkspace<double> ws;
+  std::vector<double> dist(s.NumVertices());
+  for (auto _ : state) {
+    for (const int source : sources) {
+      if (buckets) Dijkstra<double>(graph, source, dist.data(), &ws);
+      else DijkstraWithHeap<double>(graph, source, dist.data(), &ws);
+    }
+    benchmark::DoNotOptimize(dist.data());
+  }
+  state.counters["vertices"] = s.NumVertices();
+}
+BENCHMARK_CAPTURE(BM_DijkstraQueue, heap, false)->Arg(kSmall)->Arg(kMedium)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DijkstraQueue, buckets, true)->Arg(kSmall)->Arg(kMedium)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_Sampling(benchmark::State& state) {
   const Surface& s = Blob(static_cast<int>(state.range(0)));

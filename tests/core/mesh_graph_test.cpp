@@ -1,0 +1,93 @@
+#include "core/mesh_graph.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/primitives.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+// The mesh with its vertices moved at random by up to `jitter` of the mean edge length, so that
+// edge lengths spread.
+Surface Jittered(Surface s, double jitter, unsigned seed) {
+  const MeshGraph g = BuildMeshGraph(s);
+  double mean = 0.0;
+  for (double l : g.lengths) mean += l;
+  mean /= static_cast<double>(g.lengths.size());
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (int v = 0; v < s.NumVertices(); ++v) {
+    for (int c = 0; c < 3; ++c) s.V(v, c) += jitter * mean * uniform(rng);
+  }
+  return s;
+}
+
+// From every source (every `stride`-th vertex): the bucket queue's values equal the binary
+// heap's bit for bit, and each is the floating-point fixed point min_u fl(d(u) + l(u, v)).
+template <typename Scalar>
+void ExpectBucketsMatchTheHeap(const Surface& s, int stride) {
+  const MeshGraph g = BuildMeshGraph(s);
+  const int n = g.NumVertices();
+  DijkstraWorkspace<Scalar> ws, heap_ws;
+  std::vector<Scalar> d(n), h(n);
+  for (int source = 0; source < n; source += stride) {
+    Dijkstra<Scalar>(g, source, d.data(), &ws);
+    DijkstraWithHeap<Scalar>(g, source, h.data(), &heap_ws);
+    ASSERT_EQ(d, h) << "source " << source;
+    for (int v = 0; v < n; ++v) {
+      if (v == source) continue;
+      Scalar best = std::numeric_limits<Scalar>::infinity();
+      for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+        best = std::min(best, static_cast<Scalar>(d[g.neighbors[k]] +
+                                                  static_cast<Scalar>(g.lengths[k])));
+      }
+      ASSERT_EQ(d[v], best) << "source " << source << " vertex " << v;
+    }
+  }
+}
+
+TEST(Dijkstra, BucketQueueGivesTheHeapsValuesBitForBit) {
+  // Irregular (a blob, and the same with its edges spread by jitter), exactly mirror-symmetric
+  // (many paths of equal length), and a regular grid (many equal edge lengths).
+  const Surface blob = testing::BumpyBlob(12);
+  for (const Surface& s : {blob, Jittered(blob, 0.3, 1), testing::SymmetricFigure(1),
+                           GridMesh(25, 20, 3.0, 2.0)}) {
+    ExpectBucketsMatchTheHeap<double>(s, 7);
+    ExpectBucketsMatchTheHeap<float>(s, 7);
+  }
+}
+
+TEST(Dijkstra, EdgesOfVeryDifferentLengthsOrOfLengthZero) {
+  // An edge a million times shorter than the others, and two vertices at the same place (an edge
+  // of length 0): the heap orders the vertices there, with the same result.
+  Surface s = GridMesh(12, 10, 3.0, 2.0);
+  Surface tiny = s;
+  tiny.V.row(1) = tiny.V.row(0) + 1e-6 * (s.V.row(1) - s.V.row(0));
+  Surface zero = s;
+  zero.V.row(1) = zero.V.row(0);
+  for (const Surface& t : {tiny, zero}) {
+    const MeshGraph g = BuildMeshGraph(t);
+    EXPECT_GT(g.max_length, 1000.0 * g.min_length);
+    ExpectBucketsMatchTheHeap<double>(t, 1);
+  }
+  // Unreachable vertices stay at infinity: a second grid beside the first, not connected.
+  Surface two = s;
+  two.V.conservativeResize(2 * s.NumVertices(), 3);
+  two.V.bottomRows(s.NumVertices()) = s.V.rowwise() + Eigen::RowVector3d(10.0, 0.0, 0.0);
+  two.F.conservativeResize(2 * s.F.rows(), 3);
+  two.F.bottomRows(s.F.rows()) = s.F.array() + s.NumVertices();
+  const MeshGraph g = BuildMeshGraph(two);
+  std::vector<double> d(two.NumVertices());
+  DijkstraWorkspace<double> ws;
+  Dijkstra<double>(g, 3, d.data(), &ws);
+  for (int v = s.NumVertices(); v < two.NumVertices(); ++v) {
+    EXPECT_EQ(d[v], std::numeric_limits<double>::infinity());
+  }
+  ExpectBucketsMatchTheHeap<double>(two, 5);
+}
+
+}  // namespace
+}  // namespace symembed
