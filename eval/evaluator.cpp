@@ -208,17 +208,26 @@ std::vector<double> Evaluator::Errors(const std::string& target_name, const Eval
     if (!entry->rows.count(s)) missing.push_back(s);
   }
   if (!missing.empty()) {
-    const Eigen::MatrixXd D = entry->solver->Distances(missing);
-    SYMEMBED_CHECK(D.rows() == static_cast<Eigen::Index>(missing.size()) &&
-                       D.cols() == target.surface.NumVertices(),
-                   "geodesic solver returned " << D.rows() << " x " << D.cols());
-    for (size_t k = 0; k < missing.size(); ++k) {
-      std::vector<float> row(D.cols());
-      for (Eigen::Index v = 0; v < D.cols(); ++v) row[v] = static_cast<float>(D(k, v));
-      entry->rows.emplace(missing[k], std::move(row));
+    // A chunk of sources at a time (each row is computed on its own, so the rows do not depend
+    // on the chunks): no #missing x #V matrix of doubles is held, and a chunk's column-major
+    // values are read in order.
+    constexpr size_t kChunk = 128;
+    const int num_vertices = target.surface.NumVertices();
+    for (size_t begin = 0; begin < missing.size(); begin += kChunk) {
+      const std::vector<int> chunk(missing.begin() + begin,
+                                   missing.begin() + std::min(missing.size(), begin + kChunk));
+      const Eigen::MatrixXd D = entry->solver->Distances(chunk);
+      SYMEMBED_CHECK(D.rows() == static_cast<Eigen::Index>(chunk.size()) &&
+                         D.cols() == num_vertices,
+                     "geodesic solver returned " << D.rows() << " x " << D.cols());
+      std::vector<std::vector<float>> rows(chunk.size(), std::vector<float>(num_vertices));
+      for (int v = 0; v < num_vertices; ++v) {
+        for (size_t k = 0; k < chunk.size(); ++k) rows[k][v] = static_cast<float>(D(k, v));
+      }
+      for (size_t k = 0; k < chunk.size(); ++k) entry->rows.emplace(chunk[k], std::move(rows[k]));
     }
     const auto rows = static_cast<int64_t>(missing.size());
-    Account(target_name, *entry, rows, rows * D.cols() * static_cast<int64_t>(sizeof(float)));
+    Account(target_name, *entry, rows, rows * num_vertices * static_cast<int64_t>(sizeof(float)));
   }
   const double norm = 1.0 / std::sqrt(target.area);
   auto distance = [&](int x, int b) {
