@@ -110,9 +110,13 @@ void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Sc
   const Scalar inv_width = Scalar(1) / width;
   // Values in the queue lie below the current bucket's start plus the longest edge plus a width
   // (a relaxation from the current bucket), so this many buckets never wrap onto a live one.
-  const int num_buckets = static_cast<int>(std::ceil(g.max_length / (0.5 * g.min_length))) + 4;
+  // A power of two, so that a bucket's slot is a mask, not a division.
+  const long long needed = static_cast<long long>(std::ceil(g.max_length / (0.5 * g.min_length))) + 4;
+  long long num_buckets = 1;
+  while (num_buckets < needed) num_buckets *= 2;
+  const long long mask = num_buckets - 1;
   auto& buckets = ws->buckets;
-  if (static_cast<int>(buckets.size()) < num_buckets) buckets.resize(num_buckets);
+  if (static_cast<long long>(buckets.size()) < num_buckets) buckets.resize(num_buckets);
   for (auto& b : buckets) b.clear();
   ws->settled.assign(n, 0);
   std::fill(dist, dist + n, std::numeric_limits<Scalar>::infinity());
@@ -123,7 +127,7 @@ void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Sc
   buckets[0].push_back(source);
   long long queued = 1;  // entries in the buckets, stale ones included
   for (long long current = 0; queued > 0; ++current) {
-    std::vector<int>& bucket = buckets[current % num_buckets];
+    std::vector<int>& bucket = buckets[current & mask];
     // By index: nothing lands in the current bucket (see above), but an iterator would not
     // survive it.
     for (size_t i = 0; i < bucket.size(); ++i) {
@@ -137,7 +141,7 @@ void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Sc
         const Scalar nd = d + static_cast<Scalar>(g.lengths[k]);
         if (nd < dist[w]) {
           dist[w] = nd;
-          buckets[bucket_of(nd) % num_buckets].push_back(w);
+          buckets[bucket_of(nd) & mask].push_back(w);
           ++queued;
         }
       }
