@@ -91,6 +91,20 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
                                      options.intrinsic_pairs, static_cast<unsigned>(options.seed))
                : 0.0;
   };
+  // A candidate from a fit in 3D: its plane, self map, confidence and score on the samples P.
+  auto from_fit_3d = [&](const ReflectionFit& fit, double intrinsic_distortion,
+                         std::string origin) {
+    Candidate c;
+    c.normal = fit.normal;
+    c.offset = fit.offset;
+    c.sigma = fit.sigma;
+    c.confidence = SymmetryConfidence(fit.residual, fit.sigma, size3);
+    c.score = fit.score;
+    c.intrinsic = intrinsic_distortion;
+    c.converged = fit.converged;
+    c.origin = std::move(origin);
+    return c;
+  };
   std::vector<Candidate> candidates;
   auto consider = [&](Candidate c) {
     c.total = c.score + options.intrinsic_weight * c.intrinsic;
@@ -132,16 +146,8 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
           const ReflectionFit fit3 = RefineReflection(P, index3, n3, c3, o);
           angle_iterations[k] += fit3.iterations;
           if (std::isfinite(fit3.score)) {
-            Candidate refined;
-            refined.normal = fit3.normal;
-            refined.offset = fit3.offset;
-            refined.sigma = fit3.sigma;
-            refined.confidence = SymmetryConfidence(fit3.residual, fit3.sigma, size3);
-            refined.score = fit3.score;
-            refined.intrinsic = intrinsic(fit3.sigma);
-            refined.converged = fit3.converged;
-            refined.origin = origin.str() + ", refined in 3D";
-            per_angle[k].push_back(std::move(refined));
+            per_angle[k].push_back(
+                from_fit_3d(fit3, intrinsic(fit3.sigma), origin.str() + ", refined in 3D"));
           }
         }
       },
@@ -161,18 +167,7 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
     o3.threads = options.threads;
     double total = 0.0, distortion = 0.0;
     const ReflectionFit fit3 = SearchPlanes3d(P, index3, Dss, o3, &total, &distortion, &iterations);
-    if (std::isfinite(total)) {
-      Candidate c;
-      c.normal = fit3.normal;
-      c.offset = fit3.offset;
-      c.sigma = fit3.sigma;
-      c.confidence = SymmetryConfidence(fit3.residual, fit3.sigma, size3);
-      c.score = fit3.score;
-      c.intrinsic = distortion;
-      c.converged = fit3.converged;
-      c.origin = "3D search";
-      consider(std::move(c));
-    }
+    if (std::isfinite(total)) consider(from_fit_3d(fit3, distortion, "3D search"));
   }
   auto best_of = [&]() {
     return std::min_element(candidates.begin(), candidates.end(),
