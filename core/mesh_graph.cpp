@@ -69,6 +69,20 @@ struct MinHeap {
   bool Empty() const { return items.empty(); }
 };
 
+// Relaxes the edges out of v, settled at distance d: wherever d + length is below dist[w], lowers
+// dist[w] to it and calls on_lower(w, the new value).
+template <typename Scalar, typename OnLower>
+inline void LowerNeighbours(const MeshGraph& g, int v, Scalar d, Scalar* dist, OnLower on_lower) {
+  for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+    const int w = g.neighbors[k];
+    const Scalar nd = d + static_cast<Scalar>(g.lengths[k]);
+    if (nd < dist[w]) {
+      dist[w] = nd;
+      on_lower(w, nd);
+    }
+  }
+}
+
 }  // namespace
 
 template <typename Scalar>
@@ -83,14 +97,7 @@ void DijkstraWithHeap(const MeshGraph& g, int source, Scalar* dist, DijkstraWork
   while (!heap.Empty()) {
     const auto [d, v] = heap.Pop();
     if (d > dist[v]) continue;  // stale entry
-    for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
-      const int w = g.neighbors[k];
-      const Scalar nd = d + static_cast<Scalar>(g.lengths[k]);
-      if (nd < dist[w]) {
-        dist[w] = nd;
-        heap.Push(nd, w);
-      }
-    }
+    LowerNeighbours(g, v, d, dist, [&](int w, Scalar nd) { heap.Push(nd, w); });
   }
 }
 
@@ -135,16 +142,10 @@ void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Sc
       // A stale entry: v was settled already, or lowered into an earlier bucket and settled there.
       if (ws->settled[v]) continue;
       ws->settled[v] = 1;
-      const Scalar d = dist[v];
-      for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
-        const int w = g.neighbors[k];
-        const Scalar nd = d + static_cast<Scalar>(g.lengths[k]);
-        if (nd < dist[w]) {
-          dist[w] = nd;
-          buckets[bucket_of(nd) & mask].push_back(w);
-          ++queued;
-        }
-      }
+      LowerNeighbours(g, v, dist[v], dist, [&](int w, Scalar nd) {
+        buckets[bucket_of(nd) & mask].push_back(w);
+        ++queued;
+      });
     }
     queued -= static_cast<long long>(bucket.size());
     bucket.clear();
@@ -205,15 +206,10 @@ int DijkstraUpdateMin(const MeshGraph& g, int source, std::vector<double>* min_d
   while (!heap.Empty()) {
     const auto [d, v] = heap.Pop();
     if (d > dist[v]) continue;
-    for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
-      const int w = g.neighbors[k];
-      const double nd = d + g.lengths[k];
-      if (nd < dist[w]) {
-        dist[w] = nd;
-        ++changed;
-        heap.Push(nd, w);
-      }
-    }
+    LowerNeighbours(g, v, d, dist.data(), [&](int w, double nd) {
+      ++changed;
+      heap.Push(nd, w);
+    });
   }
   return changed;
 }

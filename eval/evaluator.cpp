@@ -220,11 +220,13 @@ std::vector<double> Evaluator::Errors(const std::string& target_name, const Eval
       SYMEMBED_CHECK(D.rows() == static_cast<Eigen::Index>(chunk.size()) &&
                          D.cols() == num_vertices,
                      "geodesic solver returned " << D.rows() << " x " << D.cols());
-      std::vector<std::vector<float>> rows(chunk.size(), std::vector<float>(num_vertices));
+      std::vector<std::vector<float>> chunk_rows(chunk.size(), std::vector<float>(num_vertices));
       for (int v = 0; v < num_vertices; ++v) {
-        for (size_t k = 0; k < chunk.size(); ++k) rows[k][v] = static_cast<float>(D(k, v));
+        for (size_t k = 0; k < chunk.size(); ++k) chunk_rows[k][v] = static_cast<float>(D(k, v));
       }
-      for (size_t k = 0; k < chunk.size(); ++k) entry->rows.emplace(chunk[k], std::move(rows[k]));
+      for (size_t k = 0; k < chunk.size(); ++k) {
+        entry->rows.emplace(chunk[k], std::move(chunk_rows[k]));
+      }
     }
     const auto rows = static_cast<int64_t>(missing.size());
     Account(target_name, *entry, rows, rows * num_vertices * static_cast<int64_t>(sizeof(float)));

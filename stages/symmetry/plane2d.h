@@ -68,7 +68,7 @@ struct Plane2dOptions {
 
 // The 2D embedding of step 1: Dss #S x #S symmetric distances -> #S x 2 (centred). SMACOF runs on
 // `threads` threads (0: all cores); its result does not depend on them.
-Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations, int threads = 1);
+Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations, int threads);
 
 // D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
 // embedding; G: #S x K spectral coordinates of the samples (SampleSpectralCoordinates), or empty
