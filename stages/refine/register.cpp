@@ -111,6 +111,10 @@ class IcpRefine : public RefineStage {
   FunctionalMapIcpOptions options_;
 };
 
+// Samples of each shape the zoomout stage iterates on unless the config says otherwise (k_end is
+// at most 1,000, so they determine the last functional map).
+constexpr int kDefaultSamples = 1000;
+
 }  // namespace
 
 void RegisterRefineStages(Registry& registry) {
@@ -126,9 +130,20 @@ void RegisterRefineStages(Registry& registry) {
         options.k_start = reader.GetInt("k_start", options.k_start, 1, 1000);
         options.k_end = reader.GetInt("k_end", options.k_end, 1, 1000);
         options.step = reader.GetInt("step", options.step, 1, 1000);
-        options.extra_k_starts = reader.GetIntList("extra_k_starts", {}, 1, 1000);
-        const int sample_count = reader.GetInt("sample_count", 0, 0);
-        const int target_sample_count = reader.GetInt("target_sample_count", 0, 0);
+        // By default ZoomOut also runs from k = 5, 10 and 15 and keeps the run with the lowest
+        // residual: a single start at k_start leaves regions that the initial map sends to the
+        // wrong part of the target where they are, and which start recovers them depends on the
+        // pair. The sizes that would repeat k_start or exceed k_end are left out.
+        std::vector<int> default_starts;
+        for (int k : {5, 10, 15}) {
+          if (k != options.k_start && k <= options.k_end) default_starts.push_back(k);
+        }
+        options.extra_k_starts = reader.GetIntList("extra_k_starts", default_starts, 1, 1000);
+        // The iterations on 1,000 farthest-point samples of each shape, then one dense query:
+        // the runs from several starts cost less together than one dense run.
+        const int sample_count = reader.GetInt("sample_count", kDefaultSamples, 0);
+        const int target_sample_count =
+            reader.GetInt("target_sample_count", sample_count == 0 ? 0 : kDefaultSamples, 0);
         std::string error;
         if (!options.IsValid(&error)) reader.Fail("", error);
         // A sample must determine k_end coefficients.

@@ -200,10 +200,10 @@ const std::vector<std::pair<std::string, std::string>>& Variants() {
   static const std::vector<std::pair<std::string, std::string>> variants = {
       {"none", "{type: none}"},
       {"icp_k50", "{type: icp}"},
-      {"zoomout", "{type: zoomout}"},
-      {"zoomout_s500", "{type: zoomout, sample_count: 500}"},
-      {"zoomout_s1000", "{type: zoomout, sample_count: 1000}"},
-      {"zoomout_s1000_t1000", "{type: zoomout, sample_count: 1000, target_sample_count: 1000}"},
+      {"zoomout_dense", "{type: zoomout, sample_count: 0, extra_k_starts: []}"},
+      {"zoomout_s500", "{type: zoomout, sample_count: 500, target_sample_count: 0, extra_k_starts: []}"},
+      {"zoomout_s1000", "{type: zoomout, sample_count: 1000, target_sample_count: 0, extra_k_starts: []}"},
+      {"zoomout_s1000_t1000", "{type: zoomout, sample_count: 1000, target_sample_count: 1000, extra_k_starts: []}"},
       {"zoomout_starts", "{type: zoomout, sample_count: 1000, target_sample_count: 1000, "
                          "extra_k_starts: [10, 15]}"},
   };

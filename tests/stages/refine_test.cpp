@@ -161,9 +161,10 @@ TEST_F(RefineTest, StepsOnGatheredRowsEqualTheGatheringOnes) {
 }
 
 TEST_F(RefineTest, ZoomOutFromTruthStaysAtTruth) {
-  for (const std::string yaml : {"{type: zoomout, k_start: 10, k_end: 60, step: 5}",
+  for (const std::string yaml : {"{type: zoomout, k_start: 10, k_end: 60, step: 5, "
+                                 "extra_k_starts: []}",
                                  "{type: zoomout, k_start: 10, k_end: 60, step: 5, "
-                                 "sample_count: 400}"}) {
+                                 "sample_count: 400, extra_k_starts: []}"}) {
     const MatchResult r = MakeStage(yaml)->Run({pair_->source, pair_->target}, pair_->truth);
     // Mean edge length / sqrt(area) is 0.029 here; a tenth of it allows a few vertices to move to
     // a neighbour (measured: 0, every vertex stays).
@@ -372,7 +373,8 @@ TEST(RefineStages, OptionsAreCheckedStrictly) {
   EXPECT_THROW(MakeStage("{type: zoomout, steps: 5}"), ConfigError);
   EXPECT_THROW(MakeStage("{type: zoomout, extra_k_starts: [130]}"), ConfigError);
   EXPECT_THROW(MakeStage("{type: zoomout, extra_k_starts: [20]}"), ConfigError);
-  EXPECT_THROW(MakeStage("{type: zoomout, target_sample_count: 1000}"), ConfigError);
+  EXPECT_THROW(MakeStage("{type: zoomout, sample_count: 0, target_sample_count: 1000}"),
+               ConfigError);
   EXPECT_THROW(MakeStage("{type: zoomout, sample_count: 1000, target_sample_count: 50}"),
                ConfigError);
   EXPECT_EQ(MakeStage("{type: zoomout, extra_k_starts: 10}")
@@ -385,9 +387,27 @@ TEST(RefineStages, OptionsAreCheckedStrictly) {
   EXPECT_EQ(resolved["k_start"].as<int>(), 20);
   EXPECT_EQ(resolved["k_end"].as<int>(), 120);
   EXPECT_EQ(resolved["step"].as<int>(), 5);
-  EXPECT_EQ(resolved["sample_count"].as<int>(), 0);
-  EXPECT_EQ(resolved["target_sample_count"].as<int>(), 0);
-  EXPECT_EQ(resolved["extra_k_starts"].size(), 0u);
+  EXPECT_EQ(resolved["sample_count"].as<int>(), 1000);
+  EXPECT_EQ(resolved["target_sample_count"].as<int>(), 1000);
+  EXPECT_EQ(resolved["extra_k_starts"].as<std::vector<int>>(), (std::vector<int>{5, 10, 15}));
+  // The default extra starts leave out k_start and sizes beyond k_end; the default samples are
+  // 1,000; dense iterations map onto every target vertex.
+  EXPECT_EQ(MakeStage("{type: zoomout, k_start: 10, k_end: 60}")
+                ->resolved_options()["extra_k_starts"]
+                .as<std::vector<int>>(),
+            (std::vector<int>{5, 15}));
+  EXPECT_EQ(MakeStage("{type: zoomout, k_start: 5, k_end: 12}")
+                ->resolved_options()["extra_k_starts"]
+                .as<std::vector<int>>(),
+            (std::vector<int>{10}));
+  EXPECT_EQ(MakeStage("{type: zoomout, sample_count: 0}")
+                ->resolved_options()["target_sample_count"]
+                .as<int>(),
+            0);
+  EXPECT_EQ(MakeStage("{type: zoomout, extra_k_starts: []}")
+                ->resolved_options()["extra_k_starts"]
+                .size(),
+            0u);
 }
 
 // Two poses of the synthetic humanoid (eval/synthetic): same rest vertices, so the identity of
