@@ -16,11 +16,9 @@ namespace symembed {
 
 bool OrientationOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (k_start < 1 || k_end < k_start) out << "need 1 <= k_start <= k_end";
-  else if (step < 1) out << "step must be >= 1, got " << step;
-  else if (samples < k_end) out << "samples must be >= k_end (" << k_end << "), got " << samples;
+  std::string schedule;
+  if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
   else if (neighbors < 2) out << "neighbors must be >= 2, got " << neighbors;
-  else if (target_samples < 0) out << "target_samples must be >= 0, got " << target_samples;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -112,20 +110,12 @@ CandidateOrientation::CandidateOrientation(const Surface& source, const Surface&
     : source_(source), target_(target) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip orientation: " + error);
-  samples_ = SamplePrefix(samples, options.samples, options.k_end, "flip orientation: the source");
-  // ZoomOut maps onto this prefix of the target's samples (all target vertices when empty).
-  std::vector<int> target_prefix;
-  if (options.target_samples > 0) {
-    target_prefix = SamplePrefix(target_samples, options.target_samples, options.k_end,
-                                 "flip orientation: the target");
-  }
-  ZoomOutOptions zoomout;
-  zoomout.k_start = options.k_start;
-  zoomout.k_end = options.k_end;
-  zoomout.step = options.step;
-  // The triangles are made of samples only: the map of the other vertices is not needed.
-  zoomout.dense_result = false;
-  zoomout_.emplace(source_basis, target_basis, samples_, zoomout, target_prefix);
+  samples_ = SamplePrefix(samples, options.zoomout.samples, options.zoomout.k_end,
+                          "flip orientation: the source");
+  // ZoomOut maps onto this prefix of the target's samples (all target vertices when empty). The
+  // triangles are made of samples only: the map of the other vertices is not needed.
+  zoomout_.emplace(source_basis, target_basis, samples_, options.zoomout.ZoomOut(),
+                   options.zoomout.TargetPrefix(target_samples, "flip orientation: the target"));
   triangles_ = MakeSourceTriangles(source, samples_, options.neighbors);
   target_normals_ = VertexNormals(target);
 }

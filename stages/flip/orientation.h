@@ -25,6 +25,7 @@
 #include "core/mesh.h"
 #include "core/spectral.h"
 #include "stages/flip/flip_common.h"
+#include "stages/flip/zoomout_schedule.h"
 #include "stages/refine/zoomout.h"
 
 namespace symembed {
@@ -35,17 +36,14 @@ struct OrientationOptions {
   // 300 samples), k 6..60 in steps of 5 (target samples 1000) chose the oracle's candidate on
   // 257 of 284 TOSCA pairs and 88 of 90 synthetic ones; k 10..40 (all target vertices) on 254
   // and 76; k 6..60 in steps of 10 on 254 and 76; k 10..40 on the target samples on 257 and 69.
-  int k_start = 6;
-  int k_end = 60;
-  int step = 5;
-  // Source samples the refinement and the measurement use. 200 and 300 chose the oracle's
+  // Source samples the refinement and the measurement use: 200 and 300 chose the oracle's
   // candidate on 259 and 257 TOSCA pairs (87 and 88 synthetic) with the symmetrize stage
   // without warm start, on 258 and 261 (89 and 89) with it; 200 takes 47 instead of 61 ms
-  // per pair (bench_pair_stages).
-  int samples = 200;
-  // Target samples the refined maps land on (0: every target vertex). Matching only onto a
-  // prefix of the target's farthest-point samples makes each ZoomOut step a few times cheaper.
-  int target_samples = 1000;
+  // per pair (bench_pair_stages). Target samples the refined maps land on (0: every target
+  // vertex): matching only onto a prefix of the target's farthest-point samples makes each
+  // ZoomOut step a few times cheaper.
+  FlipZoomOutSchedule zoomout{/*k_start=*/6, /*k_end=*/60, /*step=*/5, /*samples=*/200,
+                              /*target_samples=*/1000};
   int neighbors = 6;  // nearest samples whose pairs form the triangles of a sample
 
   bool IsValid(std::string* error) const;
@@ -79,9 +77,9 @@ double MapOrientation(const Surface& source, const Surface& target, const std::v
 // The orientation of a candidate's nearest-neighbour map (from ComputeCandidateMaps of the
 // canonical embeddings) after ZoomOut in the given bases. Built once per pair: it holds what does
 // not depend on the candidate (sample prefixes, ZoomOut's setup, source triangles, target
-// normals). samples: source vertex ids (the first options.samples are used); target_samples:
-// target vertex ids (the first options.target_samples are used; all target vertices when that is
-// 0). The surfaces and bases are referenced, not copied: they must outlive it. Throws
+// normals). samples: source vertex ids (the first options.zoomout.samples are used);
+// target_samples: target vertex ids (the first options.zoomout.target_samples are used; all
+// target vertices when that is 0). The surfaces and bases are referenced, not copied: they must outlive it. Throws
 // ConfigError for invalid options, InvalidInputError for too few samples.
 class CandidateOrientation {
  public:

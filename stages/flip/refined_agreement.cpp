@@ -20,12 +20,9 @@ constexpr int kNeighbors = 6;
 
 bool RefinedAgreementOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (k_start < 1 || k_end < k_start) out << "need 1 <= k_start <= k_end";
-  else if (step < 1) out << "step must be >= 1, got " << step;
-  else if (samples < k_end) out << "samples must be >= k_end (" << k_end << "), got " << samples;
+  std::string schedule;
+  if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
   else if (!(margin >= 0.0)) out << "margin must be >= 0";
-  else if (target_samples < k_end)
-    out << "target_samples must be >= k_end (" << k_end << "), got " << target_samples;
   else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0";
   if (error) *error = out.str();
   return out.str().empty();
@@ -42,20 +39,16 @@ RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
   if (Fs.rows() != source.surface.NumVertices() || Ft.rows() != target.surface.NumVertices()) {
     throw InvalidInputError("flip refined: features do not match the surfaces");
   }
-  const std::vector<int> prefix = SamplePrefix(source.samples, options.samples, options.k_end,
-                                               "flip refined: shape '" + source.name + "'");
+  const std::vector<int> prefix =
+      SamplePrefix(source.samples, options.zoomout.samples, options.zoomout.k_end,
+                   "flip refined: shape '" + source.name + "'");
   const std::vector<int> target_prefix =
-      SamplePrefix(target.samples, options.target_samples, options.k_end,
-                   "flip refined: shape '" + target.name + "'");
-  ZoomOutOptions zoomout;
-  zoomout.k_start = options.k_start;
-  zoomout.k_end = options.k_end;
-  zoomout.step = options.step;
-  zoomout.dense_result = false;
+      options.zoomout.TargetPrefix(target.samples, "flip refined: shape '" + target.name + "'");
   // What does not depend on the candidate, once: ZoomOut's setup, the feature scales, the
   // embedded points of the source samples (ZoomOut reads the initial map at the samples only) and
   // of the target, and the triangles and normals of the orientation.
-  const ZoomOutSetup zoomout_setup(source_basis, target_basis, prefix, zoomout, target_prefix);
+  const ZoomOutSetup zoomout_setup(source_basis, target_basis, prefix, options.zoomout.ZoomOut(),
+                                   target_prefix);
   const std::array<double, 2> scales = FeatureScales(Fs, Ft);
   const EmbeddedPoints source_all = EmbeddedShape(source);
   EmbeddedPoints source_points;

@@ -38,17 +38,16 @@
 
 #include "core/spectral.h"
 #include "registry/types.h"
+#include "stages/flip/zoomout_schedule.h"
 
 namespace symembed {
 
 struct RefinedAgreementOptions {
-  int k_start = 20;    // ZoomOut basis sizes (both bases need k_end eigenpairs)
-  int k_end = 60;
-  int step = 5;
-  // Source samples the ZoomOut iterations run on and the measurement uses, and the target samples
-  // they map to: the refinement maps the samples only, and the measurement compares them.
-  int samples = 1000;
-  int target_samples = 1000;
+  // ZoomOut basis sizes (both bases need k_end eigenpairs), the source samples the iterations run
+  // on and the measurement uses, and the target samples they map to: the refinement maps the
+  // samples only, and the measurement compares them.
+  FlipZoomOutSchedule zoomout{/*k_start=*/20, /*k_end=*/60, /*step=*/5, /*samples=*/1000,
+                              /*target_samples=*/1000};
   // How much lower the partner's score must be for it to replace the best candidate.
   double margin = 0.05;
   // Weight of the embedded surfaces' normals in the initial nearest-neighbour maps
@@ -76,9 +75,10 @@ struct RefinedChoice {
 // Refines and scores the best candidate by `scores` (the other terms' totals; first on ties) and
 // its partner, each from the nearest-neighbour map of the shapes' embedded points (EmbeddedShape,
 // the target turned by the candidate's rotation) with normals. The shapes' samples give the
-// source samples (the first options.samples) and the target samples (the first
-// options.target_samples). Fs, Ft: kExtrinsicFeaturesKey features. Throws ConfigError for
-// invalid options, InvalidInputError for inputs that do not match.
+// source samples (the first options.zoomout.samples) and the target samples (the first
+// options.zoomout.target_samples; every target vertex when it is 0). Fs, Ft:
+// kExtrinsicFeaturesKey features. Throws ConfigError for invalid options, InvalidInputError for
+// inputs that do not match.
 RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
                                      const ShapeData& source, const ShapeData& target,
                                      const LaplaceBasis& source_basis,

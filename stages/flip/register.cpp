@@ -26,17 +26,14 @@ const Eigen::MatrixXd& AuxOf(const ShapeData& shape, const char* key, const char
   return it->second;
 }
 
-// The ZoomOut schedule and sample counts of the orientation and refined terms, from the options
-// <prefix>k_start, k_end, step, samples and target_samples (at least target_min).
-template <typename Options>
-void ReadZoomOutSchedule(OptionReader& o, const std::string& prefix, int target_min,
-                         Options* out) {
+// The ZoomOut schedule of the orientation and refined terms, from the options <prefix>k_start,
+// k_end, step, samples and target_samples.
+void ReadZoomOutSchedule(OptionReader& o, const std::string& prefix, FlipZoomOutSchedule* out) {
   out->k_start = o.GetInt(prefix + "k_start", out->k_start, 1, 1000);
   out->k_end = o.GetInt(prefix + "k_end", out->k_end, 1, 1000);
   out->step = o.GetInt(prefix + "step", out->step, 1, 1000);
   out->samples = o.GetInt(prefix + "samples", out->samples, 1, 100000);
-  out->target_samples =
-      o.GetInt(prefix + "target_samples", out->target_samples, target_min, 100000);
+  out->target_samples = o.GetInt(prefix + "target_samples", out->target_samples, 0, 100000);
 }
 
 // The descriptor term's per-shape products (WksProducts).
@@ -145,9 +142,9 @@ class ExtrinsicStage : public FlipStage {
  private:
   // Eigenpairs the spectral terms need (0: none is on).
   int BasisSize() const {
-    return std::max({orientation_weight_ > 0.0 ? orientation_.k_end : 0,
+    return std::max({orientation_weight_ > 0.0 ? orientation_.zoomout.k_end : 0,
                      descriptor_weight_ > 0.0 ? descriptor_.eigenpairs : 0,
-                     refined_on_ ? refined_.k_end : 0});
+                     refined_on_ ? refined_.zoomout.k_end : 0});
   }
 
   ExtrinsicFlipOptions options_;
@@ -224,7 +221,7 @@ void RegisterFlipStages(Registry& registry) {
                  const double orientation_weight =
                      o.GetDouble("orientation_weight", 1.0, 0.0);
                  OrientationOptions r;
-                 ReadZoomOutSchedule(o, "orientation_", /*target_min=*/0, &r);
+                 ReadZoomOutSchedule(o, "orientation_", &r.zoomout);
                  const double descriptor_weight = o.GetDouble("descriptor_weight", 1.0, 0.0);
                  DescriptorMapOptions d;
                  d.k = o.GetInt("descriptor_k", d.k, 2, 1000);
@@ -236,7 +233,7 @@ void RegisterFlipStages(Registry& registry) {
                  d.axes = o.GetInt("descriptor_axes", d.axes, 1, 2);
                  const bool refined_on = o.GetBool("refined", true);
                  RefinedAgreementOptions f;
-                 ReadZoomOutSchedule(o, "refined_", /*target_min=*/1, &f);
+                 ReadZoomOutSchedule(o, "refined_", &f.zoomout);
                  f.margin = o.GetDouble("refined_margin", f.margin, 0.0);
                  f.normal_weight =
                      o.GetDouble("refined_normal_weight", f.normal_weight, 0.0);

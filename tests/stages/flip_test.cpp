@@ -130,7 +130,7 @@ TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
   const auto [source, target] = HumanoidPoses(1500);
   const int right = OracleChoice(source, target);
   OrientationOptions options;
-  const auto [bs, bt] = Bases(source, target, options.k_end);
+  const auto [bs, bt] = Bases(source, target, options.zoomout.k_end);
   const CandidateOrientation measure(source.surface, target.surface, bs, bt, source.samples,
                                      target.samples, options);
   const std::array<double, 4> o =
@@ -146,7 +146,7 @@ TEST(OrientationFlip, RightCandidateRefinesToAnOrientationPreservingMap) {
 TEST(OrientationFlip, PrunedTermChoosesLikeTheFullOne) {
   const auto [source, target] = HumanoidPoses(1200);
   OrientationOptions options;
-  const auto [bs, bt] = Bases(source, target, options.k_end);
+  const auto [bs, bt] = Bases(source, target, options.zoomout.k_end);
   const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
   const CandidateOrientation measure(source.surface, target.surface, bs, bt, source.samples,
                                      target.samples, options);
@@ -285,7 +285,7 @@ struct RefinedInputs {
 
 RefinedInputs HumanoidRefinedInputs(int vertices) {
   auto [source, target] = HumanoidPoses(vertices);
-  auto [bs, bt] = Bases(source, target, RefinedAgreementOptions().k_end);
+  auto [bs, bt] = Bases(source, target, RefinedAgreementOptions().zoomout.k_end);
   Eigen::MatrixXd Fs = ExtrinsicFeatures(source.surface, 2);
   Eigen::MatrixXd Ft = ExtrinsicFeatures(target.surface, 2);
   return {std::move(source), std::move(target), std::move(bs), std::move(bt), std::move(Fs),
@@ -359,7 +359,7 @@ TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {
   bad.margin = -0.1;
   EXPECT_THROW(run(bad, in.source, in.Fs), ConfigError);
   bad = options;
-  bad.samples = options.k_end - 1;
+  bad.zoomout.samples = options.zoomout.k_end - 1;
   EXPECT_THROW(run(bad, in.source, in.Fs), ConfigError);
   ShapeData few = in.source;
   few.samples.resize(10);

@@ -1,0 +1,51 @@
+#include "stages/flip/zoomout_schedule.h"
+
+#include <sstream>
+
+#include "stages/flip/flip_common.h"
+
+namespace symembed {
+
+bool FlipZoomOutSchedule::IsValid(std::string* error) const {
+  std::ostringstream out;
+  if (k_start < 1 || k_end < k_start) out << "need 1 <= k_start <= k_end";
+  else if (step < 1) out << "step must be >= 1, got " << step;
+  else if (samples < k_end) out << "samples must be >= k_end (" << k_end << "), got " << samples;
+  else if (target_samples < 0) out << "target_samples must be >= 0, got " << target_samples;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+ZoomOutOptions FlipZoomOutSchedule::ZoomOut() const {
+  ZoomOutOptions zoomout;
+  zoomout.k_start = k_start;
+  zoomout.k_end = k_end;
+  zoomout.step = step;
+  // The flip terms read the refined map at the source samples only.
+  zoomout.dense_result = false;
+  return zoomout;
+}
+
+std::vector<int> FlipZoomOutSchedule::TargetPrefix(const std::vector<int>& target_samples,
+                                                   const std::string& what) const {
+  if (this->target_samples == 0) return {};
+  return SamplePrefix(target_samples, this->target_samples, k_end, what);
+}
+
+FlipZoomOutSchedule ReadFlipZoomOutSchedule(OptionReader& options, const std::string& key,
+                                            const FlipZoomOutSchedule& defaults) {
+  OptionReader o = options.Child(key);
+  FlipZoomOutSchedule s;
+  s.k_start = o.GetInt("k_start", defaults.k_start, 1, 1000);
+  s.k_end = o.GetInt("k_end", defaults.k_end, 1, 1000);
+  s.step = o.GetInt("step", defaults.step, 1, 1000);
+  s.samples = o.GetInt("samples", defaults.samples, 1, 100000);
+  s.target_samples = o.GetInt("target_samples", defaults.target_samples, 0, 100000);
+  o.Finish();
+  std::string error;
+  if (!s.IsValid(&error)) o.Fail("", error);
+  options.AdoptChild(key, o);
+  return s;
+}
+
+}  // namespace symembed
