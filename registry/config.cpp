@@ -108,8 +108,9 @@ std::string SubstituteText(const std::string& text, const std::string& file) {
 }
 
 // Sets tree[path] = value where path is dotted ("pipeline.embedding.type"), creating maps.
-// When the last key is the stage's type key and the type changes, the stage's other options
-// are dropped (they belonged to the old type).
+// When the last key is a type key (a stage's, or a nested one such as pipeline.flip.decide.type)
+// and the type changes, the other options of its map are dropped (they belonged to the old
+// type).
 void ApplyOverride(YAML::Node tree, const std::string& path, const YAML::Node& value,
                    const YAML::Node& key_node, const std::string& file) {
   std::vector<std::string> parts;
@@ -142,7 +143,7 @@ void ApplyOverride(YAML::Node tree, const std::string& path, const YAML::Node& v
     node.reset(child);  // re-point the handle; operator= would overwrite the tree
   }
   const std::string& last = parts.back();
-  const bool is_type = (parts.size() == 3 && parts[0] == "pipeline" && last == "type") ||
+  const bool is_type = (parts.size() >= 3 && parts[0] == "pipeline" && last == "type") ||
                        (parts.size() == 2 && parts[0] == "dataset" && last == "format");
   if (is_type) {
     const YAML::Node old = node[last];
@@ -185,6 +186,23 @@ EvaluationOptions ParseEvaluation(const YAML::Node& node, const std::string& fil
   return e;
 }
 
+// A copy of node without positions: those of a --set value are in the --set text, and messages
+// would give them as positions in the config file.
+YAML::Node WithoutPosition(const YAML::Node& node) {
+  if (node.IsScalar()) return YAML::Node(node.Scalar());
+  if (node.IsSequence()) {
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (const auto& item : node) out.push_back(WithoutPosition(item));
+    return out;
+  }
+  if (node.IsMap()) {
+    YAML::Node out(YAML::NodeType::Map);
+    for (const auto& kv : node) out[kv.first.Scalar()] = WithoutPosition(kv.second);
+    return out;
+  }
+  return YAML::Node(node.Type());
+}
+
 // Applies "dotted.path=value" overrides given on the command line to a config tree.
 void ApplyCommandLineOverrides(YAML::Node tree, const std::vector<std::string>& overrides,
                                const std::string& file) {
@@ -195,7 +213,7 @@ void ApplyCommandLineOverrides(YAML::Node tree, const std::vector<std::string>& 
     }
     YAML::Node value;
     try {
-      value = YAML::Load(o.substr(eq + 1));
+      value = WithoutPosition(YAML::Load(o.substr(eq + 1)));
     } catch (const YAML::Exception& e) {
       throw ConfigError("--set '" + o + "': value is not valid YAML: " + e.msg);
     }

@@ -15,7 +15,8 @@
 //     - {name: isomap, set: {pipeline.embedding.type: isomap}}
 //
 // A variant that changes a stage's `type` starts that stage from the new type's defaults: the
-// base's options for the old type are dropped unless the variant sets them again.
+// base's options for the old type are dropped unless the variant sets them again. The same holds
+// for a nested `type` (pipeline.flip.decide.type) and the other keys of its map.
 #pragma once
 
 #include <yaml-cpp/yaml.h>

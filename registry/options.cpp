@@ -218,7 +218,9 @@ void OptionReader::Finish() const {
   for (const auto& kv : n) {
     const std::string key = kv.first.Scalar();
     if (read_.count(key)) continue;
-    throw ConfigError(NodeLocation(file_, kv.first) + ": " + KeyPath(key) + ": unknown key '" +
+    // A key a variant's override added has no position; its value has the override's.
+    const YAML::Node& at = kv.first.Mark().line >= 0 ? kv.first : kv.second;
+    throw ConfigError(NodeLocation(file_, at) + ": " + KeyPath(key) + ": unknown key '" +
                       key + "'; known keys: " + (known.empty() ? "(none)" : Join(known)));
   }
 }

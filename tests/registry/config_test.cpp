@@ -312,3 +312,25 @@ TEST(Config, PipelineAndEvaluationSectionsAreOptional) {
 
 }  // namespace
 }  // namespace symembed
+
+namespace symembed {
+namespace {
+
+TEST(Config, UnknownKeySetByAnOverrideNamesWhereItWasSet) {
+  // By a variant: the line of its value in the variant.
+  std::string msg = ErrorOf(Replace(kConfig, "pipeline.sampling.count: 2000",
+                                    "pipeline.sampling.cuont: 2000"));
+  EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pipeline.sampling.cuont: unknown key 'cuont'"), std::string::npos) << msg;
+  // By --set: no position (one in the --set text is not one in the file).
+  try {
+    ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry(), {"pipeline.sampling.cuont=[1, 2]"});
+    msg = "";
+  } catch (const ConfigError& e) {
+    msg = e.what();
+  }
+  EXPECT_EQ(msg.find("exp.yaml: pipeline.sampling.cuont: unknown key 'cuont'"), 0u) << msg;
+}
+
+}  // namespace
+}  // namespace symembed
