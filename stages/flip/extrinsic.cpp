@@ -20,7 +20,6 @@ bool ExtrinsicFlipOptions::IsValid(std::string* error) const {
   else if (profile_bins < 1) out << "profile_bins must be >= 1, got " << profile_bins;
   else if (histogram_bins < 1) out << "histogram_bins must be >= 1, got " << histogram_bins;
   else if (smoothing_rings < 0) out << "smoothing_rings must be >= 0, got " << smoothing_rings;
-  else if (threads < 0) out << "threads must be >= 0, got " << threads;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -103,7 +102,7 @@ double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
 ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                     const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                                     const ExtrinsicFlipOptions& options,
-                                    const CandidateMaps& maps) {
+                                    const CandidateMaps& maps, int threads) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("flip extrinsic: " + error);
   if (Fs.rows() != Ys.rows() || Ft.rows() != Yt.rows() || Fs.cols() != 3 || Ft.cols() != 3) {
@@ -118,7 +117,7 @@ ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::Mat
   }
   const auto rotations = CandidateRotations();
   std::array<double, 4> chamfer{};
-  if (options.chamfer_weight > 0.0) chamfer = ChamferScores(Ys, Yt, options.threads);
+  if (options.chamfer_weight > 0.0) chamfer = ChamferScores(Ys, Yt, threads);
   for (int k = 0; k < 4; ++k) {
     const double local = FeatureDisagreement(Fs, Ft, maps.map[k], sigma);
     const Eigen::MatrixX3d Ytk = Yt * rotations[k].transpose();

@@ -1,4 +1,4 @@
-// Flip scorer `extrinsic`: resolves the four-fold ambiguity of the canonical frame by comparing
+// The paper's flip scorer: resolves the four-fold ambiguity of the canonical frame by comparing
 // extrinsic surface features (shape index, curvedness) of the original surfaces.
 //
 // [Yoshiyasu et al. 2016] Symmetry-aware embedding for shape correspondence: front and back, top
@@ -13,15 +13,8 @@
 //              the differences of their mean curvedness / sigma;
 //   score_k  = local_weight * local_k + global_weight * global_k
 //              + chamfer_weight * symmetric Chamfer distance of the embeddings.
-// The stage `extrinsic` adds orientation_weight * (1 - o_k) / 2 (default weight 1), o_k the
-// orientation of candidate k's map after a short ZoomOut (stages/flip/orientation.h): the
-// features above cannot tell the right candidate from the one whose map lies near the
-// left-right mirrored correspondence (the human classes of TOSCA), orientation can.
-// With `refined` (default on) the best candidate's front-back partner (turned by pi about the
-// vertical axis) then replaces it when the partner's map, after a longer ZoomOut from k = 20,
-// agrees better with the surfaces by at least refined_margin (stages/flip/refined_agreement.h):
-// the refined maps of a human's right candidate and of its front-back partner are accurate
-// enough for the face, feet and torso to tell them apart.
+// It is the curvature term of the flip stage `extrinsic` (term_curvature.h), to which the stage
+// adds its other terms and a decision (extrinsic_stage.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -48,7 +41,6 @@ struct ExtrinsicFlipOptions {
   int histogram_bins = 8;
   // k-ring averaging of the curvatures (CurvatureOptions::smoothing_rings), against noise.
   int smoothing_rings = 2;
-  int threads = 1;
 
   bool IsValid(std::string* error) const;
 };
@@ -60,11 +52,12 @@ struct ExtrinsicScores {
 
 // Ys, Yt: #Vs x 3, #Vt x 3 canonical embeddings; Fs, Ft: #V x 3 features (kExtrinsicFeaturesKey
 // layout); maps: ComputeCandidateMaps(Ys, Yt) (the stage shares them with the orientation
-// term). Throws InvalidInputError on mismatched shapes.
+// term); threads: of the Chamfer distances. Throws ConfigError for invalid options,
+// InvalidInputError on mismatched shapes.
 ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                                     const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                                     const ExtrinsicFlipOptions& options,
-                                    const CandidateMaps& maps);
+                                    const CandidateMaps& maps, int threads = 1);
 
 // Scales of the shape index and curvedness columns for comparing Fs with Ft: the mean of the two
 // shapes' area-weighted standard deviations (at least 1e-6).

@@ -19,6 +19,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/canonical_frame.h"
@@ -71,7 +72,7 @@ const Pair& TestPair() {
   return pair;
 }
 
-// A stage from its options, e.g. "{type: extrinsic, orientation_samples: 300}".
+// A stage from its options, e.g. "{type: extrinsic, terms: {descriptor: {weight: 0}}}".
 template <typename T>
 std::unique_ptr<T> Make(const Registry& registry, const std::string& kind,
                         const std::string& yaml) {
@@ -180,17 +181,18 @@ int main(int argc, char** argv) {
   }
   // The orientation term on every target vertex instead of the target's samples.
   benchmark::RegisterBenchmark("BM_Flip/extrinsic_all_target_vertices", BM_Flip, &registry,
-                               "{type: extrinsic, orientation_target_samples: 0}")
+                               "{type: extrinsic, terms: {orientation: {zoomout: {target_samples: 0}}}}")
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_Flip/extrinsic_300_samples", BM_Flip, &registry,
-                               "{type: extrinsic, orientation_samples: 300}")
+                               "{type: extrinsic, terms: {orientation: {zoomout: {samples: 300}}}}")
       ->Unit(benchmark::kMillisecond);
-  // Each added term's cost: the scorer without it.
-  for (const char* term : {"refined", "orientation", "descriptor"}) {
-    const std::string off = std::string(term) == "refined" ? ": false" : "_weight: 0";
-    const std::string options = std::string("{type: extrinsic, ") + term + off + "}";
-    benchmark::RegisterBenchmark(("BM_Flip/extrinsic_no_" + std::string(term)).c_str(), BM_Flip,
-                                 &registry, options)
+  // Each added part's cost: the scorer without it.
+  for (const auto& [name, off] : std::vector<std::pair<std::string, std::string>>{
+           {"refined", "decide: {type: argmin}"},
+           {"orientation", "terms: {orientation: {weight: 0}}"},
+           {"descriptor", "terms: {descriptor: {weight: 0}}"}}) {
+    benchmark::RegisterBenchmark(("BM_Flip/extrinsic_no_" + name).c_str(), BM_Flip, &registry,
+                                 "{type: extrinsic, " + off + "}")
         ->Unit(benchmark::kMillisecond);
   }
   for (const std::string& name : registry.Names("matching")) {

@@ -4,68 +4,27 @@
 #include <cmath>
 #include <vector>
 
-#include "core/canonical_frame.h"
 #include "core/errors.h"
-#include "registry/registry.h"
 #include "core/primitives.h"
 #include "core/spectral.h"
 #include "eval/synthetic/synthetic.h"
+#include "registry/registry.h"
 #include "stages/flip/descriptor_map.h"
 #include "stages/flip/extrinsic.h"
 #include "stages/flip/orientation.h"
 #include "stages/flip/refined_agreement.h"
 #include "stages/refine/functional_map.h"
+#include "tests/stages/flip_test_util.h"
 #include "tests/test_util.h"
 
 namespace symembed {
 namespace {
 
-ShapeData MakeShape(const std::string& name, const Surface& surface) {
-  ShapeData shape;
-  shape.name = name;
-  shape.surface = surface;
-  shape.Y = CanonicalFrame(surface.V);
-  // Well-spread samples, as the pipeline's farthest-point sampling gives (the orientation term
-  // refines and measures on them).
-  shape.samples = EuclideanFarthestPoints(surface.V, std::min(300, surface.NumVertices()));
-  return shape;
-}
-
-PairGroundTruth IdentityGroundTruth(int n) {
-  PairGroundTruth gt;
-  for (int i = 0; i < n; ++i) {
-    gt.source_ids.push_back(i);
-    gt.target_ids.push_back(i);
-  }
-  return gt;
-}
-
-// The candidate of the oracle flip stage for a pair on one vertex set (identity ground truth).
-int OracleChoice(const ShapeData& source, const ShapeData& target) {
-  Registry registry;
-  RegisterBuiltinStages(registry);
-  auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
-  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
-  return oracle->Run(PairInput{source, target, &gt}).chosen;
-}
-
-// Two poses of the synthetic humanoid (connected, one vertex set: identity ground truth).
-std::array<ShapeData, 2> HumanoidPoses(int vertices) {
-  SynthOptions synth;
-  synth.poses = 2;
-  synth.vertices = vertices;
-  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
-  SYMEMBED_CHECK(figures.shapes.size() == 2u, "the generator made " << figures.shapes.size());
-  return {MakeShape("pose0", figures.shapes[0].shape.surface),
-          MakeShape("pose1", figures.shapes[1].shape.surface)};
-}
-
-// The first k Laplace-Beltrami eigenpairs of both shapes.
-std::array<LaplaceBasis, 2> Bases(const ShapeData& a, const ShapeData& b, int k) {
-  LaplaceBasisOptions options;
-  options.k = k;
-  return {ComputeLaplaceBasis(a.surface, options), ComputeLaplaceBasis(b.surface, options)};
-}
+using testing::Bases;
+using testing::FlipShape;
+using testing::HumanoidPoses;
+using testing::IdentityGroundTruth;
+using testing::OracleChoice;
 
 // Source: the figure; target: a second pose (same vertex ids). For each candidate j the target's
 // canonical embedding is turned by R_j, so the right answer moves with j: candidates form the
@@ -77,8 +36,8 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
   RegisterBuiltinStages(registry);
   auto stage = registry.CreateAs<FlipStage>("flip", YAML::Load(GetParam()), "t.yaml",
                                             "pipeline.flip");
-  ShapeData source = MakeShape("rest", testing::SymmetricFigure());
-  const ShapeData posed = MakeShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2));
+  ShapeData source = FlipShape("rest", testing::SymmetricFigure());
+  const ShapeData posed = FlipShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2));
   const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
   stage->PrepareShape(source);
   // The right candidate for the unturned target, from the ground truth.
@@ -95,11 +54,11 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
 
 INSTANTIATE_TEST_SUITE_P(All, FlipScorers,
                          ::testing::Values("{type: extrinsic}",
-                                           "{type: extrinsic, orientation_weight: 0}",
-                                           "{type: extrinsic, descriptor_weight: 0}",
-                                           "{type: extrinsic, descriptor_axes: 2}",
-                                           "{type: extrinsic, refined: false}",
-                                           "{type: extrinsic, refined_margin: 0}",
+                                           "{type: extrinsic, terms: {orientation: {weight: 0}}}",
+                                           "{type: extrinsic, terms: {descriptor: {weight: 0}}}",
+                                           "{type: extrinsic, terms: {descriptor: {axes: 2}}}",
+                                           "{type: extrinsic, decide: {type: argmin}}",
+                                           "{type: extrinsic, decide: {margin: 0}}",
                                            "{type: chamfer}", "{type: hks}", "{type: oracle}"));
 
 // The vertex of `surface` nearest to each vertex mirrored by x -> -x.
@@ -367,8 +326,8 @@ TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {
   EXPECT_THROW(run(options, in.source, in.Fs.topRows(5)), InvalidInputError);
   Registry registry;
   RegisterBuiltinStages(registry);
-  for (const char* yaml : {"{type: extrinsic, refined_margin: -1}",
-                           "{type: extrinsic, refined: maybe}",
+  for (const char* yaml : {"{type: extrinsic, decide: {margin: -1}}",
+                           "{type: extrinsic, decide: {type: maybe}}",
                            "{type: extrinsic, refined_weight: 10}"}) {
     EXPECT_THROW(registry.CreateAs<FlipStage>("flip", YAML::Load(yaml), "t.yaml", "f"),
                  ConfigError)
@@ -402,7 +361,7 @@ TEST(OracleFlip, RefusesWithoutGroundTruth) {
   Registry registry;
   RegisterBuiltinStages(registry);
   auto stage = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
-  const ShapeData shape = MakeShape("rest", testing::SymmetricFigure());
+  const ShapeData shape = FlipShape("rest", testing::SymmetricFigure());
   try {
     stage->Run(PairInput{shape, shape, nullptr});
     FAIL() << "oracle ran without ground truth";
@@ -428,7 +387,7 @@ TEST(ExtrinsicFlip, MissingFeaturesFailClearly) {
   Registry registry;
   RegisterBuiltinStages(registry);
   auto stage = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: extrinsic}"), "t.yaml", "f");
-  const ShapeData shape = MakeShape("rest", testing::SymmetricFigure());
+  const ShapeData shape = FlipShape("rest", testing::SymmetricFigure());
   EXPECT_THROW(stage->Run(PairInput{shape, shape, nullptr}), InvalidInputError);
 }
 

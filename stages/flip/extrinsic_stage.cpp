@@ -1,0 +1,143 @@
+#include "stages/flip/extrinsic_stage.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "core/laplacian.h"
+#include "stages/flip/decide_refined.h"
+#include "stages/flip/extrinsic.h"
+#include "stages/flip/flip_term.h"
+#include "stages/flip/term_curvature.h"
+#include "stages/flip/term_descriptor.h"
+#include "stages/flip/term_orientation.h"
+
+namespace symembed {
+namespace {
+
+// The terms, in the order the stage adds them: the orientation term, which skips candidates
+// that cannot win, comes after the terms whose totals it reads.
+struct FlipTermEntry {
+  const char* name;
+  std::unique_ptr<FlipTerm> (*read)(OptionReader& options, double weight);
+};
+const FlipTermEntry kFlipTerms[] = {
+    {"curvature", ReadCurvatureTerm},
+    {"descriptor", ReadDescriptorTerm},
+    {"orientation", ReadOrientationTerm},
+};
+
+class ArgminDecision : public FlipDecision {
+ public:
+  int Decide(const FlipTermContext&, const std::array<double, 4>&,
+             std::ostringstream*) const override {
+    return -1;
+  }
+};
+
+std::unique_ptr<FlipDecision> ReadArgminDecision(OptionReader&) {
+  return std::make_unique<ArgminDecision>();
+}
+
+struct FlipDecisionEntry {
+  const char* name;
+  std::unique_ptr<FlipDecision> (*read)(OptionReader& options);
+};
+const FlipDecisionEntry kFlipDecisions[] = {
+    {"argmin", ReadArgminDecision},
+    {"refined_front_back", ReadRefinedDecision},
+};
+
+class ExtrinsicStage : public FlipStage {
+ public:
+  ExtrinsicStage(int threads, std::vector<std::unique_ptr<FlipTerm>> terms,
+                 std::unique_ptr<FlipDecision> decision)
+      : threads_(threads), terms_(std::move(terms)), decision_(std::move(decision)) {
+    basis_size_ = decision_->BasisSize();
+    for (const auto& term : terms_) {
+      basis_size_ = std::max(basis_size_, term->BasisSize());
+      features_ = features_ || term->PreparesFeatures();
+    }
+  }
+
+  void PrepareShape(ShapeData& shape) const override {
+    if (basis_size_ > 0) {
+      LaplaceBasisOptions basis;
+      basis.k = basis_size_;
+      EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
+    }
+    for (const auto& term : terms_) term->PrepareShape(shape);
+  }
+  int PrepareVersion() const override { return 2; }  // 2: the descriptor term's products
+  // Whether the decision reads features that no term prepares.
+  bool LacksFeatures() const { return decision_->ReadsFeatures() && !features_; }
+
+  FlipResult Run(const PairInput& pair) const override {
+    CheckFlipPair(pair);
+    // One set of candidate maps for every term.
+    const CandidateMaps maps = ComputeCandidateMaps(pair.source.Y, pair.target.Y, threads_);
+    const Eigen::MatrixXd* Fs = features_ ? &AuxOf(pair.source, kExtrinsicFeaturesKey) : nullptr;
+    const Eigen::MatrixXd* Ft = features_ ? &AuxOf(pair.target, kExtrinsicFeaturesKey) : nullptr;
+    // One copy of each basis for all parts, into storage the thread keeps from pair to pair.
+    thread_local LaplaceBasis source_basis, target_basis;
+    static const LaplaceBasis kNoBasis;
+    if (basis_size_ > 0) {
+      GetLaplaceBasis(pair.source.aux, basis_size_, &source_basis);
+      GetLaplaceBasis(pair.target.aux, basis_size_, &target_basis);
+    }
+    const LaplaceBasis& source = basis_size_ > 0 ? source_basis : kNoBasis;
+    const LaplaceBasis& target = basis_size_ > 0 ? target_basis : kNoBasis;
+    const FlipTermContext context{pair, maps, source, target, Fs, Ft, threads_};
+    std::array<double, 4> total{};
+    std::ostringstream detail;
+    for (const auto& term : terms_) term->Score(context, &total, &detail);
+    const int chosen = decision_->Decide(context, total, &detail);
+    FlipResult result = MakeFlipResult(total, "extrinsic", chosen);
+    result.status.message += detail.str();
+    return result;
+  }
+
+ private:
+  int threads_;
+  std::vector<std::unique_ptr<FlipTerm>> terms_;  // those of weight > 0, in kFlipTerms order
+  std::unique_ptr<FlipDecision> decision_;
+  int basis_size_ = 0;     // eigenpairs the parts read (0: none)
+  bool features_ = false;  // whether a term prepares the curvature features
+};
+
+}  // namespace
+
+std::unique_ptr<FlipStage> ReadExtrinsicStage(OptionReader& o) {
+  const int threads = o.GetInt("threads", 1, 0, 256);
+  OptionReader terms_options = o.Child("terms");
+  std::vector<std::unique_ptr<FlipTerm>> terms;
+  for (const FlipTermEntry& entry : kFlipTerms) {
+    OptionReader r = terms_options.Child(entry.name);
+    const double weight = r.GetDouble("weight", 1.0, 0.0);
+    std::unique_ptr<FlipTerm> term = entry.read(r, weight);
+    r.Finish();
+    terms_options.AdoptChild(entry.name, r);
+    if (weight > 0.0) terms.push_back(std::move(term));
+  }
+  terms_options.Finish();
+  o.AdoptChild("terms", terms_options);
+  if (terms.empty()) terms_options.Fail("", "at least one term must have a weight > 0");
+
+  OptionReader d = o.Child("decide");
+  std::vector<std::string> names;
+  for (const FlipDecisionEntry& entry : kFlipDecisions) names.push_back(entry.name);
+  const std::string type = d.GetChoice("type", "refined_front_back", names);
+  std::unique_ptr<FlipDecision> decision;
+  for (const FlipDecisionEntry& entry : kFlipDecisions) {
+    if (type == entry.name) decision = entry.read(d);
+  }
+  d.Finish();
+  o.AdoptChild("decide", d);
+  auto stage = std::make_unique<ExtrinsicStage>(threads, std::move(terms), std::move(decision));
+  if (stage->LacksFeatures()) {
+    d.Fail("type", "'" + type + "' compares the curvature features, which the curvature term "
+                   "prepares: terms.curvature.weight must be > 0");
+  }
+  return stage;
+}
+
+}  // namespace symembed

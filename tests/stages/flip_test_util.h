@@ -1,0 +1,66 @@
+// Inputs shared by the flip tests: shapes with canonical embeddings and samples, the oracle's
+// choice on a pair with identity ground truth, synthetic humanoid poses and their bases.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "core/canonical_frame.h"
+#include "core/errors.h"
+#include "core/primitives.h"
+#include "core/spectral.h"
+#include "eval/synthetic/synthetic.h"
+#include "registry/registry.h"
+#include "stages/refine/functional_map.h"
+
+namespace symembed::testing {
+
+inline ShapeData FlipShape(const std::string& name, const Surface& surface) {
+  ShapeData shape;
+  shape.name = name;
+  shape.surface = surface;
+  shape.Y = CanonicalFrame(surface.V);
+  // Well-spread samples, as the pipeline's farthest-point sampling gives (the orientation term
+  // refines and measures on them).
+  shape.samples = EuclideanFarthestPoints(surface.V, std::min(300, surface.NumVertices()));
+  return shape;
+}
+
+inline PairGroundTruth IdentityGroundTruth(int n) {
+  PairGroundTruth gt;
+  for (int i = 0; i < n; ++i) {
+    gt.source_ids.push_back(i);
+    gt.target_ids.push_back(i);
+  }
+  return gt;
+}
+
+// The candidate of the oracle flip stage for a pair on one vertex set (identity ground truth).
+inline int OracleChoice(const ShapeData& source, const ShapeData& target) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
+  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
+  return oracle->Run(PairInput{source, target, &gt}).chosen;
+}
+
+// Two poses of the synthetic humanoid (connected, one vertex set: identity ground truth).
+inline std::array<ShapeData, 2> HumanoidPoses(int vertices) {
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = vertices;
+  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
+  SYMEMBED_CHECK(figures.shapes.size() == 2u, "the generator made " << figures.shapes.size());
+  return {FlipShape("pose0", figures.shapes[0].shape.surface),
+          FlipShape("pose1", figures.shapes[1].shape.surface)};
+}
+
+// The first k Laplace-Beltrami eigenpairs of both shapes.
+inline std::array<LaplaceBasis, 2> Bases(const ShapeData& a, const ShapeData& b, int k) {
+  LaplaceBasisOptions options;
+  options.k = k;
+  return {ComputeLaplaceBasis(a.surface, options), ComputeLaplaceBasis(b.surface, options)};
+}
+
+}  // namespace symembed::testing
