@@ -28,6 +28,42 @@ bool RefinedAgreementOptions::IsValid(std::string* error) const {
   return out.str().empty();
 }
 
+RefinedCandidates::RefinedCandidates(const ShapeData& source, const ShapeData& target,
+                                     const LaplaceBasis& source_basis,
+                                     const LaplaceBasis& target_basis,
+                                     const FlipZoomOutSchedule& schedule, double normal_weight,
+                                     const std::string& what)
+    : source_(source), target_(target), normal_weight_(normal_weight) {
+  prefix_ = SamplePrefix(source.samples, schedule.samples, schedule.k_end,
+                         what + ": shape '" + source.name + "'");
+  target_prefix_ = schedule.TargetPrefix(target.samples, what + ": shape '" + target.name + "'");
+  zoomout_ = std::make_unique<ZoomOutSetup>(source_basis, target_basis, prefix_,
+                                            schedule.ZoomOut(), target_prefix_);
+  const EmbeddedPoints source_all = EmbeddedShape(source);
+  source_points_.Y.resize(prefix_.size(), 3);
+  source_points_.N.resize(prefix_.size(), 3);
+  for (size_t i = 0; i < prefix_.size(); ++i) {
+    source_points_.Y.row(i) = source_all.Y.row(prefix_[i]);
+    source_points_.N.row(i) = source_all.N.row(prefix_[i]);
+  }
+  target_points_ = EmbeddedShape(target);
+  triangles_ = MakeSourceTriangles(source.surface, prefix_, kNeighbors);
+  target_normals_ = VertexNormals(target.surface);
+}
+
+ZoomOutResult RefinedCandidates::Refine(int k) const {
+  const MatchResult matched =
+      MatchNearest(source_points_, Rotated(target_points_, CandidateRotations()[k]),
+                   normal_weight_, /*threads=*/1);
+  std::vector<int> initial(source_.surface.NumVertices(), 0);
+  for (size_t i = 0; i < prefix_.size(); ++i) initial[prefix_[i]] = matched.map[i];
+  return zoomout_->Run(initial);
+}
+
+double RefinedCandidates::Orientation(const std::vector<int>& map) const {
+  return TriangleOrientation(triangles_, target_.surface, target_normals_, map);
+}
+
 RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
                                      const ShapeData& source, const ShapeData& target,
                                      const LaplaceBasis& source_basis,
@@ -39,29 +75,9 @@ RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
   if (Fs.rows() != source.surface.NumVertices() || Ft.rows() != target.surface.NumVertices()) {
     throw InvalidInputError("flip refined: features do not match the surfaces");
   }
-  const std::vector<int> prefix =
-      SamplePrefix(source.samples, options.zoomout.samples, options.zoomout.k_end,
-                   "flip refined: shape '" + source.name + "'");
-  const std::vector<int> target_prefix =
-      options.zoomout.TargetPrefix(target.samples, "flip refined: shape '" + target.name + "'");
-  // What does not depend on the candidate, once: ZoomOut's setup, the feature scales, the
-  // embedded points of the source samples (ZoomOut reads the initial map at the samples only) and
-  // of the target, and the triangles and normals of the orientation.
-  const ZoomOutSetup zoomout_setup(source_basis, target_basis, prefix, options.zoomout.ZoomOut(),
-                                   target_prefix);
+  const RefinedCandidates candidates(source, target, source_basis, target_basis, options.zoomout,
+                                     options.normal_weight, "flip refined");
   const std::array<double, 2> scales = FeatureScales(Fs, Ft);
-  const EmbeddedPoints source_all = EmbeddedShape(source);
-  EmbeddedPoints source_points;
-  source_points.Y.resize(prefix.size(), 3);
-  source_points.N.resize(prefix.size(), 3);
-  for (size_t i = 0; i < prefix.size(); ++i) {
-    source_points.Y.row(i) = source_all.Y.row(prefix[i]);
-    source_points.N.row(i) = source_all.N.row(prefix[i]);
-  }
-  const EmbeddedPoints target_points = EmbeddedShape(target);
-  const SourceTriangles triangles = MakeSourceTriangles(source.surface, prefix, kNeighbors);
-  const Eigen::MatrixX3d target_normals = VertexNormals(target.surface);
-  const auto rotations = CandidateRotations();
 
   RefinedChoice out;
   out.best = CandidateOrder(scores)[0];
@@ -70,15 +86,9 @@ RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
   out.orientation.fill(std::numeric_limits<double>::quiet_NaN());
   out.score.fill(std::numeric_limits<double>::quiet_NaN());
   for (const int k : {out.best, out.partner}) {
-    // The candidate's rotation applied to the target, as the matching stage gets it.
-    const MatchResult matched = MatchNearest(source_points, Rotated(target_points, rotations[k]),
-                                             options.normal_weight, /*threads=*/1);
-    std::vector<int> initial(source.surface.NumVertices(), 0);
-    for (size_t i = 0; i < prefix.size(); ++i) initial[prefix[i]] = matched.map[i];
-    const ZoomOutResult refined = zoomout_setup.Run(initial);
-    out.disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
-    out.orientation[k] =
-        TriangleOrientation(triangles, target.surface, target_normals, refined.map);
+    const ZoomOutResult refined = candidates.Refine(k);
+    out.disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, candidates.samples());
+    out.orientation[k] = candidates.Orientation(refined.map);
     out.score[k] = out.disagreement[k] + (1.0 - out.orientation[k]) / 4.0;
   }
   out.chosen = out.score[out.best] - out.score[out.partner] >= options.margin ? out.partner

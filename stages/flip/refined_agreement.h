@@ -34,10 +34,15 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "core/spectral.h"
+#include "registry/pair_pipeline.h"
 #include "registry/types.h"
+#include "stages/flip/orientation.h"
+#include "stages/refine/zoomout.h"
 #include "stages/flip/zoomout_schedule.h"
 
 namespace symembed {
@@ -56,6 +61,40 @@ struct RefinedAgreementOptions {
   double normal_weight = 0.1;
 
   bool IsValid(std::string* error) const;
+};
+
+// What refining a candidate's map needs that does not depend on the candidate, built once per
+// pair: the source samples (the first schedule.samples) and the target samples they map onto,
+// ZoomOut's setup, the embedded points of the source samples (ZoomOut reads the initial map at the
+// samples only) and of the target, and the triangles and normals of the orientation
+// (orientation.h). The shapes and bases are referenced: they must outlive it. Throws
+// InvalidInputError for too few samples (`what` names the part in the message).
+class RefinedCandidates {
+ public:
+  RefinedCandidates(const ShapeData& source, const ShapeData& target,
+                    const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,
+                    const FlipZoomOutSchedule& schedule, double normal_weight,
+                    const std::string& what);
+
+  // Candidate k's map: nearest neighbours of the embedded points with normals (as the matching
+  // stage computes them, the target turned by CandidateRotations()[k]) on the samples, refined
+  // by ZoomOut. Only the samples' entries of the result are meaningful.
+  ZoomOutResult Refine(int k) const;
+  // The orientation of a refined map on the samples' triangles.
+  double Orientation(const std::vector<int>& map) const;
+  const std::vector<int>& samples() const { return prefix_; }
+
+ private:
+  const ShapeData& source_;
+  const ShapeData& target_;
+  double normal_weight_;
+  std::vector<int> prefix_;
+  std::vector<int> target_prefix_;
+  std::unique_ptr<ZoomOutSetup> zoomout_;
+  EmbeddedPoints source_points_;
+  EmbeddedPoints target_points_;
+  SourceTriangles triangles_;
+  Eigen::MatrixX3d target_normals_;
 };
 
 // The candidate turned from candidate k by pi about the vertical axis (y of the canonical frame):
