@@ -10,20 +10,26 @@
 #include "stages/flip/term_curvature.h"
 #include "stages/flip/term_descriptor.h"
 #include "stages/flip/term_orientation.h"
+#include "stages/flip/term_refined_maps.h"
 
 namespace symembed {
 namespace {
 
-// The terms, in the order the stage adds them: the orientation term, which skips candidates
-// that cannot win, comes after the terms whose totals it reads.
+// The terms, in the order the stage adds them, with their default weights: the orientation
+// term, which skips candidates that cannot win, comes after the terms whose totals it reads.
+// The refined-maps term is off by default (variant flip_refined_maps of the studies): on the
+// synthetic humanoids, whose front and back are alike, it cannot tell the right rotation from the
+// one turned by pi about the vertical axis, which the default terms and decision do.
 struct FlipTermEntry {
   const char* name;
   std::unique_ptr<FlipTerm> (*read)(OptionReader& options, double weight);
+  double default_weight;
 };
 const FlipTermEntry kFlipTerms[] = {
-    {"curvature", ReadCurvatureTerm},
-    {"descriptor", ReadDescriptorTerm},
-    {"orientation", ReadOrientationTerm},
+    {"curvature", ReadCurvatureTerm, 1.0},
+    {"descriptor", ReadDescriptorTerm, 1.0},
+    {"refined_maps", ReadRefinedMapsTerm, 0.0},
+    {"orientation", ReadOrientationTerm, 1.0},
 };
 
 class ArgminDecision : public FlipDecision {
@@ -67,7 +73,7 @@ class ExtrinsicStage : public FlipStage {
     }
     for (const auto& term : terms_) term->PrepareShape(shape);
   }
-  int PrepareVersion() const override { return 2; }  // 2: the descriptor term's products
+  int PrepareVersion() const override { return 3; }  // 3: the refined-maps term's geodesics
   // Whether the decision reads features that no term prepares.
   bool LacksFeatures() const { return decision_->ReadsFeatures() && !features_; }
 
@@ -112,7 +118,7 @@ std::unique_ptr<FlipStage> ReadExtrinsicStage(OptionReader& o) {
   std::vector<std::unique_ptr<FlipTerm>> terms;
   for (const FlipTermEntry& entry : kFlipTerms) {
     OptionReader r = terms_options.Child(entry.name);
-    const double weight = r.GetDouble("weight", 1.0, 0.0);
+    const double weight = r.GetDouble("weight", entry.default_weight, 0.0);
     std::unique_ptr<FlipTerm> term = entry.read(r, weight);
     r.Finish();
     terms_options.AdoptChild(entry.name, r);
@@ -134,8 +140,8 @@ std::unique_ptr<FlipStage> ReadExtrinsicStage(OptionReader& o) {
   o.AdoptChild("decide", d);
   auto stage = std::make_unique<ExtrinsicStage>(threads, std::move(terms), std::move(decision));
   if (stage->LacksFeatures()) {
-    d.Fail("type", "'" + type + "' compares the curvature features, which the curvature term "
-                   "prepares: terms.curvature.weight must be > 0");
+    d.Fail("type", "'" + type + "' compares the curvature features, which the curvature and "
+                   "refined_maps terms prepare: one of them must have a weight > 0");
   }
   return stage;
 }

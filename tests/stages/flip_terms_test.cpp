@@ -51,6 +51,10 @@ TEST(FlipTermOptions, DefaultsFillEveryNestedMap) {
       "profile_bins: 16, histogram_bins: 8, smoothing_rings: 2}, "
       "descriptor: {weight: 1, k: 30, eigenpairs: 60, energies: 100, sigma: 7, mu: 0.01, "
       "samples: 300, axes: 1}, "
+      "refined_maps: {weight: 0, zoomout: {k_start: 20, k_end: 60, step: 5, samples: 1000, "
+      "target_samples: 1000}, sources: 40, targets: 200, distortion_weight: 0.5, "
+      "disagreement_weight: 1, orientation_weight: 0.025, smoothing_rings: 2, "
+      "normal_weight: 0.1}, "
       "orientation: {weight: 1, zoomout: {k_start: 6, k_end: 60, step: 5, samples: 200, "
       "target_samples: 1000}}}, "
       "decide: {type: refined_front_back, margin: 0.05, normal_weight: 0.1, "
@@ -82,7 +86,7 @@ TEST(FlipTermOptions, ErrorsNameFileLineAndPath) {
                 "pipeline.flip.terms.orientation.zoomout.k_begin: unknown key 'k_begin'"},
            Case{"{type: extrinsic, terms: {bogus: {weight: 1}}}",
                 "pipeline.flip.terms.bogus: unknown key 'bogus'; known keys: curvature, "
-                "descriptor, orientation"},
+                "descriptor, orientation, refined_maps"},
            Case{"{type: extrinsic, decide: {type: best}}",
                 "t.yaml:1:34: pipeline.flip.decide.type: invalid value 'best'; expected one of: "
                 "argmin, refined_front_back"},
@@ -101,7 +105,7 @@ TEST(FlipTermOptions, ErrorsNameFileLineAndPath) {
                 "pipeline.flip.terms: at least one term must have a weight > 0"},
            Case{"{type: extrinsic, terms: {curvature: {weight: 0}}}",
                 "pipeline.flip.decide.type: 'refined_front_back' compares the curvature "
-                "features"},
+                "features, which the curvature and refined_maps terms prepare"},
            Case{"{type: extrinsic, orientation_weight: 0}",
                 "pipeline.flip.orientation_weight: unknown key"},
        }) {

@@ -1,0 +1,138 @@
+#include "stages/flip/term_refined_maps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.h"
+#include "stages/flip/extrinsic.h"
+#include "stages/flip/flip_common.h"
+#include "stages/flip/refined_agreement.h"
+#include "stages/geodesics/dijkstra.h"
+
+namespace symembed {
+namespace {
+
+// The source's graph geodesics from its first `sources` samples (#sources x #V).
+constexpr const char* kGeodesicsKey = "flip_refined_maps_geodesics";
+
+}  // namespace
+
+bool RefinedMapsTermOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  std::string schedule;
+  if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
+  else if (sources < 1) out << "sources must be >= 1, got " << sources;
+  else if (targets < sources) out << "targets must be >= sources (" << sources << "), got " << targets;
+  else if (targets > zoomout.samples)
+    out << "targets must be <= zoomout.samples (" << zoomout.samples << "), got " << targets;
+  else if (!(distortion_weight >= 0.0 && disagreement_weight >= 0.0 && orientation_weight >= 0.0))
+    out << "distortion_weight, disagreement_weight and orientation_weight must be >= 0";
+  else if (smoothing_rings < 0) out << "smoothing_rings must be >= 0, got " << smoothing_rings;
+  else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0";
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+double GeodesicDistortion(const Eigen::MatrixXd& source_distances, const Surface& target,
+                          const std::vector<int>& samples, int targets,
+                          const std::vector<int>& map) {
+  const int sources = static_cast<int>(source_distances.rows());
+  if (targets < sources || targets > static_cast<int>(samples.size())) {
+    throw InvalidInputError("flip refined_maps: " + std::to_string(targets) + " target samples for " +
+                            std::to_string(sources) + " sources and " +
+                            std::to_string(samples.size()) + " samples");
+  }
+  const int nt = target.NumVertices();
+  std::vector<int> images(sources);
+  for (int j = 0; j < targets; ++j) {
+    const int s = samples[j];
+    if (s < 0 || s >= static_cast<int>(map.size()) || s >= source_distances.cols() ||
+        map[s] < 0 || map[s] >= nt) {
+      throw InvalidInputError("flip refined_maps: sample " + std::to_string(s) +
+                              " or its image is out of range");
+    }
+    if (j < sources) images[j] = map[s];
+  }
+  const Eigen::MatrixXd target_distances = DijkstraDistances(target, images);
+  double difference = 0.0, length = 0.0;
+  for (int i = 0; i < sources; ++i) {
+    for (int j = 0; j < targets; ++j) {
+      const int s = samples[j];
+      // Points in another component than the source (unreachable) do not count.
+      const double ds = source_distances(i, s), dt = target_distances(i, map[s]);
+      if (!std::isfinite(ds) || !std::isfinite(dt)) continue;
+      difference += std::abs(ds - dt);
+      length += ds;
+    }
+  }
+  return length > 0.0 ? difference / length : 1.0;
+}
+
+RefinedMapsTerm::RefinedMapsTerm(double weight, const RefinedMapsTermOptions& options)
+    : FlipTerm(weight), options_(options) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw ConfigError("flip refined_maps: " + error);
+}
+
+void RefinedMapsTerm::PrepareShape(ShapeData& shape) const {
+  const std::vector<int> sources =
+      SamplePrefix(shape.samples, options_.sources, 1, "flip refined_maps: shape '" + shape.name + "'");
+  shape.aux[kGeodesicsKey] = DijkstraDistances(shape.surface, sources);
+  shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
+}
+
+void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4>* total,
+                         std::ostringstream* detail) const {
+  const ShapeData& source = context.pair.source;
+  const ShapeData& target = context.pair.target;
+  const Eigen::MatrixXd& source_distances = AuxOf(source, kGeodesicsKey);
+  const Eigen::MatrixXd& Fs = AuxOf(source, kExtrinsicFeaturesKey);
+  const Eigen::MatrixXd& Ft = AuxOf(target, kExtrinsicFeaturesKey);
+  // Shapes with fewer samples than the options ask for use all of theirs.
+  const int sources = std::min<int>(options_.sources, source.samples.size());
+  if (source_distances.rows() != sources ||
+      source_distances.cols() != source.surface.NumVertices()) {
+    throw InvalidInputError("flip refined_maps: shape '" + source.name +
+                            "' has geodesics that do not match the options");
+  }
+  const RefinedCandidates candidates(source, target, context.source_basis, context.target_basis,
+                                     options_.zoomout, options_.normal_weight,
+                                     "flip refined_maps");
+  const std::vector<int>& prefix = candidates.samples();
+  const std::array<double, 2> scales = FeatureScales(Fs, Ft);
+  const int targets = std::max(sources, std::min<int>(options_.targets, prefix.size()));
+  std::array<double, 4> distortion{}, disagreement{}, orientation{};
+  for (int k = 0; k < 4; ++k) {
+    const ZoomOutResult refined = candidates.Refine(k);
+    distortion[k] =
+        GeodesicDistortion(source_distances, target.surface, prefix, targets, refined.map);
+    disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
+    orientation[k] = candidates.Orientation(refined.map);
+    (*total)[k] += weight() * (options_.distortion_weight * distortion[k] +
+                               options_.disagreement_weight * disagreement[k] +
+                               options_.orientation_weight * (1.0 - orientation[k]));
+  }
+  // Distortion / disagreement / orientation of each candidate's refined map.
+  *detail << "; refined_maps";
+  for (int k = 0; k < 4; ++k) {
+    *detail << " " << distortion[k] << "/" << disagreement[k] << "/" << orientation[k];
+  }
+}
+
+std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
+  RefinedMapsTermOptions r;
+  r.zoomout = ReadFlipZoomOutSchedule(o, "zoomout", r.zoomout);
+  r.sources = o.GetInt("sources", r.sources, 1, 100000);
+  r.targets = o.GetInt("targets", r.targets, 1, 100000);
+  r.distortion_weight = o.GetDouble("distortion_weight", r.distortion_weight, 0.0);
+  r.disagreement_weight = o.GetDouble("disagreement_weight", r.disagreement_weight, 0.0);
+  r.orientation_weight = o.GetDouble("orientation_weight", r.orientation_weight, 0.0);
+  r.smoothing_rings = o.GetInt("smoothing_rings", r.smoothing_rings, 0, 100);
+  r.normal_weight = o.GetDouble("normal_weight", r.normal_weight, 0.0);
+  std::string error;
+  if (!r.IsValid(&error)) o.Fail("", error);
+  return std::make_unique<RefinedMapsTerm>(weight, r);
+}
+
+}  // namespace symembed

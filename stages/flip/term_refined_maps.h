@@ -1,0 +1,89 @@
+// Refined-maps term of the flip stage `extrinsic`: how well each candidate's map, once refined,
+// preserves the surfaces' intrinsic geometry, their curvature and their orientation.
+//
+// The curvature, descriptor and orientation terms compare the two shapes through features that
+// change with the species, the body shape and the meshing. A wrong rotation, though, maps the
+// head onto the tail or the back onto the belly, and no refinement from there gives a map that
+// preserves distances along the surface, while the right rotation's map after ZoomOut [Melzi et
+// al. 2019] preserves them up to the pair's non-isometry. For each candidate k the term takes the
+// nearest-neighbour map of the embedded points with normals (as the matching stage computes it,
+// stages/matching/nearest.h) on the source samples, refines it with ZoomOut on the samples, and
+// measures three things of the refined map T of the samples:
+//   distortion g_k   = sum_ij |d_S(s_i, s_j) - d_T(T(s_i), T(s_j))| / sum_ij d_S(s_i, s_j)
+//                      over the first `sources` samples s_i and the first `targets` samples s_j,
+//                      with graph geodesics (stages/geodesics/dijkstra.h) of the unit-area
+//                      surfaces;
+//   disagreement c_k = FeatureDisagreement of shape index and curvedness over the samples
+//                      (extrinsic.h): on a human the candidate turned by pi about the vertical
+//                      axis refines to a map that preserves distances about as well as the right
+//                      one (front and back reflected), but puts the face on the back of the head
+//                      and the chest on the back;
+//   orientation o_k  = the orientation of the map on the samples' triangles (orientation.h): the
+//                      left-right mirrored map preserves distances and curvature but reverses it.
+// It adds weight * (distortion_weight g_k + disagreement_weight c_k
+// + orientation_weight (1 - o_k)) to candidate k's total. The three measure different failures,
+// so none needs a threshold: each is a mean over the samples of a quantity near 0 for the right
+// map. The source's geodesics from its first `sources` samples are per-shape
+// data (PrepareShape), with the curvature features; the target's geodesics are computed per
+// candidate from the images of the samples.
+// [Bronstein, Bronstein & Kimmel 2006] Generalized multidimensional scaling (distortion of a map
+// as the criterion of a correspondence).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "core/mesh.h"
+#include "registry/options.h"
+#include "stages/flip/flip_term.h"
+#include "stages/flip/zoomout_schedule.h"
+
+namespace symembed {
+
+struct RefinedMapsTermOptions {
+  FlipZoomOutSchedule zoomout{/*k_start=*/20, /*k_end=*/60, /*step=*/5, /*samples=*/1000,
+                              /*target_samples=*/1000};
+  int sources = 40;    // samples the geodesics start from (on the target: their images)
+  int targets = 200;   // samples whose distances to the sources are compared
+  // The curvature disagreement carries the front-back decision of near-symmetric humans, the
+  // distortion the head-tail and up-down decisions of shapes whose curvature differs (species,
+  // body shapes); the orientation of a refined map can favour a front-back reflected map on a
+  // body whose front and back are alike, so it only breaks near ties.
+  double distortion_weight = 0.5;
+  double disagreement_weight = 1.0;
+  double orientation_weight = 0.025;
+  int smoothing_rings = 2;  // of the curvature features (ExtrinsicFeatures, extrinsic.h)
+  // Weight of the embedded normals in the initial maps (RefinedAgreementOptions::normal_weight).
+  double normal_weight = 0.1;
+
+  bool IsValid(std::string* error) const;
+};
+
+// The distortion d of `map` (target vertex per source vertex, at least at the samples) between
+// the first sources.size() x targets samples: source_distances is #sources x #Vs (graph
+// geodesics from samples[0..sources)), the target's are computed from the images. Returns 1 when
+// the source distances sum to 0. Throws InvalidInputError for ids out of range.
+double GeodesicDistortion(const Eigen::MatrixXd& source_distances, const Surface& target,
+                          const std::vector<int>& samples, int targets,
+                          const std::vector<int>& map);
+
+class RefinedMapsTerm : public FlipTerm {
+ public:
+  // Throws ConfigError for invalid options.
+  RefinedMapsTerm(double weight, const RefinedMapsTermOptions& options);
+  void PrepareShape(ShapeData& shape) const override;
+  bool PreparesFeatures() const override { return true; }
+  int BasisSize() const override { return options_.zoomout.k_end; }
+  void Score(const FlipTermContext& context, std::array<double, 4>* total,
+             std::ostringstream* detail) const override;
+
+ private:
+  RefinedMapsTermOptions options_;
+};
+
+// The term of weight `weight` from its YAML map {zoomout, sources, targets, distortion_weight,
+// disagreement_weight, orientation_weight, normal_weight, smoothing_rings} (defaults: RefinedMapsTermOptions). Throws ConfigError.
+std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& options, double weight);
+
+}  // namespace symembed

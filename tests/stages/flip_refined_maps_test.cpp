@@ -1,0 +1,137 @@
+// The refined-maps term of the flip stage (stages/flip/term_refined_maps.h).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "core/canonical_frame.h"
+#include "core/errors.h"
+#include "core/primitives.h"
+#include "core/spectral.h"
+#include "eval/synthetic/synthetic.h"
+#include "registry/registry.h"
+#include "stages/flip/flip_common.h"
+#include "stages/flip/term_refined_maps.h"
+#include "stages/geodesics/dijkstra.h"
+#include "stages/refine/functional_map.h"
+#include "tests/stages/flip_test_util.h"
+#include "tests/test_util.h"
+
+namespace symembed {
+namespace {
+
+using testing::FlipShape;
+using testing::OracleChoice;
+
+// Options for shapes with 300 samples.
+RefinedMapsTermOptions SmallOptions() {
+  RefinedMapsTermOptions options;
+  options.zoomout.samples = 300;
+  options.zoomout.target_samples = 300;
+  options.sources = 20;
+  options.targets = 150;
+  return options;
+}
+
+TEST(RefinedMapsFlip, DistortionMatchesABruteForceSum) {
+  SynthOptions synth;
+  synth.poses = 1;
+  synth.vertices = 400;
+  const Surface surface = GenerateClass(FigureKind::kHumanoid, synth).shapes[0].shape.surface;
+  const int n = surface.NumVertices();
+  std::vector<int> samples = EuclideanFarthestPoints(surface.V, 30);
+  const std::vector<int> sources(samples.begin(), samples.begin() + 5);
+  const Eigen::MatrixXd Ds = DijkstraDistances(surface, sources);
+  std::vector<int> identity(n);
+  for (int i = 0; i < n; ++i) identity[i] = i;
+  EXPECT_NEAR(GeodesicDistortion(Ds, surface, samples, 30, identity), 0.0, 1e-12);
+
+  // A map that shifts every vertex: the sum over all pairs, with every distance from Dijkstra.
+  std::vector<int> shifted(n);
+  for (int i = 0; i < n; ++i) shifted[i] = (i * 7 + 3) % n;
+  const Eigen::MatrixXd all = DijkstraDistances(surface, [&] {
+    std::vector<int> v(n);
+    for (int i = 0; i < n; ++i) v[i] = i;
+    return v;
+  }());
+  double difference = 0.0, length = 0.0;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 30; ++j) {
+      const double ds = all(samples[i], samples[j]);
+      difference += std::abs(ds - all(shifted[samples[i]], shifted[samples[j]]));
+      length += ds;
+    }
+  }
+  EXPECT_NEAR(GeodesicDistortion(Ds, surface, samples, 30, shifted), difference / length, 1e-9);
+  EXPECT_GT(difference / length, 0.1);
+
+  std::vector<int> bad = identity;
+  bad[samples[3]] = n;
+  EXPECT_THROW(GeodesicDistortion(Ds, surface, samples, 30, bad), InvalidInputError);
+  EXPECT_THROW(GeodesicDistortion(Ds, surface, samples, 31, identity), InvalidInputError);
+}
+
+// For each turn R_j of the target's canonical embedding, the term alone gives the oracle's
+// candidate the lowest total on two poses of a figure whose bones were scaled differently in each
+// pose (the generator's non-isometric option): the pair is not an isometry, yet the right
+// rotation's refined map distorts the geodesics and the curvature least.
+void ExpectTermFindsTheOracle(FigureKind kind) {
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = 1500;
+  synth.nonisometric = 0.3;
+  const SynthClass figures = GenerateClass(kind, synth);
+  ASSERT_EQ(figures.shapes.size(), 2u);
+  ShapeData source = FlipShape("pose0", figures.shapes[0].shape.surface);
+  ShapeData posed = FlipShape("pose1", figures.shapes[1].shape.surface);
+  const RefinedMapsTerm term(1.0, SmallOptions());
+  term.PrepareShape(source);
+  term.PrepareShape(posed);
+  LaplaceBasisOptions basis_options;
+  basis_options.k = term.BasisSize();
+  const LaplaceBasis source_basis = ComputeLaplaceBasis(source.surface, basis_options);
+  const LaplaceBasis target_basis = ComputeLaplaceBasis(posed.surface, basis_options);
+  const auto rotations = CandidateRotations();
+  for (int j = 0; j < 4; ++j) {
+    ShapeData target = posed;
+    target.Y = posed.Y * rotations[j];
+    const int right = OracleChoice(source, target);
+    const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
+    const PairInput pair{source, target};
+    const FlipTermContext context{pair, maps, source_basis, target_basis, nullptr, nullptr, 1};
+    std::array<double, 4> total{};
+    std::ostringstream detail;
+    term.Score(context, &total, &detail);
+    EXPECT_EQ(CandidateOrder(total)[0], right) << "turn " << j << detail.str();
+    EXPECT_NE(detail.str().find("; refined_maps"), std::string::npos);
+  }
+}
+
+TEST(RefinedMapsFlip, RightCandidateOfANonIsometricHumanoidScoresLowest) {
+  ExpectTermFindsTheOracle(FigureKind::kHumanoid);
+}
+
+TEST(RefinedMapsFlip, RightCandidateOfANonIsometricQuadrupedScoresLowest) {
+  ExpectTermFindsTheOracle(FigureKind::kQuadruped);
+}
+
+TEST(RefinedMapsFlip, BadOptionsAndInputsFailClearly) {
+  RefinedMapsTermOptions options = SmallOptions();
+  options.targets = 10;  // fewer than the sources
+  EXPECT_THROW(RefinedMapsTerm(1.0, options), ConfigError);
+  options = SmallOptions();
+  options.targets = 400;  // more than the samples ZoomOut maps
+  EXPECT_THROW(RefinedMapsTerm(1.0, options), ConfigError);
+  options = SmallOptions();
+  options.orientation_weight = -1.0;
+  EXPECT_THROW(RefinedMapsTerm(1.0, options), ConfigError);
+  // A shape without samples.
+  ShapeData shape = FlipShape("rest", testing::SymmetricFigure());
+  shape.samples.clear();
+  EXPECT_THROW(RefinedMapsTerm(1.0, SmallOptions()).PrepareShape(shape), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace symembed
