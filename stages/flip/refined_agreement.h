@@ -1,6 +1,6 @@
-// Refined term of the flip scorers: decides between the best candidate by the other terms and its
-// front-back partner by how well their maps agree with the surfaces once ZoomOut has made them
-// accurate.
+// Refined front-back decision of the flip stage (decide.type refined_front_back): decides
+// between the best candidate by the terms and its front-back partner by how well their maps
+// agree with the surfaces once ZoomOut has made them accurate.
 //
 // On a human, the candidate maps of the right rotation and of the rotation by pi about the
 // vertical axis differ by a front-back reflection composed with the left-right one. The
