@@ -62,7 +62,7 @@ struct Candidate {
 
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
                                      const Eigen::MatrixXd& Y, const Plane2dOptions& options,
-                                     const Eigen::MatrixXd& G) {
+                                     const Eigen::MatrixXd& G, const Eigen::VectorXd& evals) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("symmetry plane2d: " + error);
   if (Y.cols() != 3) throw InvalidInputError("symmetry plane2d: the embedding must be 3D");
@@ -72,6 +72,14 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
                             std::to_string(G.rows()) + " rows for " +
                             std::to_string(samples.size()) + " samples");
   }
+  if (evals.size() != 0 && evals.size() != G.cols()) {
+    throw InvalidInputError("symmetry plane2d: " + std::to_string(evals.size()) +
+                            " eigenvalues for " + std::to_string(G.cols()) +
+                            " spectral coordinates");
+  }
+  auto consistency = [&](const std::vector<int>& sigma) {
+    return SpectralConsistency(G, sigma, evals, options.spectral.eigenvalue_tolerance);
+  };
   const Eigen::MatrixXd Dss = SampleDistances(D, samples);
   const Eigen::MatrixXd X = EmbedSamples2d(Dss, options.smacof_iterations, options.threads);
   const KnnIndex index2(X);
@@ -177,7 +185,7 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
     throw InvalidInputError("symmetry plane2d: every candidate symmetry was rejected");
   }
   Candidate& chosen = *best_of();
-  if (G.size() > 0) chosen.consistency = SpectralConsistency(G, chosen.sigma);
+  if (G.size() > 0) chosen.consistency = consistency(chosen.sigma);
   if (G.size() > 0 && chosen.consistency < options.spectral.min_consistency) {
     // Step 5: the choice by distances is not an intrinsic symmetry of the eigenfunctions. Self
     // maps from sign flips of the eigenfunctions join the candidates, lifted to 3D, and the
@@ -200,10 +208,22 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
         if (flip.pattern >> j & 1u) origin << " " << j + 1;
       }
       c.origin = origin.str();
+      // The sign-flip self map is coarse (nearest neighbours in a few eigenfunctions); the
+      // lifted plane refined in 3D gives the same symmetry's self map point by point where the
+      // 3D embedding has it, and another symmetry, which the criterion then weighs, where not.
+      if (options.refine_3d_iterations > 0) {
+        ReflectionSearchOptions o = options.search;
+        o.max_iterations = options.refine_3d_iterations;
+        const ReflectionFit fit3 = RefineReflection(P, index3, c.normal, c.offset, o);
+        iterations += fit3.iterations;
+        if (std::isfinite(fit3.score)) {
+          consider(from_fit_3d(fit3, intrinsic(fit3.sigma), c.origin + ", refined in 3D"));
+        }
+      }
       consider(std::move(c));
     }
     for (Candidate& c : candidates) {
-      c.consistency = SpectralConsistency(G, c.sigma);
+      c.consistency = consistency(c.sigma);
       c.total += options.spectral.weight * (1.0 - c.consistency);
     }
   }

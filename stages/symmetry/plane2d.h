@@ -20,13 +20,16 @@
 //      the intrinsic check decides per shape.
 //   5. Spectral check (spectral_symmetry.h): the winner's self map should commute with the low
 //      Laplace-Beltrami eigenfunctions. When its SpectralConsistency is below
-//      spectral.min_consistency, self maps from sign flips of the eigenfunctions join the
-//      candidates (lifted like the 2D ones, scored by the lifted plane's fit in 3D) and the
-//      criterion adds spectral.weight * (1 - consistency). A shape bent so that one side is
-//      compressed (TOSCA cat9, dog10) has no reflection of its distance embeddings near the
-//      left-right one and its distances favour a front-back self map (consistency 0.38 and 0.39
-//      there, at least 0.79 on the other 74 TOSCA shapes; default threshold 0.4); its
-//      eigenfunctions still show the left-right symmetry.
+//      spectral.min_consistency (by default always), self maps from sign flips of the
+//      eigenfunctions join the candidates (lifted like the 2D ones, scored by the lifted plane's
+//      fit in 3D) and the criterion adds spectral.weight * (1 - consistency). Geodesic distances
+//      alone cannot be trusted to pick the left-right symmetry: a quadruped has an approximate
+//      front-back one (front legs to hind legs) and a near-identity one (back to belly across a
+//      thin body) whose self maps distort distances as little, and a body bent so that one side
+//      is compressed favours a front-back self map; the eigenfunctions still show the left-right
+//      symmetry. The weight is small because the sign-flip self maps are coarse (nearest
+//      neighbours in 8 dimensions): where a distance-based candidate of the same symmetry
+//      exists, its better fit should win.
 #pragma once
 
 #include <Eigen/Core>
@@ -72,11 +75,13 @@ Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations
 
 // D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
 // embedding; G: #S x K spectral coordinates of the samples (SampleSpectralCoordinates), or empty
-// to leave out step 5. Returns the plane in the coordinates of Y, the sample self map, per-sample
+// to leave out step 5; evals: their K eigenvalues (or empty: each eigenfunction checked on its
+// own). Returns the plane in the coordinates of Y, the sample self map, per-sample
 // confidence and the score of the chosen candidate (in its space). Throws InvalidInputError on
 // inconsistent shapes, ConfigError on invalid options.
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
                                      const Eigen::MatrixXd& Y, const Plane2dOptions& options,
-                                     const Eigen::MatrixXd& G = Eigen::MatrixXd());
+                                     const Eigen::MatrixXd& G = Eigen::MatrixXd(),
+                                     const Eigen::VectorXd& evals = Eigen::VectorXd());
 
 }  // namespace symembed

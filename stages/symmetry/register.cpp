@@ -22,9 +22,10 @@ class Plane2dStage : public SymmetryStage {
   explicit Plane2dStage(Plane2dOptions options) : options_(options) {}
   SymmetryResult Run(const SymmetryInput& in) const override {
     const int k = options_.spectral.num_eigenfunctions;
+    Eigen::VectorXd evals;
     const Eigen::MatrixXd G =
-        k > 0 ? SampleSpectralCoordinates(in.surface, in.samples, k) : Eigen::MatrixXd();
-    return DetectSymmetryPlane2d(in.D, in.samples, in.embedding.Y, options_, G);
+        k > 0 ? SampleSpectralCoordinates(in.surface, in.samples, k, &evals) : Eigen::MatrixXd();
+    return DetectSymmetryPlane2d(in.D, in.samples, in.embedding.Y, options_, G, evals);
   }
 
  private:
@@ -68,6 +69,9 @@ void RegisterSymmetryStages(Registry& registry) {
                  p.spectral.min_consistency = o.GetDouble(
                      "spectral_min_consistency", p.spectral.min_consistency, 0.0, 1.0);
                  p.spectral.weight = o.GetDouble("spectral_weight", p.spectral.weight, 0.0);
+                 p.spectral.eigenvalue_tolerance =
+                     o.GetDouble("spectral_eigenvalue_tolerance",
+                                 p.spectral.eigenvalue_tolerance, 0.0, 1.0);
                  p.threads = o.GetInt("threads", p.threads, 0, 256);
                  std::string error;
                  if (!p.IsValid(&error)) o.Fail("", error);

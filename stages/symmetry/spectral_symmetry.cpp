@@ -1,5 +1,6 @@
 #include "stages/symmetry/spectral_symmetry.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -20,6 +21,8 @@ bool SpectralSymmetryOptions::IsValid(std::string* error) const {
   else if (!(min_consistency >= 0.0 && min_consistency <= 1.0))
     out << "spectral_min_consistency must be in [0, 1], got " << min_consistency;
   else if (!(weight >= 0.0)) out << "spectral_weight must be >= 0, got " << weight;
+  else if (!(eigenvalue_tolerance >= 0.0 && eigenvalue_tolerance <= 1.0))
+    out << "spectral_eigenvalue_tolerance must be in [0, 1], got " << eigenvalue_tolerance;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -38,7 +41,7 @@ int CountZeroEigenvalues(const Eigen::VectorXd& evals, double area) {
 }  // namespace
 
 Eigen::MatrixXd SampleSpectralCoordinates(const Surface& surface, const std::vector<int>& samples,
-                                          int num_eigenfunctions) {
+                                          int num_eigenfunctions, Eigen::VectorXd* evals) {
   SYMEMBED_CHECK(num_eigenfunctions >= 1, "num_eigenfunctions must be >= 1");
   const double area = TotalArea(surface);
   LaplaceBasisOptions options;
@@ -65,6 +68,7 @@ Eigen::MatrixXd SampleSpectralCoordinates(const Surface& surface, const std::vec
       G(i, j) = basis.evecs(samples[i], zeros + j) / std::sqrt(basis.evals(zeros + j));
     }
   }
+  if (evals) *evals = basis.evals.segment(zeros, num_eigenfunctions);
   return G;
 }
 
@@ -97,21 +101,48 @@ std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int 
   return all;
 }
 
-double SpectralConsistency(const Eigen::MatrixXd& G, const std::vector<int>& sigma) {
+double SpectralConsistency(const Eigen::MatrixXd& G, const std::vector<int>& sigma,
+                           const Eigen::VectorXd& evals, double tolerance) {
   SYMEMBED_CHECK(static_cast<int>(sigma.size()) == G.rows(), "sigma does not match G");
-  if (G.cols() == 0) return 1.0;
-  double sum = 0.0;
-  for (int j = 0; j < G.cols(); ++j) {
-    double dot = 0.0, self = 0.0, image = 0.0;
-    for (int i = 0; i < G.rows(); ++i) {
-      const double mapped = G(sigma[i], j);
-      dot += G(i, j) * mapped;
-      self += G(i, j) * G(i, j);
-      image += mapped * mapped;
-    }
-    sum += self > 0.0 && image > 0.0 ? std::abs(dot) / std::sqrt(self * image) : 0.0;
+  if (evals.size() != 0 && evals.size() != G.cols()) {
+    throw InvalidInputError("spectral consistency: " + std::to_string(evals.size()) +
+                            " eigenvalues for " + std::to_string(G.cols()) + " eigenfunctions");
   }
-  return sum / G.cols();
+  const int k = static_cast<int>(G.cols());
+  if (k == 0) return 1.0;
+  // Unit columns of G and of G o sigma; a zero column contributes 0.
+  Eigen::MatrixXd U = G, V(G.rows(), k);
+  for (int i = 0; i < G.rows(); ++i) V.row(i) = G.row(sigma[i]);
+  std::vector<bool> zero(k, false);
+  for (int j = 0; j < k; ++j) {
+    const double nu = U.col(j).norm(), nv = V.col(j).norm();
+    zero[j] = !(nu > 0.0 && nv > 0.0);
+    if (!zero[j]) {
+      U.col(j) /= nu;
+      V.col(j) /= nv;
+    }
+  }
+  double sum = 0.0;
+  for (int j = 0; j < k; ++j) {
+    if (zero[j]) continue;
+    std::vector<int> space;
+    for (int m = 0; m < k; ++m) {
+      const bool near = m == j || (evals.size() == k && tolerance > 0.0 &&
+                                   std::abs(evals(m) - evals(j)) <= tolerance * std::abs(evals(j)));
+      if (near && !zero[m]) space.push_back(m);
+    }
+    if (space.size() == 1) {
+      sum += std::abs(U.col(j).dot(V.col(j)));
+      continue;
+    }
+    // Squared norm of the projection of v_j onto span(B): b^T (B^T B)^-1 b with b = B^T v_j.
+    Eigen::MatrixXd B(G.rows(), space.size());
+    for (size_t q = 0; q < space.size(); ++q) B.col(q) = U.col(space[q]);
+    const Eigen::VectorXd b = B.transpose() * V.col(j);
+    const Eigen::VectorXd x = (B.transpose() * B).ldlt().solve(b);
+    sum += std::sqrt(std::clamp(b.dot(x), 0.0, 1.0));
+  }
+  return sum / k;
 }
 
 }  // namespace symembed

@@ -8,8 +8,14 @@
 // distances are not symmetric (one side of a bent body compressed) keeps nearly symmetric or
 // antisymmetric low eigenfunctions, where a reflection of its distance embedding no longer exists.
 //
+// An eigenvalue of multiplicity m (or m eigenvalues too close for the discretisation to tell
+// apart, as the limbs of a human give) has an m-dimensional eigenspace, and an isometry maps
+// each eigenfunction into that space rather than onto +-itself: the check measures how much of
+// phi_j o sigma stays in the span of the eigenfunctions whose eigenvalues lie within a relative
+// tolerance of lambda_j.
+//
 // Used by the `plane2d` symmetry stage, both to propose self maps (one per sign pattern) and to
-// check every candidate self map (how far phi_j o sigma is from +-phi_j).
+// check every candidate self map.
 #pragma once
 
 #include <Eigen/Core>
@@ -27,10 +33,13 @@ struct SpectralSymmetryOptions {
   int num_candidates = 4;
   // The candidates chosen by distances alone stand when their self map's SpectralConsistency is
   // at least this; below it the sign-flip candidates join and the criterion adds the weighted
-  // inconsistency (1: always).
-  double min_consistency = 0.4;
+  // inconsistency. 1: always (a consistency of exactly 1 is a symmetry of the eigenfunctions).
+  double min_consistency = 1.0;
   // Weight of the spectral inconsistency (1 - SpectralConsistency) in the choice of candidate.
-  double weight = 1.0;
+  double weight = 0.25;
+  // Eigenvalues within this relative distance of lambda_j count as one eigenspace with it in
+  // SpectralConsistency (0: every eigenfunction on its own).
+  double eigenvalue_tolerance = 0.05;
 
   bool IsValid(std::string* error) const;
 };
@@ -38,9 +47,9 @@ struct SpectralSymmetryOptions {
 // Global point signature of the samples: #S x K, column j = phi_(j+1) / sqrt(lambda_(j+1)) at the
 // samples, for the K = num_eigenfunctions lowest non-constant eigenpairs (the ~0 eigenvalue of
 // every connected component is skipped). Throws InvalidInputError when the surface has too few
-// vertices, SolverError when the eigensolver fails.
+// vertices, SolverError when the eigensolver fails. evals, when given, receives the K eigenvalues.
 Eigen::MatrixXd SampleSpectralCoordinates(const Surface& surface, const std::vector<int>& samples,
-                                          int num_eigenfunctions);
+                                          int num_eigenfunctions, Eigen::VectorXd* evals = nullptr);
 
 struct SignFlipCandidate {
   unsigned pattern = 0;      // bit j set: coordinate j flipped
@@ -55,9 +64,14 @@ struct SignFlipCandidate {
 std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int num_candidates,
                                                   double outlier_distance);
 
-// How well sigma (#S) commutes with the eigenfunctions: mean over the columns g of G of
-// |<g, g o sigma>| / (|g| |g o sigma|). 1 when every column is symmetric or antisymmetric under
-// sigma; small for a self map that is not an intrinsic symmetry.
-double SpectralConsistency(const Eigen::MatrixXd& G, const std::vector<int>& sigma);
+// How well sigma (#S) commutes with the eigenfunctions: mean over the columns g_j of G of the
+// norm of the projection of (g_j o sigma) / |g_j o sigma| onto the span of the columns g_k with
+// |lambda_k - lambda_j| <= tolerance * lambda_j (evals: the K eigenvalues; empty or tolerance
+// 0: g_j alone, and the term is |<g_j, g_j o sigma>| / (|g_j| |g_j o sigma|)). 1 when sigma maps
+// every such span onto itself; small for a self map that is not an intrinsic symmetry. Throws
+// InvalidInputError when evals is neither empty nor of size K.
+double SpectralConsistency(const Eigen::MatrixXd& G, const std::vector<int>& sigma,
+                           const Eigen::VectorXd& evals = Eigen::VectorXd(),
+                           double tolerance = 0.0);
 
 }  // namespace symembed

@@ -55,6 +55,48 @@ TEST(SpectralSymmetry, MirrorsCommuteWithTheEigenfunctionsAndAPermutationDoesNot
   EXPECT_LT(SpectralConsistency(G, shuffled), 0.2);
 }
 
+// A box with a square cross-section (x and y sides equal) has pairs of (nearly, up to its
+// triangulation) repeated eigenvalues; any basis of such an eigenspace is as valid as the
+// eigensolver's. In a basis turned by 30 degrees within each pair, the mirror across the diagonal
+// plane x = y maps an eigenfunction onto a mixture of the pair: eigenfunction by eigenfunction
+// it looks like no symmetry, eigenspace by eigenspace it is exact. A random self map stays low
+// either way.
+TEST(SpectralSymmetry, ConsistencyCountsRepeatedEigenvaluesAsOneEigenspace) {
+  const Surface box = BoxMesh(8, 1.3, 1.3, 2.6);
+  Eigen::VectorXd evals;
+  Eigen::MatrixXd G = SampleSpectralCoordinates(box, AllVertices(box.NumVertices()), 8, &evals);
+  ASSERT_EQ(evals.size(), 8);
+  int pairs = 0;
+  for (int j = 0; j + 1 < 8; ++j) {
+    if (evals(j + 1) - evals(j) >= 0.01 * evals(j)) continue;
+    const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+    const Eigen::VectorXd a = G.col(j), b = G.col(j + 1);
+    G.col(j) = c * a + s * b;
+    G.col(j + 1) = -s * a + c * b;
+    ++pairs;
+    ++j;
+  }
+  ASSERT_GE(pairs, 2) << evals.transpose();
+  Eigen::MatrixXd swapped = box.V;
+  swapped.col(0) = box.V.col(1);
+  swapped.col(1) = box.V.col(0);
+  Eigen::VectorXd residual;
+  const std::vector<int> diagonal = KnnIndex(box.V).Nearest(swapped, &residual, 1);
+  ASSERT_LT(residual.maxCoeff(), 1e-9);
+
+  EXPECT_LT(SpectralConsistency(G, diagonal), 0.9);
+  EXPECT_GT(SpectralConsistency(G, diagonal, evals, 0.05), 0.99);
+  // Tolerance 0 is the eigenfunction-by-eigenfunction measure.
+  EXPECT_NEAR(SpectralConsistency(G, diagonal, evals, 0.0), SpectralConsistency(G, diagonal),
+              1e-12);
+  std::vector<int> shuffled = AllVertices(box.NumVertices());
+  std::mt19937 rng(7);
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  EXPECT_LT(SpectralConsistency(G, shuffled, evals, 0.05), 0.3);
+  EXPECT_THROW(SpectralConsistency(G, diagonal, Eigen::VectorXd::Ones(3), 0.05),
+               InvalidInputError);
+}
+
 TEST(SpectralSymmetry, SignFlipsFindTheMirrorsOfABox) {
   const Surface box = TestBox();
   const Eigen::MatrixXd G = SampleSpectralCoordinates(box, AllVertices(box.NumVertices()), 6);
@@ -83,7 +125,9 @@ TEST(SpectralSymmetry, RejectsBadOptions) {
   for (const char* yaml : {"{type: plane2d, spectral_eigenfunctions: 13}",
                            "{type: plane2d, spectral_min_consistency: 1.5}",
                            "{type: plane2d, spectral_weight: -1}",
-                           "{type: plane2d, spectral_candidates: -1}"}) {
+                           "{type: plane2d, spectral_candidates: -1}",
+                           "{type: plane2d, spectral_eigenvalue_tolerance: -0.1}",
+                           "{type: plane2d, spectral_eigenvalue_tolerance: 2}"}) {
     EXPECT_THROW(registry.Create("symmetry", YAML::Load(yaml), "t.yaml", "pipeline.symmetry"),
                  ConfigError)
         << yaml;
