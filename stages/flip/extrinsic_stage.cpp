@@ -17,19 +17,23 @@ namespace {
 
 // The terms, in the order the stage adds them, with their default weights: the orientation
 // term, which skips candidates that cannot win, comes after the terms whose totals it reads.
-// The refined-maps term is off by default (variant flip_refined_maps of the studies): on the
-// synthetic humanoids, whose front and back are alike, it cannot tell the right rotation from the
-// one turned by pi about the vertical axis, which the default terms and decision do.
+// By default the rotation is the one whose refined map best preserves the surfaces' intrinsic
+// geometry (refined_maps alone): the curvature, descriptor and orientation terms compare
+// features that change with the species, the body shape and the meshing, and across species
+// their sum picks a wrong rotation where the refined maps' distortion does not. On near
+// front-back symmetric bodies (the synthetic humanoids) the refined maps of the right rotation
+// and of the one turned by pi about the vertical axis can tie; the other terms and the
+// refined_front_back decision remain for such studies.
 struct FlipTermEntry {
   const char* name;
   std::unique_ptr<FlipTerm> (*read)(OptionReader& options, double weight);
   double default_weight;
 };
 const FlipTermEntry kFlipTerms[] = {
-    {"curvature", ReadCurvatureTerm, 1.0},
-    {"descriptor", ReadDescriptorTerm, 1.0},
-    {"refined_maps", ReadRefinedMapsTerm, 0.0},
-    {"orientation", ReadOrientationTerm, 1.0},
+    {"curvature", ReadCurvatureTerm, 0.0},
+    {"descriptor", ReadDescriptorTerm, 0.0},
+    {"refined_maps", ReadRefinedMapsTerm, 1.0},
+    {"orientation", ReadOrientationTerm, 0.0},
 };
 
 class ArgminDecision : public FlipDecision {
@@ -131,7 +135,7 @@ std::unique_ptr<FlipStage> ReadExtrinsicStage(OptionReader& o) {
   OptionReader d = o.Child("decide");
   std::vector<std::string> names;
   for (const FlipDecisionEntry& entry : kFlipDecisions) names.push_back(entry.name);
-  const std::string type = d.GetChoice("type", "refined_front_back", names);
+  const std::string type = d.GetChoice("type", "argmin", names);
   std::unique_ptr<FlipDecision> decision;
   for (const FlipDecisionEntry& entry : kFlipDecisions) {
     if (type == entry.name) decision = entry.read(d);

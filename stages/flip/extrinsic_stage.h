@@ -3,14 +3,18 @@
 //   type: extrinsic
 //   threads: 1
 //   terms:                                    # each term's weight 0 switches it off
-//     curvature:   {weight: 1, ...}           # the paper's scorer (term_curvature.h)
-//     descriptor:  {weight: 1, ...}           # wave kernel signature map (term_descriptor.h)
-//     orientation: {weight: 1, zoomout: {...}}  # refined candidates' orientation
+//     curvature:    {weight: 0, ...}          # the paper's scorer (term_curvature.h)
+//     descriptor:   {weight: 0, ...}          # wave kernel signature map (term_descriptor.h)
+//     refined_maps: {weight: 1, ...}          # refined candidates' distortion, curvature
+//                                             # disagreement and orientation
+//                                             # (term_refined_maps.h)
+//     orientation:  {weight: 0, zoomout: {...}}  # refined candidates' orientation
 //                                             # (term_orientation.h)
-//   decide: {type: refined_front_back, ...}   # or {type: argmin} (decide_refined.h)
+//   decide: {type: argmin}                    # or {type: refined_front_back, ...}
+//                                             # (decide_refined.h)
 // The terms are added in this order; a term of weight 0 is validated but neither prepared nor
-// computed, and at least one must be on. The paper's scorer alone is
-// terms.descriptor.weight 0, terms.orientation.weight 0 and decide.type argmin.
+// computed, and at least one must be on. The paper's scorer alone is terms.curvature.weight 1,
+// terms.refined_maps.weight 0 and decide.type argmin.
 // Per shape the stage prepares the Laplace-Beltrami basis the parts need (the largest
 // BasisSize()) and each term's data. Status message: "extrinsic scores [I, Rx, Ry, Rz]: ..."
 // followed by each term's values and the decision's.

@@ -47,18 +47,17 @@ std::string FlowText(const YAML::Node& node) {
 TEST(FlipTermOptions, DefaultsFillEveryNestedMap) {
   const std::string expected =
       "{type: extrinsic, threads: 1, terms: {"
-      "curvature: {weight: 1, local_weight: 1, global_weight: 1, chamfer_weight: 0, "
+      "curvature: {weight: 0, local_weight: 1, global_weight: 1, chamfer_weight: 0, "
       "profile_bins: 16, histogram_bins: 8, smoothing_rings: 2}, "
-      "descriptor: {weight: 1, k: 30, eigenpairs: 60, energies: 100, sigma: 7, mu: 0.01, "
+      "descriptor: {weight: 0, k: 30, eigenpairs: 60, energies: 100, sigma: 7, mu: 0.01, "
       "samples: 300, axes: 1}, "
-      "refined_maps: {weight: 0, zoomout: {k_start: 20, k_end: 60, step: 5, samples: 1000, "
+      "refined_maps: {weight: 1, zoomout: {k_start: 20, k_end: 60, step: 5, samples: 1000, "
       "target_samples: 1000}, sources: 40, targets: 200, distortion_weight: 0.5, "
       "disagreement_weight: 1, orientation_weight: 0.025, smoothing_rings: 2, "
       "normal_weight: 0.1}, "
-      "orientation: {weight: 1, zoomout: {k_start: 6, k_end: 60, step: 5, samples: 200, "
+      "orientation: {weight: 0, zoomout: {k_start: 6, k_end: 60, step: 5, samples: 200, "
       "target_samples: 1000}}}, "
-      "decide: {type: refined_front_back, margin: 0.05, normal_weight: 0.1, "
-      "zoomout: {k_start: 20, k_end: 60, step: 5, samples: 1000, target_samples: 1000}}}";
+      "decide: {type: argmin}}";
   EXPECT_EQ(FlowText(MakeStage("{type: extrinsic}")->resolved_options()),
             FlowText(YAML::Load(expected)));
   // A partial map keeps the defaults of the keys it does not set.
@@ -67,10 +66,11 @@ TEST(FlipTermOptions, DefaultsFillEveryNestedMap) {
           ->resolved_options();
   EXPECT_EQ(some["terms"]["orientation"]["zoomout"]["samples"].as<int>(), 300);
   EXPECT_EQ(some["terms"]["orientation"]["zoomout"]["k_start"].as<int>(), 6);
-  EXPECT_EQ(some["terms"]["orientation"]["weight"].as<double>(), 1.0);
-  EXPECT_EQ(FlowText(MakeStage("{type: extrinsic, decide: {type: argmin}}")
-                         ->resolved_options()["decide"]),
-            "{type: argmin}");
+  EXPECT_EQ(some["terms"]["orientation"]["weight"].as<double>(), 0.0);
+  const YAML::Node decide =
+      MakeStage("{type: extrinsic, decide: {type: refined_front_back}}")->resolved_options()["decide"];
+  EXPECT_EQ(decide["margin"].as<double>(), 0.05);
+  EXPECT_EQ(decide["zoomout"]["k_start"].as<int>(), 20);
 }
 
 TEST(FlipTermOptions, ErrorsNameFileLineAndPath) {
@@ -96,14 +96,14 @@ TEST(FlipTermOptions, ErrorsNameFileLineAndPath) {
                 "pipeline.flip.terms.orientation.weight: value -1 is out of range"},
            Case{"{type: extrinsic, terms: {orientation: {zoomout: {samples: 50}}}}",
                 "pipeline.flip.terms.orientation.zoomout: samples must be >= k_end (60), got 50"},
-           Case{"{type: extrinsic, decide: {zoomout: {k_start: 70}}}",
+           Case{"{type: extrinsic, decide: {type: refined_front_back, zoomout: {k_start: 70}}}",
                 "pipeline.flip.decide.zoomout: need 1 <= k_start <= k_end"},
            Case{"{type: extrinsic, terms: {curvature: {local_weight: 0, global_weight: 0}}}",
                 "pipeline.flip.terms.curvature: at least one of local_weight"},
-           Case{"{type: extrinsic, terms: {curvature: {weight: 0}, descriptor: {weight: 0}, "
-                "orientation: {weight: 0}}, decide: {type: argmin}}",
+           Case{"{type: extrinsic, terms: {refined_maps: {weight: 0}}}",
                 "pipeline.flip.terms: at least one term must have a weight > 0"},
-           Case{"{type: extrinsic, terms: {curvature: {weight: 0}}}",
+           Case{"{type: extrinsic, terms: {refined_maps: {weight: 0}, orientation: {weight: 1}}, "
+                "decide: {type: refined_front_back}}",
                 "pipeline.flip.decide.type: 'refined_front_back' compares the curvature "
                 "features, which the curvature and refined_maps terms prepare"},
            Case{"{type: extrinsic, orientation_weight: 0}",
@@ -125,7 +125,9 @@ TEST(FlipTermOptions, VariantAndCommandLineOverridesOfNestedPaths) {
       "name: t\n"
       "dataset: {format: synthetic}\n"
       "pipeline:\n"
-      "  flip: {type: extrinsic, decide: {type: refined_front_back, margin: 0.1}}\n"
+      "  flip: {type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, "
+      "refined_maps: {weight: 0}, orientation: {weight: 1}}, "
+      "decide: {type: refined_front_back, margin: 0.1}}\n"
       "variants:\n"
       "  - {name: no_orientation, set: {pipeline.flip.terms.orientation.weight: 0}}\n"
       "  - {name: argmin, set: {pipeline.flip.decide.type: argmin}}\n"
@@ -189,7 +191,7 @@ struct TermInputs {
 
   explicit TermInputs(int turn) : shapes(HumanoidPoses(1200)) {
     shapes[1].Y = shapes[1].Y * CandidateRotations()[turn];
-    const auto stage = MakeStage("{type: extrinsic}");
+    const auto stage = MakeStage(testing::kFormerDefault);
     for (ShapeData& shape : shapes) stage->PrepareShape(shape);
     gt = testing::IdentityGroundTruth(shapes[0].surface.NumVertices());
     maps = ComputeCandidateMaps(shapes[0].Y, shapes[1].Y);
@@ -399,15 +401,12 @@ TEST(ExtrinsicStage, GivesWhatTheOldFunctionsComposedGive) {
     OldStageOptions old;
   };
   const Case cases[] = {
-      {"{type: extrinsic}", {}},
-      {"{type: extrinsic, terms: {orientation: {weight: 0}}}", {0.0, 1.0, true}},
-      {"{type: extrinsic, terms: {descriptor: {weight: 0}}}", {1.0, 0.0, true}},
-      {"{type: extrinsic, decide: {type: argmin}}", {1.0, 1.0, false}},
-      {"{type: extrinsic, terms: {orientation: {weight: 0}, descriptor: {weight: 0}}, "
-       "decide: {type: argmin}}",
-       {0.0, 0.0, false}},
-      {"{type: extrinsic, terms: {orientation: {weight: 0.5}, descriptor: {weight: 2}}}",
-       {0.5, 2.0, true}},
+      {testing::kFormerDefault, {}},
+      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: refined_front_back}}", {0.0, 1.0, true}},
+      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back}}", {1.0, 0.0, true}},
+      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: argmin}}", {1.0, 1.0, false}},
+      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: argmin}}", {0.0, 0.0, false}},
+      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 2}, refined_maps: {weight: 0}, orientation: {weight: 0.5}}, decide: {type: refined_front_back}}", {0.5, 2.0, true}},
   };
   for (const int turn : {0, 2}) {
     const TermInputs in(turn);
@@ -428,8 +427,7 @@ TEST(ExtrinsicStage, TermOfWeightZeroIsNeitherPreparedNorComputed) {
   ShapeData shapes[2] = {testing::FlipShape("rest", testing::SymmetricFigure()),
                          testing::FlipShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2))};
   const auto stage = MakeStage(
-      "{type: extrinsic, terms: {descriptor: {weight: 0}, orientation: {weight: 0}}, "
-      "decide: {type: argmin}}");
+      "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: argmin}}");
   for (ShapeData& shape : shapes) {
     stage->PrepareShape(shape);
     // No basis, no signature products: the features only.
@@ -444,11 +442,11 @@ TEST(ExtrinsicStage, TermOfWeightZeroIsNeitherPreparedNorComputed) {
   // The descriptor term alone prepares its products, the orientation term a basis only.
   ShapeData shape = shapes[0];
   shape.aux.clear();
-  MakeStage("{type: extrinsic, terms: {orientation: {weight: 0}}, decide: {type: argmin}}")
+  MakeStage("{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: argmin}}")
       ->PrepareShape(shape);
   EXPECT_EQ(shape.aux.count("extrinsic_wks_P"), 1u);
   shape.aux.clear();
-  MakeStage("{type: extrinsic, terms: {descriptor: {weight: 0}}, decide: {type: argmin}}")
+  MakeStage("{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: argmin}}")
       ->PrepareShape(shape);
   EXPECT_EQ(shape.aux.count("extrinsic_wks_P"), 0u);
   EXPECT_EQ(GetLaplaceBasis(shape.aux).NumEigenpairs(), 60);

@@ -53,12 +53,12 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, FlipScorers,
-                         ::testing::Values("{type: extrinsic}",
-                                           "{type: extrinsic, terms: {orientation: {weight: 0}}}",
-                                           "{type: extrinsic, terms: {descriptor: {weight: 0}}}",
-                                           "{type: extrinsic, terms: {descriptor: {axes: 2}}}",
-                                           "{type: extrinsic, decide: {type: argmin}}",
-                                           "{type: extrinsic, decide: {margin: 0}}",
+                         ::testing::Values("{type: extrinsic}", testing::kFormerDefault,
+                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: refined_front_back}}",
+                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back}}",
+                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1, axes: 2}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back}}",
+                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: argmin}}",
+                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back, margin: 0}}",
                                            "{type: chamfer}", "{type: hks}", "{type: oracle}"));
 
 // The vertex of `surface` nearest to each vertex mirrored by x -> -x.
@@ -326,7 +326,7 @@ TEST(RefinedFlip, BadOptionsAndInputsFailClearly) {
   EXPECT_THROW(run(options, in.source, in.Fs.topRows(5)), InvalidInputError);
   Registry registry;
   RegisterBuiltinStages(registry);
-  for (const char* yaml : {"{type: extrinsic, decide: {margin: -1}}",
+  for (const char* yaml : {"{type: extrinsic, decide: {type: refined_front_back, margin: -1}}",
                            "{type: extrinsic, decide: {type: maybe}}",
                            "{type: extrinsic, refined_weight: 10}"}) {
     EXPECT_THROW(registry.CreateAs<FlipStage>("flip", YAML::Load(yaml), "t.yaml", "f"),

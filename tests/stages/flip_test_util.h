@@ -16,6 +16,13 @@
 
 namespace symembed::testing {
 
+// The `extrinsic` flip stage's terms and decision before refined_maps alone became its default:
+// curvature, descriptor and orientation terms and the refined front-back decision (the studies'
+// base flip stage).
+inline constexpr const char* kFormerDefault =
+    "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, "
+    "refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back}}";
+
 inline ShapeData FlipShape(const std::string& name, const Surface& surface) {
   ShapeData shape;
   shape.name = name;
