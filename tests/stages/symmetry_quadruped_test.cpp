@@ -17,34 +17,19 @@
 #include "registry/config.h"
 #include "registry/registry.h"
 #include "registry/shape_pipeline.h"
+#include "tests/stages/chain_test_util.h"
 
 namespace symembed {
 namespace {
-
-template <typename T>
-std::unique_ptr<T> Make(const Registry& r, const std::string& kind, const std::string& yaml) {
-  return r.CreateAs<T>(kind, YAML::Load(yaml), "test.yaml", "pipeline." + kind);
-}
 
 // SymmetryGroundTruthError of the canonical embedding of pose `pose` of the class, the stages
 // from sampling to symmetrize at their defaults but for the symmetry stage's `symmetry` YAML.
 double PlaneError(const SynthClass& cls, int pose, const std::string& symmetry,
                   std::string* message) {
-  Registry r;
-  RegisterBuiltinStages(r);
   const TrackedSurface& shape = cls.shapes[pose].shape;
-  const auto sampling = Make<SamplingStage>(r, "sampling", "{type: farthest_point}");
-  const auto geodesics = Make<GeodesicsStage>(r, "geodesics", "{type: dijkstra}");
-  const auto embedding = Make<EmbeddingStage>(r, "embedding", "{type: lsmds}");
-  const auto detect = Make<SymmetryStage>(r, "symmetry", symmetry);
-  const auto symmetrize = Make<SymmetrizeStage>(r, "symmetrize", "{type: ceres}");
-  const std::vector<int> samples = sampling->Run(shape.surface).samples;
-  const Eigen::MatrixXd D = geodesics->Prepare(shape.surface)->Distances(samples);
-  const EmbeddingResult e = embedding->Run(EmbeddingInput{shape.surface, samples, D});
-  const SymmetryInput input{shape.surface, samples, D, e};
-  const SymmetryResult s = detect->Run(input);
-  *message = s.status.message;
-  const Eigen::MatrixX3d Y = CanonicalFrame(symmetrize->Run(input, s).Y);
+  const ShapeData data = testing::RunDefaultShapeStages("pose", shape.surface, symmetry);
+  *message = data.symmetry.status.message;
+  const Eigen::MatrixX3d& Y = data.Y;
 
   std::vector<int> of_rest(cls.rest.surface.NumVertices(), -1);
   for (size_t v = 0; v < shape.rest_ids.size(); ++v) of_rest[shape.rest_ids[v]] = static_cast<int>(v);

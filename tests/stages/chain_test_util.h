@@ -1,0 +1,45 @@
+// The per-shape stages at their built-in defaults, run on one surface as the pipeline runs them
+// (sampling, geodesics, embedding, symmetry, symmetrize, canonical frame): for tests of what the
+// defaults give on generated shapes.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/canonical_frame.h"
+#include "registry/registry.h"
+
+namespace symembed::testing {
+
+template <typename T>
+std::unique_ptr<T> MakeStageAs(const Registry& r, const std::string& kind,
+                               const std::string& yaml) {
+  return r.CreateAs<T>(kind, YAML::Load(yaml), "test.yaml", "pipeline." + kind);
+}
+
+// ShapeData of `surface` (name, samples, embedding, symmetry, canonical Y) with every stage at
+// its defaults but the symmetry stage, given by its YAML. Throws what a stage throws.
+inline ShapeData RunDefaultShapeStages(const std::string& name, const Surface& surface,
+                                       const std::string& symmetry = "{type: plane2d}") {
+  Registry r;
+  RegisterBuiltinStages(r);
+  ShapeData shape;
+  shape.name = name;
+  shape.surface = surface;
+  shape.samples = MakeStageAs<SamplingStage>(r, "sampling", "{type: farthest_point}")
+                      ->Run(surface)
+                      .samples;
+  const Eigen::MatrixXd D = MakeStageAs<GeodesicsStage>(r, "geodesics", "{type: dijkstra}")
+                                ->Prepare(surface)
+                                ->Distances(shape.samples);
+  shape.embedding = MakeStageAs<EmbeddingStage>(r, "embedding", "{type: lsmds}")
+                        ->Run(EmbeddingInput{surface, shape.samples, D});
+  const SymmetryInput input{surface, shape.samples, D, shape.embedding};
+  shape.symmetry = MakeStageAs<SymmetryStage>(r, "symmetry", symmetry)->Run(input);
+  shape.Y = CanonicalFrame(
+      MakeStageAs<SymmetrizeStage>(r, "symmetrize", "{type: ceres}")->Run(input, shape.symmetry).Y);
+  return shape;
+}
+
+}  // namespace symembed::testing
