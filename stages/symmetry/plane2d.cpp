@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "core/errors.h"
@@ -113,6 +114,18 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
     c.origin = std::move(origin);
     return c;
   };
+  // The plane (normal, offset) refined in 3D for refine_3d_iterations, as a candidate; none when
+  // that refinement is off or rejects the plane. Adds its iterations to *iterations.
+  auto refined_in_3d = [&](const Eigen::VectorXd& normal, double offset, const std::string& origin,
+                           int* iterations) -> std::optional<Candidate> {
+    if (options.refine_3d_iterations <= 0) return std::nullopt;
+    ReflectionSearchOptions o = options.search;
+    o.max_iterations = options.refine_3d_iterations;
+    const ReflectionFit fit3 = RefineReflection(P, index3, normal, offset, o);
+    *iterations += fit3.iterations;
+    if (!std::isfinite(fit3.score)) return std::nullopt;
+    return from_fit_3d(fit3, intrinsic(fit3.sigma), origin + ", refined in 3D");
+  };
   std::vector<Candidate> candidates;
   auto consider = [&](Candidate c) {
     c.total = c.score + options.intrinsic_weight * c.intrinsic;
@@ -144,20 +157,10 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
         std::ostringstream origin;
         origin << "2D line from " << angle * 180.0 / M_PI << " deg";
         lifted.origin = origin.str();
-        const Eigen::VectorXd n3 = lifted.normal;
-        const double c3 = lifted.offset;
+        std::optional<Candidate> refined =
+            refined_in_3d(lifted.normal, lifted.offset, lifted.origin, &angle_iterations[k]);
         per_angle[k].push_back(std::move(lifted));
-        // The lifted plane refined in 3D.
-        if (options.refine_3d_iterations > 0) {
-          ReflectionSearchOptions o = options.search;
-          o.max_iterations = options.refine_3d_iterations;
-          const ReflectionFit fit3 = RefineReflection(P, index3, n3, c3, o);
-          angle_iterations[k] += fit3.iterations;
-          if (std::isfinite(fit3.score)) {
-            per_angle[k].push_back(
-                from_fit_3d(fit3, intrinsic(fit3.sigma), origin.str() + ", refined in 3D"));
-          }
-        }
+        if (refined) per_angle[k].push_back(std::move(*refined));
       },
       options.threads);
   int iterations = 0;
@@ -211,15 +214,8 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
       // The sign-flip self map is coarse (nearest neighbours in a few eigenfunctions); the
       // lifted plane refined in 3D gives the same symmetry's self map point by point where the
       // 3D embedding has it, and another symmetry, which the criterion then weighs, where not.
-      if (options.refine_3d_iterations > 0) {
-        ReflectionSearchOptions o = options.search;
-        o.max_iterations = options.refine_3d_iterations;
-        const ReflectionFit fit3 = RefineReflection(P, index3, c.normal, c.offset, o);
-        iterations += fit3.iterations;
-        if (std::isfinite(fit3.score)) {
-          consider(from_fit_3d(fit3, intrinsic(fit3.sigma), c.origin + ", refined in 3D"));
-        }
-      }
+      std::optional<Candidate> refined = refined_in_3d(c.normal, c.offset, c.origin, &iterations);
+      if (refined) consider(std::move(*refined));
       consider(std::move(c));
     }
     for (Candidate& c : candidates) {

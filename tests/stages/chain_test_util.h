@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/canonical_frame.h"
+#include "eval/synthetic/synthetic.h"
 #include "registry/registry.h"
 
 namespace symembed::testing {
@@ -40,6 +41,13 @@ inline ShapeData RunDefaultShapeStages(const std::string& name, const Surface& s
   shape.Y = CanonicalFrame(
       MakeStageAs<SymmetrizeStage>(r, "symmetrize", "{type: ceres}")->Run(input, shape.symmetry).Y);
   return shape;
+}
+
+// The vertex id of each rest vertex in a generated shape (-1 where it was cut away).
+inline std::vector<int> VertexOfRest(const TrackedSurface& shape, int rest_vertices) {
+  std::vector<int> of_rest(rest_vertices, -1);
+  for (size_t v = 0; v < shape.rest_ids.size(); ++v) of_rest[shape.rest_ids[v]] = static_cast<int>(v);
+  return of_rest;
 }
 
 }  // namespace symembed::testing

@@ -26,9 +26,8 @@ TEST(FlipDefault, RefinedMapsKeepTheFrontOfAStretchedHumanoidWhereTheFormerTerms
   ShapeData source = testing::RunDefaultShapeStages("humanoid0", cls.shapes[0].shape.surface);
   ShapeData target = testing::RunDefaultShapeStages("humanoid8", cls.shapes[8].shape.surface);
   // Ground truth: the generator's rest vertex ids.
-  std::vector<int> of_rest(cls.rest.surface.NumVertices(), -1);
-  const std::vector<int>& target_rest = cls.shapes[8].shape.rest_ids;
-  for (size_t v = 0; v < target_rest.size(); ++v) of_rest[target_rest[v]] = static_cast<int>(v);
+  const std::vector<int> of_rest =
+      testing::VertexOfRest(cls.shapes[8].shape, cls.rest.surface.NumVertices());
   PairGroundTruth gt;
   const std::vector<int>& source_rest = cls.shapes[0].shape.rest_ids;
   for (size_t v = 0; v < source_rest.size(); ++v) {

@@ -67,8 +67,8 @@ TEST(FlipTermOptions, DefaultsFillEveryNestedMap) {
   EXPECT_EQ(some["terms"]["orientation"]["zoomout"]["samples"].as<int>(), 300);
   EXPECT_EQ(some["terms"]["orientation"]["zoomout"]["k_start"].as<int>(), 6);
   EXPECT_EQ(some["terms"]["orientation"]["weight"].as<double>(), 0.0);
-  const YAML::Node decide =
-      MakeStage("{type: extrinsic, decide: {type: refined_front_back}}")->resolved_options()["decide"];
+  const YAML::Node decide = MakeStage("{type: extrinsic, decide: {type: refined_front_back}}")
+                                ->resolved_options()["decide"];
   EXPECT_EQ(decide["margin"].as<double>(), 0.05);
   EXPECT_EQ(decide["zoomout"]["k_start"].as<int>(), 20);
 }
@@ -397,16 +397,16 @@ FlipResult OldExtrinsicRun(const PairInput& pair, const OldStageOptions& o) {
 
 TEST(ExtrinsicStage, GivesWhatTheOldFunctionsComposedGive) {
   struct Case {
-    const char* yaml;
+    std::string yaml;
     OldStageOptions old;
   };
   const Case cases[] = {
       {testing::kFormerDefault, {}},
-      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: refined_front_back}}", {0.0, 1.0, true}},
-      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back}}", {1.0, 0.0, true}},
-      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: argmin}}", {1.0, 1.0, false}},
-      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: argmin}}", {0.0, 0.0, false}},
-      {"{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 2}, refined_maps: {weight: 0}, orientation: {weight: 0.5}}, decide: {type: refined_front_back}}", {0.5, 2.0, true}},
+      {testing::FormerTerms(1, 0), {0.0, 1.0, true}},
+      {testing::FormerTerms(0, 1), {1.0, 0.0, true}},
+      {testing::FormerTerms(1, 1, "{type: argmin}"), {1.0, 1.0, false}},
+      {testing::FormerTerms(0, 0, "{type: argmin}"), {0.0, 0.0, false}},
+      {testing::FormerTerms(2, 0.5), {0.5, 2.0, true}},
   };
   for (const int turn : {0, 2}) {
     const TermInputs in(turn);
@@ -426,8 +426,7 @@ TEST(ExtrinsicStage, GivesWhatTheOldFunctionsComposedGive) {
 TEST(ExtrinsicStage, TermOfWeightZeroIsNeitherPreparedNorComputed) {
   ShapeData shapes[2] = {testing::FlipShape("rest", testing::SymmetricFigure()),
                          testing::FlipShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2))};
-  const auto stage = MakeStage(
-      "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: argmin}}");
+  const auto stage = MakeStage(testing::FormerTerms(0, 0, "{type: argmin}"));
   for (ShapeData& shape : shapes) {
     stage->PrepareShape(shape);
     // No basis, no signature products: the features only.
@@ -442,12 +441,10 @@ TEST(ExtrinsicStage, TermOfWeightZeroIsNeitherPreparedNorComputed) {
   // The descriptor term alone prepares its products, the orientation term a basis only.
   ShapeData shape = shapes[0];
   shape.aux.clear();
-  MakeStage("{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: argmin}}")
-      ->PrepareShape(shape);
+  MakeStage(testing::FormerTerms(1, 0, "{type: argmin}"))->PrepareShape(shape);
   EXPECT_EQ(shape.aux.count("extrinsic_wks_P"), 1u);
   shape.aux.clear();
-  MakeStage("{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: argmin}}")
-      ->PrepareShape(shape);
+  MakeStage(testing::FormerTerms(0, 1, "{type: argmin}"))->PrepareShape(shape);
   EXPECT_EQ(shape.aux.count("extrinsic_wks_P"), 0u);
   EXPECT_EQ(GetLaplaceBasis(shape.aux).NumEigenpairs(), 60);
 }

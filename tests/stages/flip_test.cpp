@@ -54,11 +54,13 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
 
 INSTANTIATE_TEST_SUITE_P(All, FlipScorers,
                          ::testing::Values("{type: extrinsic}", testing::kFormerDefault,
-                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 0}}, decide: {type: refined_front_back}}",
-                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 0}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back}}",
-                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1, axes: 2}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back}}",
-                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: argmin}}",
-                                           "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back, margin: 0}}",
+                                           testing::FormerTerms(1, 0),
+                                           testing::FormerTerms(0, 1),
+                                           testing::FormerTerms(1, 1, "{type: refined_front_back}",
+                                                                ", axes: 2"),
+                                           testing::FormerTerms(1, 1, "{type: argmin}"),
+                                           testing::FormerTerms(1, 1,
+                                                                "{type: refined_front_back, margin: 0}"),
                                            "{type: chamfer}", "{type: hks}", "{type: oracle}"));
 
 // The vertex of `surface` nearest to each vertex mirrored by x -> -x.

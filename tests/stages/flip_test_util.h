@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <sstream>
 #include <string>
 
 #include "core/canonical_frame.h"
@@ -16,12 +17,22 @@
 
 namespace symembed::testing {
 
-// The `extrinsic` flip stage's terms and decision before refined_maps alone became its default:
-// curvature, descriptor and orientation terms and the refined front-back decision (the studies'
-// base flip stage).
-inline constexpr const char* kFormerDefault =
-    "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: 1}, "
-    "refined_maps: {weight: 0}, orientation: {weight: 1}}, decide: {type: refined_front_back}}";
+// The `extrinsic` flip stage with the terms of its former default (curvature weight 1, descriptor
+// and orientation at the weights given, refined_maps off) and the decision `decide` (a YAML map);
+// descriptor_options: further keys of the descriptor term (", axes: 2").
+inline std::string FormerTerms(double descriptor, double orientation,
+                               const std::string& decide = "{type: refined_front_back}",
+                               const std::string& descriptor_options = "") {
+  std::ostringstream yaml;
+  yaml << "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: " << descriptor
+       << descriptor_options << "}, refined_maps: {weight: 0}, orientation: {weight: "
+       << orientation << "}}, decide: " << decide << "}";
+  return yaml.str();
+}
+
+// The stage's former default: those terms at weight 1 and the refined front-back decision (the
+// studies' base flip stage).
+inline const std::string kFormerDefault = FormerTerms(1, 1);
 
 inline ShapeData FlipShape(const std::string& name, const Surface& surface) {
   ShapeData shape;

@@ -12,28 +12,26 @@
 #include "registry/config.h"
 #include "registry/pair_pipeline.h"
 #include "registry/registry.h"
+#include "tests/stages/chain_test_util.h"
 
 namespace symembed {
 namespace {
 
+using testing::MakeStageAs;
+
 // The stages from sampling to matching of a Pipeline (the others stay empty).
 using Chain = Pipeline;
-
-template <typename T>
-std::unique_ptr<T> Make(const Registry& r, const std::string& kind, const std::string& yaml) {
-  return r.CreateAs<T>(kind, YAML::Load(yaml), "test.yaml", "pipeline." + kind);
-}
 
 Chain MakeChain(const Registry& r, const std::string& symmetry, const std::string& symmetrize,
                 const std::string& flip) {
   Chain c;
-  c.sampling = Make<SamplingStage>(r, "sampling", "{type: farthest_point, count: 300, seed: 1}");
-  c.geodesics = Make<GeodesicsStage>(r, "geodesics", "{type: dijkstra}");
-  c.embedding = Make<EmbeddingStage>(r, "embedding", "{type: lsmds}");
-  c.symmetry = Make<SymmetryStage>(r, "symmetry", "{type: " + symmetry + "}");
-  c.symmetrize = Make<SymmetrizeStage>(r, "symmetrize", symmetrize[0] == '{' ? symmetrize : "{type: " + symmetrize + "}");
-  c.flip = Make<FlipStage>(r, "flip", "{type: " + flip + "}");
-  c.matching = Make<MatchingStage>(r, "matching", "{type: nearest}");
+  c.sampling = MakeStageAs<SamplingStage>(r, "sampling", "{type: farthest_point, count: 300, seed: 1}");
+  c.geodesics = MakeStageAs<GeodesicsStage>(r, "geodesics", "{type: dijkstra}");
+  c.embedding = MakeStageAs<EmbeddingStage>(r, "embedding", "{type: lsmds}");
+  c.symmetry = MakeStageAs<SymmetryStage>(r, "symmetry", "{type: " + symmetry + "}");
+  c.symmetrize = MakeStageAs<SymmetrizeStage>(r, "symmetrize", symmetrize[0] == '{' ? symmetrize : "{type: " + symmetrize + "}");
+  c.flip = MakeStageAs<FlipStage>(r, "flip", "{type: " + flip + "}");
+  c.matching = MakeStageAs<MatchingStage>(r, "matching", "{type: nearest}");
   return c;
 }
 
@@ -79,8 +77,7 @@ PairErrors RunPair(FigureKind kind, const std::string& symmetry, const std::stri
       Eigen::AngleAxisd(2.1, Eigen::Vector3d(0.3, -1.0, 0.6).normalized()).toRotationMatrix();
   b.surface.V = (b.surface.V * R.transpose()).rowwise() + Eigen::RowVector3d(0.4, 1.5, -0.7);
 
-  std::vector<int> target_of_rest(cls.rest.surface.NumVertices(), -1);
-  for (size_t v = 0; v < b.rest_ids.size(); ++v) target_of_rest[b.rest_ids[v]] = static_cast<int>(v);
+  const std::vector<int> target_of_rest = testing::VertexOfRest(b, cls.rest.surface.NumVertices());
   std::vector<std::pair<int, int>> direct, mirrored;
   for (size_t v = 0; v < a.rest_ids.size(); ++v) {
     const int r = a.rest_ids[v];
@@ -99,7 +96,7 @@ PairErrors RunPair(FigureKind kind, const std::string& symmetry, const std::stri
     gt.source_ids.push_back(s);
     gt.target_ids.push_back(t);
   }
-  const auto oracle = Make<FlipStage>(registry, "flip", "{type: oracle}");
+  const auto oracle = MakeStageAs<FlipStage>(registry, "flip", "{type: oracle}");
   PairErrors e;
   e.oracle = oracle->Run(PairInput{source, target, &gt}).chosen;
   e.chosen = chain.flip->Run(PairInput{source, target, &gt}).chosen;

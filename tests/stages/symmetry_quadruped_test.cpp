@@ -8,14 +8,10 @@
 // have said of the plane chosen by distances.
 #include <gtest/gtest.h>
 
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "core/canonical_frame.h"
 #include "eval/synthetic/synthetic.h"
-#include "registry/config.h"
-#include "registry/registry.h"
 #include "registry/shape_pipeline.h"
 #include "tests/stages/chain_test_util.h"
 
@@ -31,8 +27,7 @@ double PlaneError(const SynthClass& cls, int pose, const std::string& symmetry,
   *message = data.symmetry.status.message;
   const Eigen::MatrixX3d& Y = data.Y;
 
-  std::vector<int> of_rest(cls.rest.surface.NumVertices(), -1);
-  for (size_t v = 0; v < shape.rest_ids.size(); ++v) of_rest[shape.rest_ids[v]] = static_cast<int>(v);
+  const std::vector<int> of_rest = testing::VertexOfRest(shape, cls.rest.surface.NumVertices());
   std::vector<int> ids, sym_ids;
   for (size_t v = 0; v < shape.rest_ids.size(); ++v) {
     const int mirror = of_rest[cls.rest.mirror[shape.rest_ids[v]]];
