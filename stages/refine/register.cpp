@@ -1,5 +1,5 @@
-// The refine stages: thin adapters around ZoomOut and FunctionalMapIcp. Each computes the
-// Laplace-Beltrami basis of a shape once, in PrepareShape, into ShapeData::aux (keys of
+// The refine stages: thin adapters around ZoomOut, DiscreteOpt and FunctionalMapIcp. Each computes
+// the Laplace-Beltrami basis of a shape once, in PrepareShape, into ShapeData::aux (keys of
 // core/spectral.h, shared with the `hks` flip scorer).
 #include "stages/register.h"
 
@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/spectral.h"
+#include "stages/refine/discrete_opt.h"
 #include "stages/refine/fmap_icp.h"
 #include "stages/refine/functional_map.h"
 #include "stages/refine/zoomout.h"
@@ -35,6 +36,23 @@ void PrepareBasis(ShapeData& shape, int k) {
 
 std::string BasisNote(bool computed) {
   return computed ? " (basis computed per pair: PrepareShape was not called)" : "";
+}
+
+// `count` vertices with area: the prefix of the shape's farthest-point samples when there are
+// enough of them, else Euclidean farthest points; none (every vertex) when count is 0 or not
+// less than the vertex count.
+std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis, int count) {
+  const int n = shape.surface.NumVertices();
+  if (count == 0 || count >= n) return {};
+  std::vector<bool> keep(n);
+  for (int i = 0; i < n; ++i) keep[i] = basis.mass(i) > 0.0;
+  std::vector<int> prefix;
+  for (int id : shape.samples) {
+    if (static_cast<int>(prefix.size()) == count) break;
+    if (id >= 0 && id < n && keep[id]) prefix.push_back(id);
+  }
+  if (static_cast<int>(prefix.size()) == count) return prefix;
+  return EuclideanFarthestPoints(shape.surface.V, count, keep);
 }
 
 class NoRefine : public RefineStage {
@@ -70,23 +88,6 @@ class ZoomOutRefine : public RefineStage {
   }
 
  private:
-  // `count` vertices with area: the prefix of the shape's farthest-point samples when there are
-  // enough of them, else Euclidean farthest points; none (every vertex) when count is 0 or not
-  // less than the vertex count.
-  static std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis, int count) {
-    const int n = shape.surface.NumVertices();
-    if (count == 0 || count >= n) return {};
-    std::vector<bool> keep(n);
-    for (int i = 0; i < n; ++i) keep[i] = basis.mass(i) > 0.0;
-    std::vector<int> prefix;
-    for (int id : shape.samples) {
-      if (static_cast<int>(prefix.size()) == count) break;
-      if (id >= 0 && id < n && keep[id]) prefix.push_back(id);
-    }
-    if (static_cast<int>(prefix.size()) == count) return prefix;
-    return EuclideanFarthestPoints(shape.surface.V, count, keep);
-  }
-
   ZoomOutOptions options_;
   int sample_count_;
   int target_sample_count_;
@@ -111,6 +112,60 @@ class IcpRefine : public RefineStage {
   FunctionalMapIcpOptions options_;
 };
 
+class DiscreteRefine : public RefineStage {
+ public:
+  DiscreteRefine(const DiscreteOptOptions& options, int sample_count)
+      : options_(options), sample_count_(sample_count) {}
+
+  void PrepareShape(ShapeData& shape) const override { PrepareBasis(shape, options_.k_end); }
+
+  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
+    bool computed = false;
+    const LaplaceBasis source = ShapeBasis(pair.source, options_.k_end, &computed);
+    const LaplaceBasis target = ShapeBasis(pair.target, options_.k_end, &computed);
+    std::vector<int> samples, target_samples;
+    if (sample_count_ > 0) {
+      samples = SamplesOrAll(pair.source, source);
+      target_samples = SamplesOrAll(pair.target, target);
+    }
+    DiscreteOptResult r =
+        DiscreteOpt(source, target, initial_map, samples, target_samples, options_);
+    r.status.message += BasisNote(computed);
+    return MatchResult{std::move(r.map), std::move(r.status)};
+  }
+
+ private:
+  // Samples of a shape, or every vertex with area when it has no more than sample_count_.
+  std::vector<int> SamplesOrAll(const ShapeData& shape, const LaplaceBasis& basis) const {
+    std::vector<int> ids = Samples(shape, basis, sample_count_);
+    if (ids.empty()) {
+      for (int i = 0; i < basis.NumVertices(); ++i) {
+        if (basis.mass(i) > 0.0) ids.push_back(i);
+      }
+    }
+    return ids;
+  }
+
+  DiscreteOptOptions options_;
+  int sample_count_;
+};
+
+// The basis sizes of a schedule grown like ZoomOut's: k_start, k_end and step.
+template <typename Options>
+void ReadBasisSizes(OptionReader& reader, Options* options) {
+  options->k_start = reader.GetInt("k_start", options->k_start, 1, 1000);
+  options->k_end = reader.GetInt("k_end", options->k_end, 1, 1000);
+  options->step = reader.GetInt("step", options->step, 1, 1000);
+}
+
+// A sample must determine k_end coefficients.
+void CheckSampleCount(OptionReader& reader, const std::string& key, int count, int k_end) {
+  if (count > 0 && count < k_end) {
+    reader.Fail(key, "must be 0 (every vertex) or >= k_end (" + std::to_string(k_end) + "), got " +
+                         std::to_string(count));
+  }
+}
+
 // Samples of each shape the zoomout stage iterates on unless the config says otherwise (k_end is
 // at most 1,000, so they determine the last functional map).
 constexpr int kDefaultSamples = 1000;
@@ -127,9 +182,7 @@ void RegisterRefineStages(Registry& registry) {
       "Spectra",
       [](OptionReader& reader) -> std::unique_ptr<Stage> {
         ZoomOutOptions options;
-        options.k_start = reader.GetInt("k_start", options.k_start, 1, 1000);
-        options.k_end = reader.GetInt("k_end", options.k_end, 1, 1000);
-        options.step = reader.GetInt("step", options.step, 1, 1000);
+        ReadBasisSizes(reader, &options);
         // By default ZoomOut also runs from k = 5, 10 and 15 and keeps the run with the lowest
         // residual: a single start at k_start leaves regions that the initial map sends to the
         // wrong part of the target where they are, and which start recovers them depends on the
@@ -146,20 +199,39 @@ void RegisterRefineStages(Registry& registry) {
             reader.GetInt("target_sample_count", sample_count == 0 ? 0 : kDefaultSamples, 0);
         std::string error;
         if (!options.IsValid(&error)) reader.Fail("", error);
-        // A sample must determine k_end coefficients.
-        for (const auto& [key, count] : {std::pair<std::string, int>{"sample_count", sample_count},
-                                         {"target_sample_count", target_sample_count}}) {
-          if (count > 0 && count < options.k_end) {
-            reader.Fail(key, "must be 0 (every vertex) or >= k_end (" +
-                                 std::to_string(options.k_end) + "), got " +
-                                 std::to_string(count));
-          }
-        }
+        CheckSampleCount(reader, "sample_count", sample_count, options.k_end);
+        CheckSampleCount(reader, "target_sample_count", target_sample_count, options.k_end);
         if (target_sample_count > 0 && sample_count == 0) {
           reader.Fail("target_sample_count",
                       "needs sample_count (the dense variant maps onto every target vertex)");
         }
         return std::make_unique<ZoomOutRefine>(options, sample_count, target_sample_count);
+      });
+  registry.Add(
+      "refine", "discrete",
+      "discrete optimisation of point and functional maps in both directions (orthogonality, "
+      "bijectivity, properness, Laplacian commutativity, descriptors) grown over basis sizes "
+      "[Ren et al. 2021]",
+      [](OptionReader& reader) -> std::unique_ptr<Stage> {
+        DiscreteOptOptions options;
+        ReadBasisSizes(reader, &options);
+        options.descriptors = reader.GetInt("descriptors", options.descriptors, 1, 1000);
+        options.sample_candidates =
+            reader.GetChoice("candidates", "samples", {"samples", "vertices"}) == "samples";
+        OptionReader w = reader.Child("weights");
+        DiscreteOptWeights& weights = options.weights;
+        weights.orthogonality = w.GetDouble("orthogonality", weights.orthogonality, 0.0);
+        weights.bijectivity = w.GetDouble("bijectivity", weights.bijectivity, 0.0);
+        weights.proper = w.GetDouble("proper", weights.proper, 0.0);
+        weights.laplacian = w.GetDouble("laplacian", weights.laplacian, 0.0);
+        weights.descriptor = w.GetDouble("descriptor", weights.descriptor, 0.0);
+        w.Finish();
+        reader.AdoptChild("weights", w);
+        const int sample_count = reader.GetInt("sample_count", kDefaultSamples, 0);
+        std::string error;
+        if (!options.IsValid(&error)) reader.Fail("", error);
+        CheckSampleCount(reader, "sample_count", sample_count, options.k_end);
+        return std::make_unique<DiscreteRefine>(options, sample_count);
       });
   registry.Add("refine", "icp",
                "functional-map ICP at a fixed basis size [Ovsjanikov et al. 2012] (baseline)",

@@ -160,8 +160,9 @@ void BM_NearestKernel(benchmark::State& state, NearestIsa isa) {
     benchmark::DoNotOptimize(nearest.data());
   }
   // Multiply-adds per second (one per dimension per query-point pair).
-  state.counters["madd_per_s"] = benchmark::Counter(
-      static_cast<double>(source.rows()) * target.rows() * k, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["madd_per_s"] =
+      benchmark::Counter(static_cast<double>(source.rows()) * target.rows() * k,
+                         benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK_CAPTURE(BM_NearestKernel, avx512, NearestIsa::kAvx512)
     ->Arg(20)
@@ -201,11 +202,18 @@ const std::vector<std::pair<std::string, std::string>>& Variants() {
       {"none", "{type: none}"},
       {"icp_k50", "{type: icp}"},
       {"zoomout_dense", "{type: zoomout, sample_count: 0, extra_k_starts: []}"},
-      {"zoomout_s500", "{type: zoomout, sample_count: 500, target_sample_count: 0, extra_k_starts: []}"},
-      {"zoomout_s1000", "{type: zoomout, sample_count: 1000, target_sample_count: 0, extra_k_starts: []}"},
-      {"zoomout_s1000_t1000", "{type: zoomout, sample_count: 1000, target_sample_count: 1000, extra_k_starts: []}"},
-      {"zoomout_starts", "{type: zoomout, sample_count: 1000, target_sample_count: 1000, "
-                         "extra_k_starts: [10, 15]}"},
+      {"zoomout_s500",
+       "{type: zoomout, sample_count: 500, target_sample_count: 0, extra_k_starts: []}"},
+      {"zoomout_s1000",
+       "{type: zoomout, sample_count: 1000, target_sample_count: 0, extra_k_starts: []}"},
+      {"zoomout_s1000_t1000",
+       "{type: zoomout, sample_count: 1000, target_sample_count: 1000, extra_k_starts: []}"},
+      {"zoomout_starts",
+       "{type: zoomout, sample_count: 1000, target_sample_count: 1000, "
+       "extra_k_starts: [10, 15]}"},
+      {"zoomout", "{type: zoomout}"},
+      {"discrete", "{type: discrete}"},
+      {"discrete_vertices", "{type: discrete, candidates: vertices}"},
   };
   return variants;
 }

@@ -21,9 +21,8 @@ class DummySampling : public SamplingStage {
 };
 
 Registry::Factory DummyFactory() {
-  return [](OptionReader& o) {
-    return std::make_unique<DummySampling>(o.GetInt("count", 3, 1, 100));
-  };
+  return
+      [](OptionReader& o) { return std::make_unique<DummySampling>(o.GetInt("count", 3, 1, 100)); };
 }
 
 TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
@@ -52,6 +51,7 @@ TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
       "matching/nearest",
       "matching/nearest_scaled",
       "preprocess/standard",
+      "refine/discrete",
       "refine/icp",
       "refine/none",
       "refine/zoomout",

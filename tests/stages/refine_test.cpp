@@ -16,64 +16,16 @@
 #include "stages/refine/functional_map.h"
 #include "stages/refine/spectral_knn.h"
 #include "stages/refine/zoomout.h"
+#include "tests/stages/refine_test_util.h"
 #include "tests/test_util.h"
 
 namespace symembed {
 namespace {
 
-struct Pair {
-  ShapeData source, target;
-  std::vector<int> truth;  // source vertex -> target vertex
-};
-
-Pair MakePair(int n, double twist) {
-  Pair p;
-  p.source.name = "blob";
-  p.source.surface = testing::BumpyBlob(n, 3);
-  p.target.name = "twisted";
-  p.target.surface = testing::TwistedShuffledCopy(p.source.surface, twist, 5, &p.truth);
-  return p;
-}
-
-// Mean Euclidean distance on the target between mapped and true vertices / sqrt(area): the
-// benchmark's error measure with Euclidean for geodesic distance (equal at these small errors).
-double MeanError(const Pair& p, const std::vector<int>& map) {
-  const Surface& t = p.target.surface;
-  double sum = 0.0;
-  for (size_t i = 0; i < map.size(); ++i) sum += (t.V.row(map[i]) - t.V.row(p.truth[i])).norm();
-  return sum / map.size() / std::sqrt(TotalArea(t));
-}
-
-// The ground truth with `fraction` of its entries replaced by a random target vertex within
-// `rings` edge rings of the true one (seeded).
-std::vector<int> PerturbedTruth(const Pair& p, double fraction, int rings, unsigned seed) {
-  const Surface& t = p.target.surface;
-  std::vector<std::set<int>> adjacent(t.NumVertices());
-  for (int f = 0; f < t.NumFaces(); ++f) {
-    for (int k = 0; k < 3; ++k) adjacent[t.F(f, k)].insert(t.F(f, (k + 1) % 3));
-    for (int k = 0; k < 3; ++k) adjacent[t.F(f, (k + 1) % 3)].insert(t.F(f, k));
-  }
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::vector<int> map = p.truth;
-  for (int& m : map) {
-    if (uniform(rng) >= fraction) continue;
-    std::set<int> ball = {m}, frontier = {m};
-    for (int r = 0; r < rings; ++r) {
-      std::set<int> next;
-      for (int v : frontier) {
-        for (int w : adjacent[v]) {
-          if (ball.insert(w).second) next.insert(w);
-        }
-      }
-      frontier = next;
-    }
-    ball.erase(m);
-    std::vector<int> choices(ball.begin(), ball.end());
-    m = choices[std::uniform_int_distribution<int>(0, choices.size() - 1)(rng)];
-  }
-  return map;
-}
+using testing::MakePair;
+using testing::MeanError;
+using testing::Pair;
+using testing::PerturbedTruth;
 
 std::unique_ptr<RefineStage> MakeStage(const std::string& yaml) {
   Registry registry;
@@ -144,16 +96,16 @@ TEST_F(RefineTest, StepsOnGatheredRowsEqualTheGatheringOnes) {
   const Eigen::MatrixXd C = FitFunctionalMap(in.s.evecs.leftCols(k), in.t.evecs.leftCols(k),
                                              in.samples, sample_targets, ones);
   const Eigen::MatrixXd source_rows = BasisRows(in.s.evecs, in.samples);
-  EXPECT_EQ(FitFunctionalMapFromRows(source_rows.leftCols(k),
-                                     BasisRows(in.t.evecs, sample_targets, k),
-                                     Eigen::VectorXd::Ones(in.samples.size())),
-            C);
+  EXPECT_EQ(
+      FitFunctionalMapFromRows(source_rows.leftCols(k), BasisRows(in.t.evecs, sample_targets, k),
+                               Eigen::VectorXd::Ones(in.samples.size())),
+      C);
   std::vector<double> sq, sq_rows;
   const std::vector<int> map = PointMapFromFunctionalMap(in.s.evecs, in.t.evecs, in.t.mass, C,
                                                          in.samples, &sq, in.target_samples);
   const std::vector<int> matchable = MatchableTargets(in.t.mass, in.target_samples);
-  EXPECT_EQ(NearestUnderMap(source_rows.leftCols(k), BasisRows(in.t.evecs, matchable, k),
-                            matchable, C, &sq_rows),
+  EXPECT_EQ(NearestUnderMap(source_rows.leftCols(k), BasisRows(in.t.evecs, matchable, k), matchable,
+                            C, &sq_rows),
             map);
   EXPECT_EQ(sq_rows, sq);
   // Bad ids are named.
@@ -231,18 +183,18 @@ TEST_F(RefineTest, ZoomOutSetupRefinesSeveralMapsAsTheStepsWrittenOutDo) {
   options.k_end = 60;
   options.dense_result = false;
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(s.NumVertices());
-  const Eigen::MatrixXd gram =
-      WeightedGram(BasisRows(s.evecs, samples, options.k_end), Eigen::VectorXd::Ones(samples.size()));
+  const Eigen::MatrixXd gram = WeightedGram(BasisRows(s.evecs, samples, options.k_end),
+                                            Eigen::VectorXd::Ones(samples.size()));
   auto written_out = [&](const std::vector<int>& initial) {
     std::vector<int> current(samples.size());
     for (size_t r = 0; r < samples.size(); ++r) current[r] = initial[samples[r]];
     std::vector<double> residuals;
     for (int k = options.k_start; k <= options.k_end; k += options.step) {
-      const Eigen::MatrixXd C = FitFunctionalMap(s.evecs.leftCols(k), t.evecs.leftCols(k),
-                                                 samples, current, ones, &gram);
+      const Eigen::MatrixXd C =
+          FitFunctionalMap(s.evecs.leftCols(k), t.evecs.leftCols(k), samples, current, ones, &gram);
       std::vector<double> sq;
-      current = PointMapFromFunctionalMap(s.evecs, t.evecs, t.mass, C, samples, &sq,
-                                          target_samples);
+      current =
+          PointMapFromFunctionalMap(s.evecs, t.evecs, t.mass, C, samples, &sq, target_samples);
       double sum = 0.0;
       for (const double d : sq) sum += d;
       residuals.push_back(sum / sq.size());
@@ -321,10 +273,10 @@ TEST_F(RefineTest, ZoomOutFromSeveralStartsKeepsTheRunWithTheLowestResidual) {
 
 TEST_F(RefineTest, ZoomOutStageWithStartsAndTargetSamplesLowersTheError) {
   const std::vector<int> noisy = PerturbedTruth(*pair_, 0.5, 3, 7);
-  const MatchResult r =
-      MakeStage("{type: zoomout, k_start: 10, k_end: 60, extra_k_starts: [5, 20], "
-                "sample_count: 400, target_sample_count: 800}")
-          ->Run({pair_->source, pair_->target}, noisy);
+  const MatchResult r = MakeStage(
+                            "{type: zoomout, k_start: 10, k_end: 60, extra_k_starts: [5, 20], "
+                            "sample_count: 400, target_sample_count: 800}")
+                            ->Run({pair_->source, pair_->target}, noisy);
   // As without the options (measured 0.031 -> 0.0040 on 400 samples).
   EXPECT_LT(MeanError(*pair_, r.map), 0.25 * MeanError(*pair_, noisy)) << r.status.message;
   EXPECT_NE(r.status.message.find("starts (k: residual at k_end)"), std::string::npos)
@@ -404,31 +356,17 @@ TEST(RefineStages, OptionsAreCheckedStrictly) {
                 ->resolved_options()["target_sample_count"]
                 .as<int>(),
             0);
-  EXPECT_EQ(MakeStage("{type: zoomout, extra_k_starts: []}")
-                ->resolved_options()["extra_k_starts"]
-                .size(),
-            0u);
+  EXPECT_EQ(
+      MakeStage("{type: zoomout, extra_k_starts: []}")->resolved_options()["extra_k_starts"].size(),
+      0u);
 }
 
 // Two poses of the synthetic humanoid (eval/synthetic): same rest vertices, so the identity of
 // rest ids is the ground truth, and the rest mirror gives the symmetric (flipped) one.
 TEST(RefineSynthetic, ZoomOutOnPosedHumanoidImprovesAndKeepsTheSide) {
-  SynthOptions options;
-  options.poses = 2;
-  options.vertices = 2000;
-  const SynthClass cls = GenerateClass(FigureKind::kHumanoid, options);
-  Pair p;
-  p.source.surface = cls.shapes[0].shape.surface;
-  p.target.surface = cls.shapes[1].shape.surface;
-  std::vector<int> target_of_rest(cls.rest.surface.NumVertices(), -1);
-  const auto& target_rest = cls.shapes[1].shape.rest_ids;
-  for (size_t j = 0; j < target_rest.size(); ++j) target_of_rest[target_rest[j]] = j;
-  const auto& source_rest = cls.shapes[0].shape.rest_ids;
-  std::vector<int> mirrored(source_rest.size());
-  p.truth.resize(source_rest.size());
-  for (size_t i = 0; i < source_rest.size(); ++i) {
-    p.truth[i] = target_of_rest[source_rest[i]];
-    mirrored[i] = target_of_rest[cls.rest.mirror[source_rest[i]]];
+  std::vector<int> mirrored;
+  Pair p = testing::PosedHumanoidPair(0.0, &mirrored);
+  for (size_t i = 0; i < p.truth.size(); ++i) {
     ASSERT_GE(p.truth[i], 0);
     ASSERT_GE(mirrored[i], 0);
   }

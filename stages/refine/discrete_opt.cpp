@@ -1,0 +1,257 @@
+#include "stages/refine/discrete_opt.h"
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+
+#include "core/errors.h"
+#include "stages/flip/descriptor_map.h"
+#include "stages/refine/discrete_terms.h"
+#include "stages/refine/functional_map.h"
+#include "stages/refine/spectral_knn.h"
+
+namespace symembed {
+
+bool DiscreteOptOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  const DiscreteOptWeights& w = weights;
+  if (k_start < 1) {
+    out << "k_start must be >= 1, got " << k_start;
+  } else if (k_end < k_start) {
+    out << "k_end (" << k_end << ") must be >= k_start (" << k_start << ")";
+  } else if (step < 1) {
+    out << "step must be >= 1, got " << step;
+  } else if (descriptors < 1) {
+    out << "descriptors must be >= 1, got " << descriptors;
+  } else if (!(w.orthogonality >= 0 && w.bijectivity >= 0 && w.proper >= 0 && w.laplacian >= 0 &&
+               w.descriptor >= 0)) {
+    out << "weights must be >= 0";
+  } else if (!(w.orthogonality + w.bijectivity + w.proper + w.laplacian > 0)) {
+    // The descriptor term alone does not depend on the functional maps: the iterations would
+    // repeat one query.
+    out << "one of the weights orthogonality, bijectivity, proper, laplacian must be > 0";
+  }
+  if (out.str().empty()) return true;
+  if (error != nullptr) *error = out.str();
+  return false;
+}
+
+namespace {
+
+// What one shape contributes to the iterations: the vertices that query (their weights, basis
+// rows and Gram matrix, for fitting the functional map of this shape's point map) and the
+// vertices the other shape's points may land on (those of them with area).
+struct Side {
+  const LaplaceBasis* basis = nullptr;
+  std::vector<int> active;
+  Eigen::VectorXd weights;
+  Eigen::MatrixXd rows;  // basis rows of `active`, k_end columns
+  Eigen::MatrixXd gram;  // A^T W A of rows
+  std::vector<int> candidates;
+  Eigen::MatrixXd candidate_rows;  // basis rows of `candidates`, k_end columns
+  std::vector<int> candidate_row;  // per vertex: its row in candidate_rows, or -1
+
+  // The basis rows (first k columns) at vertex ids of this shape.
+  Eigen::MatrixXd RowsAt(const std::vector<int>& ids, int k) const {
+    std::vector<int> r(ids.size());
+    for (size_t i = 0; i < ids.size(); ++i) {
+      r[i] = candidate_row[ids[i]];
+      if (r[i] < 0) return BasisRows(basis->evecs, ids, k);
+    }
+    return BasisRows(candidate_rows, r, k);
+  }
+};
+
+Side MakeSide(const LaplaceBasis& basis, const std::vector<int>& samples, int k_end,
+              bool sample_candidates, const char* which) {
+  Side side;
+  side.basis = &basis;
+  const int n = basis.NumVertices();
+  side.active = samples;
+  if (samples.empty()) {
+    side.active.resize(n);
+    std::iota(side.active.begin(), side.active.end(), 0);
+    side.weights = basis.mass;
+  } else {
+    for (int i : samples) {
+      if (i < 0 || i >= n) {
+        std::ostringstream out;
+        out << "discrete: " << which << " sample id " << i << " out of range 0.." << n - 1;
+        throw InvalidInputError(out.str());
+      }
+    }
+    side.weights = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(samples.size()));
+  }
+  side.rows = BasisRows(basis.evecs, side.active, k_end);
+  side.gram = WeightedGram(side.rows, side.weights);
+  side.candidates = MatchableTargets(basis.mass, sample_candidates ? samples : std::vector<int>{});
+  side.candidate_rows = BasisRows(basis.evecs, side.candidates, k_end);
+  side.candidate_row.assign(n, -1);
+  for (size_t r = 0; r < side.candidates.size(); ++r) {
+    side.candidate_row[side.candidates[r]] = static_cast<int>(r);
+  }
+  return side;
+}
+
+// What the terms of one direction X -> Y need at one basis size besides the basis rows.
+struct DirectionMaps {
+  const Eigen::MatrixXd* C_xy;
+  const Eigen::MatrixXd* C_yx;
+  const Eigen::VectorXd* lambda_x;
+  const Eigen::VectorXd* lambda_y;
+  const Eigen::MatrixXd* A_x;  // descriptor coefficients, k_end rows (first k used)
+  const Eigen::MatrixXd* A_y;
+};
+
+// The stacked embeddings of the terms of positive weight for queries X and candidates Y (basis
+// rows, first k columns).
+TermRows Stacked(const BasisRef& X, const BasisRef& Y, const DirectionMaps& m,
+                 const DiscreteOptWeights& w) {
+  const int k = static_cast<int>(X.cols());
+  std::vector<TermRows> terms;
+  std::vector<double> weights;
+  auto add = [&](double weight, auto make) {
+    if (weight <= 0.0) return;
+    terms.push_back(make());
+    weights.push_back(weight);
+  };
+  add(w.orthogonality, [&] { return OrthogonalityRows(X, Y, *m.C_xy); });
+  add(w.bijectivity, [&] { return BijectivityRows(X, Y, *m.C_yx); });
+  add(w.proper, [&] { return ProperRows(X, Y, *m.C_xy); });
+  add(w.laplacian, [&] { return LaplacianRows(X, Y, *m.lambda_x, *m.lambda_y, *m.C_xy); });
+  add(w.descriptor, [&] { return DescriptorRows(X, Y, m.A_x->topRows(k), m.A_y->topRows(k)); });
+  return StackTerms(terms, weights);
+}
+
+// The minimiser over maps into `candidates` of the stacked energy: per query row, the nearest
+// candidate. Adds the weighted energy of the result to *energy.
+std::vector<int> Query(const TermRows& rows, const std::vector<int>& candidates,
+                       const Eigen::VectorXd& weights, double* energy) {
+  const SpectralNearest nearest(rows.points, candidates);
+  std::vector<int> map;
+  std::vector<double> sq;
+  nearest.Query(rows.query, &map, &sq);
+  for (size_t r = 0; r < sq.size(); ++r) *energy += weights(r) * sq[r];
+  return map;
+}
+
+// Descriptor coefficients (k_end x count) of both shapes: wave kernel signatures at energies
+// shared by the pair, in the first k_end eigenfunctions.
+void Descriptors(const LaplaceBasis& source, const LaplaceBasis& target, int k_end, int count,
+                 Eigen::MatrixXd* A_s, Eigen::MatrixXd* A_t) {
+  double sigma = 0.0;
+  const Eigen::VectorXd energies =
+      WksEnergies(source.evals.head(k_end), target.evals.head(k_end), count, 2.0, &sigma);
+  *A_s = WksCoefficients(ComputeWksProducts(source, k_end, k_end),
+                         EnergyWeights(source.evals.head(k_end), energies, sigma));
+  *A_t = WksCoefficients(ComputeWksProducts(target, k_end, k_end),
+                         EnergyWeights(target.evals.head(k_end), energies, sigma));
+}
+
+}  // namespace
+
+DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& target,
+                              const std::vector<int>& initial_map, const std::vector<int>& samples,
+                              const std::vector<int>& target_samples,
+                              const DiscreteOptOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("discrete: " + error);
+  const int ns = source.NumVertices(), nt = target.NumVertices(), k_end = options.k_end;
+  if (source.NumEigenpairs() < k_end || target.NumEigenpairs() < k_end) {
+    std::ostringstream out;
+    out << "discrete: k_end = " << k_end << " but the bases have " << source.NumEigenpairs()
+        << " and " << target.NumEigenpairs() << " eigenpairs";
+    throw InvalidInputError(out.str());
+  }
+  if (samples.empty() != target_samples.empty()) {
+    throw InvalidInputError("discrete: give samples of both shapes or of neither");
+  }
+  CheckPointMap(initial_map, ns, nt);
+  const bool sampled = !samples.empty();
+  const Side S = MakeSide(source, samples, k_end, options.sample_candidates, "source");
+  const Side T = MakeSide(target, target_samples, k_end, options.sample_candidates, "target");
+  const DiscreteOptWeights& w = options.weights;
+  Eigen::MatrixXd A_s, A_t;
+  if (w.descriptor > 0.0) Descriptors(source, target, k_end, options.descriptors, &A_s, &A_t);
+
+  std::vector<int> sizes;
+  for (int k = options.k_start; k < k_end; k += options.step) sizes.push_back(k);
+  sizes.push_back(k_end);
+
+  // T12 on the source's active points; T21 on the target's, started from the first functional
+  // map as ZoomOut recovers a map from it (C21 taken as C12^T, exact for an orthogonal C12).
+  std::vector<int> t12(S.active.size());
+  for (size_t r = 0; r < S.active.size(); ++r) t12[r] = initial_map[S.active[r]];
+  const int k0 = sizes.front();
+  auto fit12 = [&](int k) {
+    return FitFunctionalMapFromRows(S.rows.leftCols(k), T.RowsAt(t12, k), S.weights, &S.gram);
+  };
+  std::vector<int> t21;
+  {
+    const Eigen::MatrixXd C21 = fit12(k0).transpose();
+    double unused = 0.0;
+    t21 = Query(OrthogonalityRows(T.rows.leftCols(k0), S.candidate_rows.leftCols(k0), C21),
+                S.candidates, T.weights, &unused);
+  }
+
+  DiscreteOptResult result;
+  Eigen::MatrixXd C12, C21;
+  Eigen::VectorXd lambda_s, lambda_t;
+  for (size_t it = 0; it < sizes.size(); ++it) {
+    const int k = sizes[it];
+    C12 = fit12(k);
+    C21 = FitFunctionalMapFromRows(T.rows.leftCols(k), S.RowsAt(t21, k), T.weights, &T.gram);
+    if (w.laplacian > 0.0) ScaledEigenvalues(source.evals, target.evals, k, &lambda_s, &lambda_t);
+    result.k.push_back(k);
+    result.orthogonality.push_back(OrthogonalityDefect(C12));
+    result.bijectivity.push_back(BijectivityDefect(C12, C21));
+    const bool last = it + 1 == sizes.size();
+    if (last && sampled && options.dense_result) break;  // the dense query below
+    const DirectionMaps forward{&C12, &C21, &lambda_s, &lambda_t, &A_s, &A_t};
+    const DirectionMaps backward{&C21, &C12, &lambda_t, &lambda_s, &A_t, &A_s};
+    double energy = 0.0;
+    t12 = Query(Stacked(S.rows.leftCols(k), T.candidate_rows.leftCols(k), forward, w), T.candidates,
+                S.weights, &energy);
+    t21 = Query(Stacked(T.rows.leftCols(k), S.candidate_rows.leftCols(k), backward, w),
+                S.candidates, T.weights, &energy);
+    result.energy.push_back(energy / static_cast<double>(S.active.size() + T.active.size()));
+  }
+
+  if (sampled && options.dense_result) {
+    // Every source vertex onto every target vertex with area, with the last functional maps.
+    const std::vector<int> all_targets = MatchableTargets(target.mass);
+    const DirectionMaps forward{&C12, &C21, &lambda_s, &lambda_t, &A_s, &A_t};
+    double energy = 0.0;
+    result.map = Query(Stacked(source.evecs.leftCols(k_end),
+                               BasisRows(target.evecs, all_targets, k_end), forward, w),
+                       all_targets, Eigen::VectorXd::Ones(ns), &energy);
+    result.energy.push_back(energy / ns);
+  } else if (sampled) {
+    result.map = initial_map;
+    for (size_t r = 0; r < S.active.size(); ++r) result.map[S.active[r]] = t12[r];
+  } else {
+    result.map = t12;
+  }
+  for (int i = 0; i < ns; ++i) result.changed += result.map[i] != initial_map[i];
+
+  std::ostringstream message;
+  message << "discrete k " << options.k_start << ".." << k_end << " step " << options.step;
+  if (sampled) message << " on " << S.active.size() << " / " << T.active.size() << " samples";
+  message << "; weights orthogonality " << w.orthogonality << " bijectivity " << w.bijectivity
+          << " proper " << w.proper << " laplacian " << w.laplacian << " descriptor "
+          << w.descriptor;
+  message.precision(3);
+  message << "; changed " << result.changed << "/" << ns
+          << "; per k: energy per point, ||C12^T C12 - I||^2/k, ||C12 C21 - I||^2/k:";
+  for (size_t it = 0; it < result.k.size(); ++it) {
+    message << " " << result.k[it] << ":" << result.energy[it] << "," << result.orthogonality[it]
+            << "," << result.bijectivity[it];
+  }
+  result.status.converged = true;
+  result.status.iterations = static_cast<int>(result.k.size());
+  result.status.residual = result.energy.back();
+  result.status.message = message.str();
+  return result;
+}
+
+}  // namespace symembed

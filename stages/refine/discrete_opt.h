@@ -1,0 +1,77 @@
+// Discrete optimisation of a point map and its functional maps in both directions, grown over
+// basis sizes: the `discrete` refine stage.
+//
+// [Ren, Melzi, Wonka & Ovsjanikov 2021] Discrete optimization for shape matching. The state is
+// a pair of point maps, T12 from source to target and T21 back, and their functional maps
+// C12 = Phi_s^+ Pi12 Phi_t and C21 = Phi_t^+ Pi21 Phi_s (the "proper" maps the point maps
+// induce, stages/refine/functional_map.h). At each basis size k (k_start, k_start + step, ...,
+// k_end, as in ZoomOut) the two functional maps are fitted to the point maps by least squares,
+// then each point map is set to the exact minimiser, for those functional maps, of the weighted
+// sum of the terms of discrete_terms.h (orthogonality, bijectivity through the other
+// direction's map, properness, Laplacian commutativity, descriptor preservation): one
+// nearest-neighbour query in the stacked embeddings. The bijectivity term ties the two
+// directions together, which keeps the map close to a bijection where ZoomOut, one direction
+// alone, lets many source points collapse onto one target region on non-isometric pairs.
+//
+// With samples, the iterations run between the source samples and the target samples; only the
+// last query (at k_end, after the last fit) maps every source vertex onto every target vertex.
+// Descriptors are wave kernel signatures of each shape computed from its basis
+// (stages/flip/descriptor_map.h), at energies shared by the pair.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/spectral.h"
+#include "registry/types.h"
+
+namespace symembed {
+
+// Weights of the terms (>= 0, at least one of the first four positive).
+struct DiscreteOptWeights {
+  double orthogonality = 1.0;
+  double bijectivity = 1.0;
+  double proper = 1.0;
+  double laplacian = 1.0;
+  double descriptor = 1.0;
+};
+
+struct DiscreteOptOptions {
+  int k_start = 20;  // first basis size (>= 1)
+  int k_end = 120;   // last basis size (>= k_start; both bases need k_end eigenpairs)
+  int step = 5;      // increment of k (>= 1); k_end is always the last size
+  DiscreteOptWeights weights;
+  int descriptors = 50;  // wave kernel energies of the descriptor term (>= 1)
+  // With samples: true lands the iterations' maps on the other shape's samples; false on every
+  // vertex of the other shape (costlier queries, no rounding of the images to the samples).
+  bool sample_candidates = true;
+  // With samples: true maps every source vertex in the last query; false maps only the samples
+  // (the other entries of the result keep the initial map).
+  bool dense_result = true;
+
+  bool IsValid(std::string* error) const;
+};
+
+struct DiscreteOptResult {
+  std::vector<int> map;               // #Vs: target vertex of each source vertex
+  std::vector<int> k;                 // per iteration: basis size
+  std::vector<double> energy;         // per iteration: weighted energy of both directions'
+                                      // point maps after the query, per query point
+  std::vector<double> orthogonality;  // per iteration: ||C12^T C12 - I||^2 / k before it
+  std::vector<double> bijectivity;    // per iteration: ||C12 C21 - I||^2 / k before it
+  int changed = 0;                    // source vertices whose target changed
+  StageStatus status;
+};
+
+// source, target: bases with at least k_end eigenpairs. initial_map: #Vs entries in [0, #Vt).
+// samples, target_samples: the vertices the iterations run on (both empty: every vertex, with
+// the lumped areas as weights; else both non-empty, uniform weights, each enough well-spread
+// vertices to determine k_end coefficients). Throws ConfigError for invalid options,
+// InvalidInputError for inconsistent inputs.
+DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& target,
+                              const std::vector<int>& initial_map, const std::vector<int>& samples,
+                              const std::vector<int>& target_samples,
+                              const DiscreteOptOptions& options);
+
+}  // namespace symembed
