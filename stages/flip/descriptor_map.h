@@ -13,13 +13,9 @@
 // the source samples. Both wave kernel signatures and the commutativity are invariant under the
 // left-right symmetry, so C cannot tell left from right, and the term compares each candidate with
 // the map along the in-plane axes of the canonical frame only (axis 0 is the symmetry plane's
-// normal), where the candidates differ by turns about axis 1 or axis 2. On TOSCA (284 pairs, the
-// base pipeline of configs/tosca_paper.yaml) the sign of the map's correlation along axis 1 agrees
-// with the oracle's candidate on 281 pairs; along axis 2 on all quadruped pairs but on only 80 of
-// the 147 human ones, whose front and back the wave kernel signatures do not tell apart. The
-// default therefore compares along axis 1 only (axes = 1): with weight 1 the base pipeline's
-// up-down flips go from 7 to 0 and its mean error from 0.109 to 0.098; comparing both axes gives
-// 0.103 with 16 front-back flips.
+// normal), where the candidates differ by turns about axis 1 or axis 2. The wave kernel
+// signatures tell a quadruped's front from its back but often not a human's, so the default
+// compares along axis 1 only (axes = 1; docs/analysis.md, "Measurements behind the defaults").
 #pragma once
 
 #include <Eigen/Core>

@@ -31,17 +31,12 @@
 namespace symembed {
 
 struct OrientationOptions {
-  // ZoomOut basis sizes (both bases need k_end eigenpairs). With the base pipelines of
-  // configs/tosca_paper.yaml and configs/synthetic_paper.yaml (symmetrize without warm start,
-  // 300 samples), k 6..60 in steps of 5 (target samples 1000) chose the oracle's candidate on
-  // 257 of 284 TOSCA pairs and 88 of 90 synthetic ones; k 10..40 (all target vertices) on 254
-  // and 76; k 6..60 in steps of 10 on 254 and 76; k 10..40 on the target samples on 257 and 69.
-  // Source samples the refinement and the measurement use: 200 and 300 chose the oracle's
-  // candidate on 259 and 257 TOSCA pairs (87 and 88 synthetic) with the symmetrize stage
-  // without warm start, on 258 and 261 (89 and 89) with it; 200 takes 47 instead of 61 ms
-  // per pair (bench_pair_stages). Target samples the refined maps land on (0: every target
-  // vertex): matching only onto a prefix of the target's farthest-point samples makes each
-  // ZoomOut step a few times cheaper.
+  // ZoomOut basis sizes (both bases need k_end eigenpairs), the source samples the refinement
+  // and the measurement use, and the target samples the refined maps land on (0: every target
+  // vertex). Matching only onto a prefix of the target's farthest-point samples makes each
+  // ZoomOut step a few times cheaper; the sizes and counts are those that chose the oracle's
+  // candidate most often on the studies' base pipelines (docs/analysis.md, "Measurements
+  // behind the defaults").
   FlipZoomOutSchedule zoomout{/*k_start=*/6, /*k_end=*/60, /*step=*/5, /*samples=*/200,
                               /*target_samples=*/1000};
   int neighbors = 6;  // nearest samples whose pairs form the triangles of a sample

@@ -24,12 +24,8 @@
 // term is confidently wrong (a human pose whose first eigenfunctions do not tell front from back)
 // no weight of a sum lets the refined maps overrule it, and where front and back have nearly the
 // same curvature (the synthetic humanoids) small score differences are noise that a sum lets
-// overrule the right choice. Measured with both candidates refined (configs/tosca_paper.yaml and
-// configs/synthetic_paper.yaml, base): on the 13 TOSCA pairs where the partner is the oracle's
-// candidate and the other terms chose b, score_b - score_p is 0.061 to 0.264; on the synthetic
-// humanoid pairs where b is right, the partner never scores lower by more than 0.041. The margin
-// 0.05 lies between; as a sum with weight 10 over the two best candidates the term had left 2
-// TOSCA pairs and 2 synthetic ones flipped front to back, with the margin none and 1.
+// overrule the right choice. The margin lies between the score differences of the two cases
+// (docs/analysis.md, "Measurements behind the defaults").
 #pragma once
 
 #include <Eigen/Core>

@@ -6,11 +6,10 @@
 // points, in registers) is used instead: M-orthonormal eigenvectors make a spectral embedding's
 // covariance isotropic, so a kd-tree, which bounds distances by the few coordinates it splits
 // on, prunes almost nothing at k ~ 100 and spends its time in per-point distance loops. The
-// threshold is the crossover measured with the earlier brute force (a matrix product, then the
-// minimum); the kernel is faster already at 10 dimensions (BM_SpectralNearest in bench_refine,
-// 5,048 rows among 5,048: 6.6 ms against 24.3 for the kd-tree), but lowering the threshold would
-// move the low-dimensional searches (the orientation flip term's first basis sizes, ZoomOut's
-// early starts) to single precision and change their maps. The squared distance of the winner
+// threshold is where the two cost the same with the earlier brute force (a matrix product, then
+// the minimum); the kernel is faster already below it, but lowering the threshold would move the
+// low-dimensional searches (the orientation flip term's first basis sizes, ZoomOut's early
+// starts) to single precision and change their maps. The squared distance of the winner
 // of the single-precision comparison is recomputed in double precision.
 #pragma once
 

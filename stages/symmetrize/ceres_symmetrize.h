@@ -54,11 +54,9 @@ struct CeresSymmetrizeOptions {
   int follow_neighbors = 8;
   // Stress-majorization iterations started from y before the Ceres solve (0: none), and their
   // stop: an iteration lowering the energy by less than this fraction (stress_majorization.h).
-  // Levenberg-Marquardt alone crawls on this energy: on TOSCA shapes it reached max_iterations
-  // 100 without converging, 1 s per shape. 1,000 majorization iterations (0.2-0.3 s) end within
-  // 1% of the energy those 100 iterations reach, and the Ceres iterations after them polish.
-  // Measured on the base pipelines (README, Results): TOSCA mean direct error 0.134 -> 0.124,
-  // synthetic 0.067 -> 0.046, symmetrize time per shape about a third.
+  // Levenberg-Marquardt alone crawls on this energy; the majorization iterations, each cheap,
+  // bring it close to the minimum and the Ceres iterations after them polish
+  // (docs/analysis.md, "Measurements behind the defaults").
   int warm_start_iterations = 1000;
   double warm_start_tolerance = 1e-6;
   // Ceres limits.
