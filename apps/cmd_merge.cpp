@@ -18,7 +18,7 @@ int MergeCommand(const Args& args) {
   parser.Positionals("SHARD_DIR...", "output folders of the shards", 1, -1);
   if (!parser.Parse(args)) return 0;
   if (!parser.Given("out") || parser.Get("out").empty()) throw UsageError{"--out is required"};
-  EvaluatorHooks evaluation;
+  GroundTruthRunEvaluation evaluation;
   const std::vector<Failure> failures =
       MergeRuns(parser.positionals(), parser.Get("out"), evaluation);
   for (const std::string& warning : evaluation.warnings()) {

@@ -2,8 +2,8 @@
 
 #include "apps/args.h"
 #include "apps/commands.h"
-#include "eval/run_evaluation.h"
 #include "core/mesh_io.h"
+#include "eval/run_evaluation.h"
 #include "registry/config.h"
 #include "registry/registry.h"
 #include "registry/runner.h"
@@ -47,8 +47,9 @@ int RunCommand(const Args& args) {
   parser.Option("out", "output folder", "results/<config name>");
   parser.Option("cache", "per-shape cache folder ('' disables it)", "results/.cache");
   parser.Switch("quiet", "no progress on stderr");
-  parser.Repeated("set", "override dotted.path=value in the base and every variant "
-                         "(e.g. --set evaluation.geodesics=fast_marching)");
+  parser.Repeated("set",
+                  "override dotted.path=value in the base and every variant "
+                  "(e.g. --set evaluation.geodesics=fast_marching)");
   parser.Positionals("CONFIG", "the experiment's YAML file", 1, 1);
   if (!parser.Parse(args)) return 0;
 
@@ -64,24 +65,26 @@ int RunCommand(const Args& args) {
 
   Registry registry;
   RegisterBuiltinStages(registry);
-  const ExperimentConfig config = LoadExperimentConfig(parser.positionals()[0], registry,
-                                                           parser.GetAll("set"));
+  const ExperimentConfig config =
+      LoadExperimentConfig(parser.positionals()[0], registry, parser.GetAll("set"));
   options.out_dir = parser.Given("out") ? parser.Get("out") : "results/" + config.name;
 
-  EvaluatorHooks evaluation(&registry);
+  GroundTruthRunEvaluation evaluation(&registry);
   const RunStats stats = RunExperiment(config, registry, options, evaluation);
   for (const std::string& warning : evaluation.warnings()) {
     std::cerr << "symembed run: warning: " << warning << "\n";
   }
   if (!options.quiet) {
-    std::cerr << "symembed run: " << stats.pairs_done << " pairs computed, "
-              << stats.pairs_skipped << " kept from an earlier run, " << stats.failures.size()
-              << " failures; outputs in " << options.out_dir << "\n";
+    std::cerr << "symembed run: " << stats.pairs_done << " pairs computed, " << stats.pairs_skipped
+              << " kept from an earlier run, " << stats.failures.size() << " failures; outputs in "
+              << options.out_dir << "\n";
   }
   if (!stats.ok()) {
-    std::cerr << "symembed run: " << stats.failures.size() << " failures (first: "
-              << stats.failures.front().kind << " " << stats.failures.front().source
-              << (stats.failures.front().target.empty() ? "" : " -> " + stats.failures.front().target)
+    std::cerr << "symembed run: " << stats.failures.size()
+              << " failures (first: " << stats.failures.front().kind << " "
+              << stats.failures.front().source
+              << (stats.failures.front().target.empty() ? ""
+                                                        : " -> " + stats.failures.front().target)
               << ": " << stats.failures.front().message << "); see failures.csv\n";
   }
   return stats.ok() ? 0 : 1;

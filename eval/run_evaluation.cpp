@@ -26,7 +26,8 @@ double EvaluationCacheBudgetMb() {
   const double mb = std::strtod(env, &end);
   if (end == env || *end != '\0' || !(mb >= 0.0)) {
     throw ConfigError(std::string("SYMEMBED_EVAL_CACHE_MB: expected a number of megabytes >= 0, "
-                                  "got '") + env + "'");
+                                  "got '") +
+                      env + "'");
   }
   return mb;
 }
@@ -34,7 +35,7 @@ double EvaluationCacheBudgetMb() {
 }  // namespace
 
 // An Evaluator with its own geodesics stage, and the evaluator's view of each target shape.
-struct EvaluatorHooks::Shared {
+struct GroundTruthRunEvaluation::Shared {
   std::unique_ptr<GeodesicsStage> geodesics;
   std::unique_ptr<Evaluator> evaluator;
   std::mutex mutex;
@@ -56,15 +57,17 @@ struct EvaluatorHooks::Shared {
 
 namespace {
 
-class EvaluatorVariant : public VariantEvaluation {
+class GroundTruthVariantEvaluation : public VariantEvaluation {
  public:
-  using Shared = EvaluatorHooks::Shared;
-  explicit EvaluatorVariant(std::shared_ptr<Shared> shared) : shared_(std::move(shared)) {}
+  using Shared = GroundTruthRunEvaluation::Shared;
+  explicit GroundTruthVariantEvaluation(std::shared_ptr<Shared> shared)
+      : shared_(std::move(shared)) {}
 
   double MeanError(const PairContext& pair, const std::vector<int>& predicted) const override {
     // A full-length map holding the predictions at the ground-truth source vertices.
     std::vector<int> map(pair.source.input.NumVertices(), 0);
-    for (size_t i = 0; i < predicted.size(); ++i) map[pair.ground_truth.source_ids[i]] = predicted[i];
+    for (size_t i = 0; i < predicted.size(); ++i)
+      map[pair.ground_truth.source_ids[i]] = predicted[i];
     return shared_->evaluator->MeanError(pair.target.name, shared_->Target(pair.target), map,
                                          pair.ground_truth);
   }
@@ -107,28 +110,14 @@ class EvaluatorVariant : public VariantEvaluation {
   std::shared_ptr<Shared> shared_;
 };
 
-// The evaluation section of a variant's resolved config.yaml.
-EvaluationOptions ReadEvaluationOptions(const std::string& config_path) {
-  const YAML::Node root = YAML::LoadFile(config_path);
-  const YAML::Node node = root["evaluation"];
-  EvaluationOptions options;
-  if (!node.IsMap()) return options;
-  if (node["geodesics"]) options.geodesics = node["geodesics"].as<std::string>();
-  if (node["max_error"]) options.max_error = node["max_error"].as<double>();
-  if (node["step"]) options.step = node["step"].as<double>();
-  if (node["points"] && node["points"].as<std::string>() != "all") {
-    options.points = node["points"].as<int>();
-  }
-  return options;
-}
-
 }  // namespace
 
-EvaluatorHooks::EvaluatorHooks(const Registry* registry) : registry_(registry) {}
-EvaluatorHooks::~EvaluatorHooks() = default;
+GroundTruthRunEvaluation::GroundTruthRunEvaluation(const Registry* registry)
+    : registry_(registry) {}
+GroundTruthRunEvaluation::~GroundTruthRunEvaluation() = default;
 
-std::unique_ptr<VariantEvaluation> EvaluatorHooks::ForVariant(const Pipeline& pipeline) {
-  SYMEMBED_CHECK(registry_ != nullptr, "EvaluatorHooks::ForVariant needs the registry");
+std::unique_ptr<VariantEvaluation> GroundTruthRunEvaluation::ForVariant(const Pipeline& pipeline) {
+  SYMEMBED_CHECK(registry_ != nullptr, "GroundTruthRunEvaluation::ForVariant needs the registry");
   const EvaluationOptions& e = pipeline.evaluation;
   std::ostringstream key;
   key.precision(17);
@@ -143,16 +132,16 @@ std::unique_ptr<VariantEvaluation> EvaluatorHooks::ForVariant(const Pipeline& pi
     shared->evaluator =
         std::make_unique<Evaluator>(e, *shared->geodesics, EvaluationCacheBudgetMb());
   }
-  return std::make_unique<EvaluatorVariant>(shared);
+  return std::make_unique<GroundTruthVariantEvaluation>(shared);
 }
 
-DatasetPair EvaluatorHooks::PairOfRecord(const std::string& record,
-                                         const std::string& where) const {
+DatasetPair GroundTruthRunEvaluation::PairOfRecord(const std::string& record,
+                                                   const std::string& where) const {
   const PairEvaluation evaluation = ParsePairRecord(record, where);
   return {evaluation.source, evaluation.target};
 }
 
-void EvaluatorHooks::WriteVariant(const VariantResults& results) {
+void GroundTruthRunEvaluation::WriteVariant(const VariantResults& results) {
   std::map<std::pair<std::string, std::string>, std::string> messages;
   for (const Failure& f : results.failures) {
     if (f.kind == "pair") messages.emplace(std::make_pair(f.source, f.target), f.message);
@@ -192,13 +181,15 @@ void EvaluatorHooks::WriteVariant(const VariantResults& results) {
     auto& stages = timings.shape_stage_seconds[shape.name];
     for (const StageTime& t : shape.times) stages[t.stage] = t.seconds;
   }
-  const EvaluationOptions options = ReadEvaluationOptions(results.dir + "/config.yaml");
+  const std::string config = results.dir + "/config.yaml";
+  const EvaluationOptions options =
+      ParseEvaluationOptions(YAML::LoadFile(config)["evaluation"], config, registry_);
   const VariantSummary summary = Summarize(results.variant, pairs, options, timings);
   WriteVariantOutputs(results.dir, summary, pairs, timings);
 }
 
-void EvaluatorHooks::WriteExperiment(const std::string& dir,
-                                     const std::vector<std::string>& variants) {
+void GroundTruthRunEvaluation::WriteExperiment(const std::string& dir,
+                                               const std::vector<std::string>& variants) {
   std::vector<VariantSummary> summaries;
   for (const std::string& name : variants) {
     const std::string path = dir + "/" + name + "/summary.json";

@@ -1,4 +1,4 @@
-// The evaluation behind `symembed run` and `symembed merge`: the runner's hooks
+// The evaluation behind `symembed run` and `symembed merge`: the runner's evaluation interfaces
 // (registry/runner.h RunEvaluation) implemented with the evaluator (eval/evaluator.h) and its
 // report writers (eval/report.h).
 #pragma once
@@ -16,11 +16,11 @@ namespace symembed {
 // Variants whose evaluation options and preprocess stage resolve alike share one Evaluator, so
 // the distances it caches per target (the bulk of the evaluation's time) are computed once for
 // all of them.
-class EvaluatorHooks : public RunEvaluation {
+class GroundTruthRunEvaluation : public RunEvaluation {
  public:
   // registry: builds the evaluation geodesics of ForVariant (not needed by merge alone).
-  explicit EvaluatorHooks(const Registry* registry = nullptr);
-  ~EvaluatorHooks() override;
+  explicit GroundTruthRunEvaluation(const Registry* registry = nullptr);
+  ~GroundTruthRunEvaluation() override;
 
   std::unique_ptr<VariantEvaluation> ForVariant(const Pipeline& pipeline) override;
   DatasetPair PairOfRecord(const std::string& record, const std::string& where) const override;

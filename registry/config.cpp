@@ -14,9 +14,9 @@
 namespace symembed {
 
 const std::vector<std::string>& PipelineKinds() {
-  static const std::vector<std::string> kinds = {"preprocess", "sampling",   "geodesics",
-                                                 "embedding",  "symmetry",   "symmetrize",
-                                                 "flip",       "matching",   "refine"};
+  static const std::vector<std::string> kinds = {"preprocess", "sampling", "geodesics",
+                                                 "embedding",  "symmetry", "symmetrize",
+                                                 "flip",       "matching", "refine"};
   return kinds;
 }
 
@@ -62,8 +62,7 @@ std::string ExpandEnvironment(const std::string& text, const std::string& where)
       out += m[3].str();
     } else {
       throw ConfigError(where + ": environment variable " + m[1].str() +
-                        " is not set and has no default (write ${" + m[1].str() +
-                        ":-default})");
+                        " is not set and has no default (write ${" + m[1].str() + ":-default})");
     }
     last = m.position() + m.length();
   }
@@ -73,8 +72,8 @@ std::string ExpandEnvironment(const std::string& text, const std::string& where)
 
 namespace {
 
-const std::set<std::string> kTopLevelKeys = {"name", "description", "dataset", "pipeline",
-                                             "evaluation", "variants"};
+const std::set<std::string> kTopLevelKeys = {"name",     "description", "dataset",
+                                             "pipeline", "evaluation",  "variants"};
 
 std::string JoinSet(const std::set<std::string>& s) {
   std::string out;
@@ -119,7 +118,8 @@ void ApplyOverride(YAML::Node tree, const std::string& path, const YAML::Node& v
   auto fail = [&](const std::string& what) {
     throw ConfigError(NodeLocation(file, key_node) + ": override '" + path + "': " + what);
   };
-  if (parts.size() < 2 || parts[0].empty()) fail("expected a dotted path such as pipeline.embedding.type");
+  if (parts.size() < 2 || parts[0].empty())
+    fail("expected a dotted path such as pipeline.embedding.type");
   if (parts[0] != "dataset" && parts[0] != "pipeline" && parts[0] != "evaluation") {
     fail("the path must start with dataset, pipeline or evaluation");
   }
@@ -147,8 +147,8 @@ void ApplyOverride(YAML::Node tree, const std::string& path, const YAML::Node& v
                        (parts.size() == 2 && parts[0] == "dataset" && last == "format");
   if (is_type) {
     const YAML::Node old = node[last];
-    const bool changed = !old.IsDefined() || !old.IsScalar() || !value.IsScalar() ||
-                         old.Scalar() != value.Scalar();
+    const bool changed =
+        !old.IsDefined() || !old.IsScalar() || !value.IsScalar() || old.Scalar() != value.Scalar();
     if (changed) {
       std::vector<std::string> keys;
       for (const auto& kv : node) keys.push_back(kv.first.Scalar());
@@ -164,26 +164,6 @@ void ValidateVariantName(const std::string& name, const YAML::Node& at, const st
     throw ConfigError(NodeLocation(file, at) + ": variants.name: '" + name +
                       "' is not a valid variant name (letters, digits, '_', '-', '.')");
   }
-}
-
-EvaluationOptions ParseEvaluation(const YAML::Node& node, const std::string& file,
-                                  const Registry& registry) {
-  OptionReader r(node, file, "evaluation");
-  EvaluationOptions e;
-  e.geodesics = r.GetChoice("geodesics", e.geodesics, registry.Names("geodesics"));
-  e.max_error = r.GetDouble("max_error", e.max_error, 1e-6, 10.0);
-  e.step = r.GetDouble("step", e.step, 1e-6, e.max_error);
-  const std::string points = r.GetString("points", "all");
-  if (points != "all") {
-    char* end = nullptr;
-    const long n = std::strtol(points.c_str(), &end, 10);
-    if (points.empty() || *end != '\0' || n < 1 || n > 100000000) {
-      r.Fail("points", "invalid value '" + points + "'; expected 'all' or a positive integer");
-    }
-    e.points = static_cast<int>(n);
-  }
-  r.Finish();
-  return e;
 }
 
 // A copy of node without positions: those of a --set value are in the --set text, and messages
@@ -223,6 +203,28 @@ void ApplyCommandLineOverrides(YAML::Node tree, const std::vector<std::string>& 
 
 }  // namespace
 
+EvaluationOptions ParseEvaluationOptions(const YAML::Node& node, const std::string& file,
+                                         const Registry* registry) {
+  OptionReader r(node, file, "evaluation");
+  EvaluationOptions e;
+  e.geodesics = registry != nullptr
+                    ? r.GetChoice("geodesics", e.geodesics, registry->Names("geodesics"))
+                    : r.GetString("geodesics", e.geodesics);
+  e.max_error = r.GetDouble("max_error", e.max_error, 1e-6, 10.0);
+  e.step = r.GetDouble("step", e.step, 1e-6, e.max_error);
+  const std::string points = r.GetString("points", "all");
+  if (points != "all") {
+    char* end = nullptr;
+    const long n = std::strtol(points.c_str(), &end, 10);
+    if (points.empty() || *end != '\0' || n < 1 || n > 100000000) {
+      r.Fail("points", "invalid value '" + points + "'; expected 'all' or a positive integer");
+    }
+    e.points = static_cast<int>(n);
+  }
+  r.Finish();
+  return e;
+}
+
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
                                        const Registry& registry,
                                        const std::vector<std::string>& overrides) {
@@ -240,7 +242,8 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
     }
   };
   YAML::Node root = parse();
-  if (!root.IsMap()) throw ConfigError(file + ": expected a YAML map with keys " + JoinSet(kTopLevelKeys));
+  if (!root.IsMap())
+    throw ConfigError(file + ": expected a YAML map with keys " + JoinSet(kTopLevelKeys));
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (!kTopLevelKeys.count(key)) {
@@ -253,31 +256,35 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
   config.file = file;
   const YAML::Node& croot = root;
   if (!croot["name"] || !croot["name"].IsScalar() || croot["name"].Scalar().empty()) {
-    throw ConfigError(NodeLocation(file, croot) + ": name: missing required key 'name' "
+    throw ConfigError(NodeLocation(file, croot) +
+                      ": name: missing required key 'name' "
                       "(the experiment's name; outputs go to results/<name>/)");
   }
   config.name = croot["name"].Scalar();
   ValidateVariantName(config.name, croot["name"], file);
   if (croot["description"]) {
     if (!croot["description"].IsScalar()) {
-      throw ConfigError(NodeLocation(file, croot["description"]) + ": description: expected a string");
+      throw ConfigError(NodeLocation(file, croot["description"]) +
+                        ": description: expected a string");
     }
     config.description = croot["description"].Scalar();
   }
   if (!croot["dataset"]) {
-    throw ConfigError(NodeLocation(file, croot) + ": dataset: missing required key 'dataset' "
+    throw ConfigError(NodeLocation(file, croot) +
+                      ": dataset: missing required key 'dataset' "
                       "(a map with `format` and the loader's options)");
   }
   const YAML::Node pipeline = croot["pipeline"];
   if (pipeline.IsDefined() && !pipeline.IsNull()) {
-    if (!pipeline.IsMap()) throw ConfigError(NodeLocation(file, pipeline) + ": pipeline: expected a map of stage kinds");
+    if (!pipeline.IsMap())
+      throw ConfigError(NodeLocation(file, pipeline) + ": pipeline: expected a map of stage kinds");
     const auto& kinds = PipelineKinds();
     for (const auto& kv : pipeline) {
       const std::string key = kv.first.Scalar();
       if (std::find(kinds.begin(), kinds.end(), key) == kinds.end()) {
-        throw ConfigError(NodeLocation(file, kv.first) + ": pipeline." + key +
-                          ": unknown stage kind '" + key + "'; known: " +
-                          JoinSet(std::set<std::string>(kinds.begin(), kinds.end())));
+        throw ConfigError(
+            NodeLocation(file, kv.first) + ": pipeline." + key + ": unknown stage kind '" + key +
+            "'; known: " + JoinSet(std::set<std::string>(kinds.begin(), kinds.end())));
       }
     }
   }
@@ -290,13 +297,16 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
   const YAML::Node variants = croot["variants"];
   if (variants.IsDefined() && !variants.IsNull()) {
     if (!variants.IsSequence()) {
-      throw ConfigError(NodeLocation(file, variants) + ": variants: expected a list of {name, set}");
+      throw ConfigError(NodeLocation(file, variants) +
+                        ": variants: expected a list of {name, set}");
     }
     std::set<std::string> names = {"base"};
     for (size_t i = 0; i < variants.size(); ++i) {
       const YAML::Node v = variants[i];
       const std::string path = "variants[" + std::to_string(i) + "]";
-      if (!v.IsMap()) throw ConfigError(NodeLocation(file, v) + ": " + path + ": expected a map with keys name, set");
+      if (!v.IsMap())
+        throw ConfigError(NodeLocation(file, v) + ": " + path +
+                          ": expected a map with keys name, set");
       for (const auto& kv : v) {
         const std::string key = kv.first.Scalar();
         if (key != "name" && key != "set") {
@@ -305,25 +315,29 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
         }
       }
       if (!v["name"] || !v["name"].IsScalar()) {
-        throw ConfigError(NodeLocation(file, v) + ": " + path + ".name: missing required key 'name'");
+        throw ConfigError(NodeLocation(file, v) + ": " + path +
+                          ".name: missing required key 'name'");
       }
       const std::string name = v["name"].Scalar();
       ValidateVariantName(name, v["name"], file);
       if (!names.insert(name).second) {
-        throw ConfigError(NodeLocation(file, v["name"]) + ": " + path + ".name: duplicate variant name '" + name + "'");
+        throw ConfigError(NodeLocation(file, v["name"]) + ": " + path +
+                          ".name: duplicate variant name '" + name + "'");
       }
       YAML::Node tree = parse();
       const YAML::Node set = static_cast<const YAML::Node&>(tree)["variants"][i]["set"];
       tree.remove("variants");
       ApplyCommandLineOverrides(tree, overrides, file);
       if (set.IsDefined() && !set.IsNull()) {
-        if (!set.IsMap()) throw ConfigError(NodeLocation(file, set) + ": " + path + ".set: expected a map of dotted.path: value");
+        if (!set.IsMap())
+          throw ConfigError(NodeLocation(file, set) + ": " + path +
+                            ".set: expected a map of dotted.path: value");
         // Type changes first, so that options set next to them are kept.
         for (int pass = 0; pass < 2; ++pass) {
           for (const auto& kv : set) {
             const std::string key = kv.first.Scalar();
-            const bool is_type = key.size() >= 5 && (key.substr(key.size() - 5) == ".type" ||
-                                                     key == "dataset.format");
+            const bool is_type = key.size() >= 5 &&
+                                 (key.substr(key.size() - 5) == ".type" || key == "dataset.format");
             if ((pass == 0) == is_type) ApplyOverride(tree, key, kv.second, kv.first, file);
           }
         }
@@ -355,8 +369,7 @@ Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& vari
   };
   auto create = [&](const std::string& kind, auto* tag) {
     using T = std::remove_pointer_t<decltype(tag)>;
-    return registry.CreateAs<T>(kind, node(kind), file, "pipeline." + kind,
-                                DefaultStageType(kind));
+    return registry.CreateAs<T>(kind, node(kind), file, "pipeline." + kind, DefaultStageType(kind));
   };
   Pipeline p;
   p.dataset = registry.CreateAs<Dataset>("dataset", tree["dataset"], file, "dataset", "", "format");
@@ -369,11 +382,11 @@ Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& vari
   p.flip = create("flip", static_cast<FlipStage*>(nullptr));
   p.matching = create("matching", static_cast<MatchingStage*>(nullptr));
   p.refine = create("refine", static_cast<RefineStage*>(nullptr));
-  p.evaluation = ParseEvaluation(tree["evaluation"], file, registry);
+  p.evaluation = ParseEvaluationOptions(tree["evaluation"], file, &registry);
   YAML::Node geodesics_node(YAML::NodeType::Map);
   geodesics_node["type"] = p.evaluation.geodesics;
-  p.evaluation_geodesics = registry.CreateAs<GeodesicsStage>("geodesics", geodesics_node, file,
-                                                             "evaluation.geodesics");
+  p.evaluation_geodesics =
+      registry.CreateAs<GeodesicsStage>("geodesics", geodesics_node, file, "evaluation.geodesics");
   return p;
 }
 

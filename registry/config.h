@@ -43,6 +43,12 @@ struct EvaluationOptions {
   int points = 0;                           // 0 = all ground-truth points; N = N FPS points
 };
 
+// The `evaluation` section of a config (strict: unknown keys and bad values throw ConfigError
+// naming file and key; a missing section gives the defaults). registry, when given, checks that
+// `geodesics` names a registered type; reading back a resolved config.yaml needs none.
+EvaluationOptions ParseEvaluationOptions(const YAML::Node& node, const std::string& file,
+                                         const Registry* registry);
+
 // The instantiated stages of one variant.
 struct Pipeline {
   std::unique_ptr<Dataset> dataset;
@@ -63,8 +69,8 @@ struct Pipeline {
 };
 
 struct VariantConfig {
-  std::string name;   // "base" for the base pipeline
-  YAML::Node tree;    // the whole config tree after overrides and substitution (no variants)
+  std::string name;  // "base" for the base pipeline
+  YAML::Node tree;   // the whole config tree after overrides and substitution (no variants)
 };
 
 struct ExperimentConfig {

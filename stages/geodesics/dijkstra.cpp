@@ -33,29 +33,4 @@ Eigen::MatrixXd DijkstraDistances(const Surface& surface, const std::vector<int>
   return DijkstraGeodesicSolver(surface, options).Distances(sources);
 }
 
-namespace {
-
-class DijkstraGeodesicsStage : public GeodesicsStage {
- public:
-  explicit DijkstraGeodesicsStage(const DijkstraGeodesicsOptions& options) : options_(options) {}
-  std::unique_ptr<GeodesicSolver> Prepare(const Surface& surface) const override {
-    return std::make_unique<DijkstraGeodesicSolver>(surface, options_);
-  }
-
- private:
-  DijkstraGeodesicsOptions options_;
-};
-
-}  // namespace
-
-void RegisterDijkstraGeodesics(Registry& registry) {
-  registry.Add("geodesics", "dijkstra",
-               "shortest paths on the mesh edge graph (fast, overestimates by up to ~8%)",
-               [](OptionReader& reader) -> std::unique_ptr<Stage> {
-                 DijkstraGeodesicsOptions options;
-                 options.common = ReadGeodesicsCommonOptions(reader);
-                 return std::make_unique<DijkstraGeodesicsStage>(options);
-               });
-}
-
 }  // namespace symembed

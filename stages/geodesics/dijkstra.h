@@ -13,7 +13,7 @@
 
 #include "core/mesh.h"
 #include "core/mesh_graph.h"
-#include "registry/registry.h"
+#include "registry/stages.h"
 #include "stages/geodesics/geodesics_common.h"
 
 namespace symembed {
@@ -40,8 +40,5 @@ class DijkstraGeodesicSolver : public GeodesicSolver {
 // Free-function form: #sources x #V graph distances.
 Eigen::MatrixXd DijkstraDistances(const Surface& surface, const std::vector<int>& sources,
                                   const DijkstraGeodesicsOptions& options = {});
-
-// Registers geodesics/dijkstra.
-void RegisterDijkstraGeodesics(Registry& registry);
 
 }  // namespace symembed

@@ -190,10 +190,10 @@ FastMarchingGeodesicSolver::FastMarchingGeodesicSolver(const Surface& s,
     const double lp = st.pv.norm(), lr = st.rv.norm();
     const float f00 = static_cast<float>(q00), f01 = static_cast<float>(q01),
                 f11 = static_cast<float>(q11);
-    updates_[fill[st.p]++] = {st.c, st.r, f00, f01, f11, static_cast<float>(lp),
-                              static_cast<float>(lr)};
-    updates_[fill[st.r]++] = {st.c, st.p, f11, f01, f00, static_cast<float>(lr),
-                              static_cast<float>(lp)};
+    updates_[fill[st.p]++] = {
+        st.c, st.r, f00, f01, f11, static_cast<float>(lp), static_cast<float>(lr)};
+    updates_[fill[st.r]++] = {
+        st.c, st.p, f11, f01, f00, static_cast<float>(lr), static_cast<float>(lp)};
   }
 }
 
@@ -320,34 +320,6 @@ Eigen::MatrixXd FastMarchingGeodesicSolver::Distances(const std::vector<int>& so
 Eigen::MatrixXd FastMarchingDistances(const Surface& surface, const std::vector<int>& sources,
                                       const FastMarchingOptions& options) {
   return FastMarchingGeodesicSolver(surface, options).Distances(sources);
-}
-
-namespace {
-
-class FastMarchingStage : public GeodesicsStage {
- public:
-  explicit FastMarchingStage(const FastMarchingOptions& options) : options_(options) {}
-  std::unique_ptr<GeodesicSolver> Prepare(const Surface& surface) const override {
-    return std::make_unique<FastMarchingGeodesicSolver>(surface, options_);
-  }
-
- private:
-  FastMarchingOptions options_;
-};
-
-}  // namespace
-
-void RegisterFastMarchingGeodesics(Registry& registry) {
-  registry.Add("geodesics", "fast_marching",
-               "fast marching on triangles, obtuse angles split by unfolding (Kimmel & Sethian "
-               "1998); first-order accurate",
-               [](OptionReader& reader) -> std::unique_ptr<Stage> {
-                 FastMarchingOptions options;
-                 options.common = ReadGeodesicsCommonOptions(reader);
-                 options.max_unfold_steps =
-                     reader.GetInt("max_unfold_steps", options.max_unfold_steps, 0, 1000);
-                 return std::make_unique<FastMarchingStage>(options);
-               });
 }
 
 }  // namespace symembed

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "core/mesh.h"
-#include "registry/registry.h"
+#include "registry/stages.h"
 #include "stages/geodesics/geodesics_common.h"
 
 namespace symembed {
@@ -67,7 +67,7 @@ class FastMarchingGeodesicSolver : public GeodesicSolver {
   void Solve(int source, Scalar* T, Workspace<Scalar>* ws) const;
 
   int num_vertices_ = 0;
-  std::vector<int> offsets_;       // #V + 1: updates triggered by vertex v
+  std::vector<int> offsets_;  // #V + 1: updates triggered by vertex v
   std::vector<Update> updates_;
   FastMarchingOptions options_;
   int obtuse_corners_ = 0;
@@ -77,8 +77,5 @@ class FastMarchingGeodesicSolver : public GeodesicSolver {
 // Free-function form: #sources x #V distances.
 Eigen::MatrixXd FastMarchingDistances(const Surface& surface, const std::vector<int>& sources,
                                       const FastMarchingOptions& options = {});
-
-// Registers geodesics/fast_marching.
-void RegisterFastMarchingGeodesics(Registry& registry);
 
 }  // namespace symembed

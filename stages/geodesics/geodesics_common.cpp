@@ -15,21 +15,12 @@ bool GeodesicsCommonOptions::IsValid(std::string* error) const {
   return true;
 }
 
-GeodesicsCommonOptions ReadGeodesicsCommonOptions(OptionReader& reader) {
-  GeodesicsCommonOptions o;
-  o.threads = reader.GetInt("threads", o.threads, 0, 1024);
-  o.precision = reader.GetEnum<GeodesicPrecision>(
-      "precision", o.precision,
-      {{"double", GeodesicPrecision::kDouble}, {"float", GeodesicPrecision::kFloat}});
-  return o;
-}
-
 Eigen::MatrixXd ParallelRows(const std::vector<int>& sources, int n, int threads,
                              const std::function<void(int, double*)>& row_fn) {
   for (int s : sources) {
     if (s < 0 || s >= n) {
-      throw InvalidInputError("geodesic source " + std::to_string(s) + " is not a vertex id in [0, " +
-                              std::to_string(n) + ")");
+      throw InvalidInputError("geodesic source " + std::to_string(s) +
+                              " is not a vertex id in [0, " + std::to_string(n) + ")");
     }
   }
   const int m = static_cast<int>(sources.size());

@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "registry/options.h"
-
 namespace symembed {
 
 // Scalar type of a solver's per-source working arrays. The output is always an Eigen::MatrixXd;
@@ -16,14 +14,11 @@ namespace symembed {
 enum class GeodesicPrecision { kDouble, kFloat };
 
 struct GeodesicsCommonOptions {
-  int threads = 0;                                      // worker threads, 0 = all cores
+  int threads = 0;                                           // worker threads, 0 = all cores
   GeodesicPrecision precision = GeodesicPrecision::kDouble;  // internal accumulation
 
   bool IsValid(std::string* error) const;
 };
-
-// Reads `threads` and `precision` (strict; see registry/options.h).
-GeodesicsCommonOptions ReadGeodesicsCommonOptions(OptionReader& reader);
 
 // Fills a #sources x n matrix in parallel over sources: row_fn(i, out) writes the n distances
 // of source i to out (a contiguous per-thread buffer). Throws InvalidInputError for a source

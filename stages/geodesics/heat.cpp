@@ -122,7 +122,7 @@ HeatGeodesicSolver::HeatGeodesicSolver(const Surface& s, const HeatOptions& opti
   for (int f = 0; f < nf; ++f) {
     const Eigen::Matrix<double, 3, 2> p = IntrinsicLayout(tri, f);
     const double double_area = p(1, 0) * p(2, 1);  // base times height
-    if (!(double_area > 0.0)) continue;  // a degenerate face carries no gradient
+    if (!(double_area > 0.0)) continue;            // a degenerate face carries no gradient
     auto cot = [&](int m) {
       const Eigen::Vector2d u = p.row((m + 1) % 3) - p.row(m), w = p.row((m + 2) % 3) - p.row(m);
       return u.dot(w) / (u.x() * w.y() - u.y() * w.x());
@@ -211,41 +211,6 @@ Eigen::MatrixXd HeatGeodesicSolver::Distances(const std::vector<int>& sources) c
 Eigen::MatrixXd HeatDistances(const Surface& surface, const std::vector<int>& sources,
                               const HeatOptions& options) {
   return HeatGeodesicSolver(surface, options).Distances(sources);
-}
-
-namespace {
-
-class HeatStage : public GeodesicsStage {
- public:
-  explicit HeatStage(const HeatOptions& options) : options_(options) {}
-  std::unique_ptr<GeodesicSolver> Prepare(const Surface& surface) const override {
-    return std::make_unique<HeatGeodesicSolver>(surface, options_);
-  }
-
- private:
-  HeatOptions options_;
-};
-
-}  // namespace
-
-void RegisterHeatGeodesics(Registry& registry) {
-  registry.Add("geodesics", "heat",
-               "heat method (Crane et al. 2013), one sparse factorisation per shape, "
-               "t = time_factor * h^2",
-               [](OptionReader& reader) -> std::unique_ptr<Stage> {
-                 HeatOptions options;
-                 options.common = ReadGeodesicsCommonOptions(reader);
-                 options.time_factor =
-                     reader.GetDouble("time_factor", options.time_factor, 1e-6, 1e6);
-                 options.boundary = reader.GetEnum<HeatBoundary>(
-                     "boundary", options.boundary,
-                     {{"average", HeatBoundary::kAverage},
-                      {"neumann", HeatBoundary::kNeumann},
-                      {"dirichlet", HeatBoundary::kDirichlet}});
-                 options.intrinsic_delaunay =
-                     reader.GetBool("intrinsic_delaunay", options.intrinsic_delaunay);
-                 return std::make_unique<HeatStage>(options);
-               });
 }
 
 }  // namespace symembed

@@ -34,7 +34,7 @@
 
 #include "core/intrinsic_delaunay.h"
 #include "core/mesh.h"
-#include "registry/registry.h"
+#include "registry/stages.h"
 #include "stages/geodesics/geodesics_common.h"
 
 namespace symembed {
@@ -42,10 +42,10 @@ namespace symembed {
 enum class HeatBoundary { kAverage, kNeumann, kDirichlet };
 
 struct HeatOptions {
-  GeodesicsCommonOptions common;               // threads; precision is accepted, see above
-  double time_factor = 1.0;                    // t = time_factor * (mean edge length)^2
+  GeodesicsCommonOptions common;                   // threads; precision is accepted, see above
+  double time_factor = 1.0;                        // t = time_factor * (mean edge length)^2
   HeatBoundary boundary = HeatBoundary::kAverage;  // only matters on surfaces with a boundary
-  bool intrinsic_delaunay = true;              // operators on the intrinsic Delaunay mesh
+  bool intrinsic_delaunay = true;                  // operators on the intrinsic Delaunay mesh
 
   bool IsValid(std::string* error) const;
 };
@@ -84,8 +84,5 @@ class HeatGeodesicSolver : public GeodesicSolver {
 // Free-function form: #sources x #V distances.
 Eigen::MatrixXd HeatDistances(const Surface& surface, const std::vector<int>& sources,
                               const HeatOptions& options = {});
-
-// Registers geodesics/heat.
-void RegisterHeatGeodesics(Registry& registry);
 
 }  // namespace symembed

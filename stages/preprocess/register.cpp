@@ -1,9 +1,41 @@
+// The preprocess stage: StandardPreprocess with its options.
 #include "stages/register.h"
+
+#include <memory>
 
 #include "stages/preprocess/standard.h"
 
 namespace symembed {
 
-void RegisterPreprocessStages(Registry& registry) { RegisterStandardPreprocess(registry); }
+namespace {
+
+class StandardPreprocessStage : public PreprocessStage {
+ public:
+  explicit StandardPreprocessStage(const StandardPreprocessOptions& options) : options_(options) {}
+  PreprocessResult Run(const Surface& input) const override {
+    return StandardPreprocess(input, options_);
+  }
+
+ private:
+  StandardPreprocessOptions options_;
+};
+
+}  // namespace
+
+void RegisterPreprocessStages(Registry& registry) {
+  registry.Add("preprocess", "standard",
+               "drop degenerate/duplicate faces, keep the largest component, orient consistently "
+               "(outward when closed), drop unreferenced vertices, centre and scale to unit area",
+               [](OptionReader& reader) -> std::unique_ptr<Stage> {
+                 StandardPreprocessOptions options;
+                 options.orient = reader.GetBool("orient", options.orient);
+                 options.keep_largest_component =
+                     reader.GetBool("keep_largest_component", options.keep_largest_component);
+                 options.normalize = reader.GetBool("normalize", options.normalize);
+                 options.degenerate_tolerance = reader.GetDouble(
+                     "degenerate_tolerance", options.degenerate_tolerance, 0.0, 0.5);
+                 return std::make_unique<StandardPreprocessStage>(options);
+               });
+}
 
 }  // namespace symembed

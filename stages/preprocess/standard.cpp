@@ -101,8 +101,7 @@ std::vector<Face> LargestComponent(const Eigen::MatrixX3d& V, const std::vector<
 }
 
 // Step 3: consistent orientation per edge-connected patch; flips faces in place.
-void Orient(const Eigen::MatrixX3d& V, std::vector<Face>* faces_ptr, bool orient,
-            Report* report) {
+void Orient(const Eigen::MatrixX3d& V, std::vector<Face>* faces_ptr, bool orient, Report* report) {
   std::vector<Face>& faces = *faces_ptr;
   const int nf = static_cast<int>(faces.size());
   struct EdgeUse {
@@ -171,7 +170,8 @@ void Orient(const Eigen::MatrixX3d& V, std::vector<Face>* faces_ptr, bool orient
         const double signed_volume = p0.dot(p1.cross(p2)) / 6.0;
         volume += flip[f] ? -signed_volume : signed_volume;
       }
-      const bool invert = closed ? volume < 0.0 : 2 * num_flipped > static_cast<int>(members.size());
+      const bool invert =
+          closed ? volume < 0.0 : 2 * num_flipped > static_cast<int>(members.size());
       if (invert) {
         for (int f : members) flip[f] ^= 1;
       }
@@ -204,9 +204,9 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   for (int f = 0; f < in.NumFaces(); ++f) {
     for (int k = 0; k < 3; ++k) {
       if (in.F(f, k) < 0 || in.F(f, k) >= nv) {
-        throw InvalidInputError("preprocess: face " + std::to_string(f) +
-                                " has vertex id " + std::to_string(in.F(f, k)) +
-                                " outside [0, " + std::to_string(nv) + ")");
+        throw InvalidInputError("preprocess: face " + std::to_string(f) + " has vertex id " +
+                                std::to_string(in.F(f, k)) + " outside [0, " + std::to_string(nv) +
+                                ")");
       }
     }
   }
@@ -246,7 +246,8 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   const double area = areas.sum();
   Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
   for (int f = 0; f < out.NumFaces(); ++f) {
-    centre += areas(f) * (out.V.row(out.F(f, 0)) + out.V.row(out.F(f, 1)) + out.V.row(out.F(f, 2))) / 3.0;
+    centre +=
+        areas(f) * (out.V.row(out.F(f, 0)) + out.V.row(out.F(f, 1)) + out.V.row(out.F(f, 2))) / 3.0;
   }
   centre /= area;
   result.scale = 1.0;
@@ -262,38 +263,6 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   report.emplace_back("centre_y", centre(1));
   report.emplace_back("centre_z", centre(2));
   return result;
-}
-
-namespace {
-
-class StandardPreprocessStage : public PreprocessStage {
- public:
-  explicit StandardPreprocessStage(const StandardPreprocessOptions& options) : options_(options) {}
-  PreprocessResult Run(const Surface& input) const override {
-    return StandardPreprocess(input, options_);
-  }
-
- private:
-  StandardPreprocessOptions options_;
-};
-
-}  // namespace
-
-void RegisterStandardPreprocess(Registry& registry) {
-  registry.Add(
-      "preprocess", "standard",
-      "drop degenerate/duplicate faces, keep the largest component, orient consistently "
-      "(outward when closed), drop unreferenced vertices, centre and scale to unit area",
-      [](OptionReader& reader) -> std::unique_ptr<Stage> {
-        StandardPreprocessOptions options;
-        options.orient = reader.GetBool("orient", options.orient);
-        options.keep_largest_component =
-            reader.GetBool("keep_largest_component", options.keep_largest_component);
-        options.normalize = reader.GetBool("normalize", options.normalize);
-        options.degenerate_tolerance =
-            reader.GetDouble("degenerate_tolerance", options.degenerate_tolerance, 0.0, 0.5);
-        return std::make_unique<StandardPreprocessStage>(options);
-      });
 }
 
 }  // namespace symembed

@@ -25,7 +25,6 @@
 #include <string>
 
 #include "core/mesh.h"
-#include "registry/registry.h"
 #include "registry/types.h"
 
 namespace symembed {
@@ -43,8 +42,5 @@ struct StandardPreprocessOptions {
 // non-degenerate face is left.
 PreprocessResult StandardPreprocess(const Surface& input,
                                     const StandardPreprocessOptions& options = {});
-
-// Registers preprocess/standard.
-void RegisterStandardPreprocess(Registry& registry);
 
 }  // namespace symembed

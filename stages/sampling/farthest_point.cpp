@@ -21,7 +21,8 @@ bool FarthestPointOptions::IsValid(std::string* error) const {
 SamplingResult FarthestPointSampling(const Surface& surface, const FarthestPointOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("sampling/farthest_point: " + error);
-  if (surface.NumFaces() == 0) throw InvalidInputError("farthest point sampling: surface has no faces");
+  if (surface.NumFaces() == 0)
+    throw InvalidInputError("farthest point sampling: surface has no faces");
   const MeshGraph graph = BuildMeshGraph(surface);
   const int n = graph.NumVertices();
   std::vector<int> usable;
@@ -39,7 +40,8 @@ SamplingResult FarthestPointSampling(const Surface& surface, const FarthestPoint
   std::vector<double> min_dist(n, 0.0);
   for (int v : usable) min_dist[v] = std::numeric_limits<double>::infinity();
   std::mt19937 rng(options.seed);
-  int next = usable[std::uniform_int_distribution<int>(0, static_cast<int>(usable.size()) - 1)(rng)];
+  int next =
+      usable[std::uniform_int_distribution<int>(0, static_cast<int>(usable.size()) - 1)(rng)];
   DijkstraWorkspace<double> ws;
   result.samples.reserve(count);
   for (int k = 0; k < count; ++k) {
@@ -60,47 +62,6 @@ SamplingResult AllVerticesSampling(const Surface& surface) {
   for (int v = 0; v < surface.NumVertices(); ++v) result.samples[v] = v;
   result.coverage_radius = 0.0;
   return result;
-}
-
-namespace {
-
-class FarthestPointStage : public SamplingStage {
- public:
-  explicit FarthestPointStage(const FarthestPointOptions& options) : options_(options) {}
-  SamplingResult Run(const Surface& surface) const override {
-    return FarthestPointSampling(surface, options_);
-  }
-
- private:
-  FarthestPointOptions options_;
-};
-
-class AllSamplingStage : public SamplingStage {
- public:
-  SamplingResult Run(const Surface& surface) const override {
-    return AllVerticesSampling(surface);
-  }
-};
-
-}  // namespace
-
-void RegisterFarthestPointSampling(Registry& registry) {
-  registry.Add("sampling", "farthest_point",
-               "geodesic farthest point sampling from a seeded start (options: count, seed)",
-               [](OptionReader& reader) -> std::unique_ptr<Stage> {
-                 FarthestPointOptions options;
-                 options.count = reader.GetInt("count", options.count, 1);
-                 options.seed = static_cast<std::uint32_t>(
-                     reader.GetInt("seed", static_cast<int>(options.seed), 0));
-                 return std::make_unique<FarthestPointStage>(options);
-               });
-}
-
-void RegisterAllSampling(Registry& registry) {
-  registry.Add("sampling", "all", "every vertex is a sample",
-               [](OptionReader&) -> std::unique_ptr<Stage> {
-                 return std::make_unique<AllSamplingStage>();
-               });
 }
 
 }  // namespace symembed

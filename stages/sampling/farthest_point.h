@@ -14,7 +14,6 @@
 #include <string>
 
 #include "core/mesh.h"
-#include "registry/registry.h"
 #include "registry/types.h"
 
 namespace symembed {
@@ -35,9 +34,5 @@ SamplingResult FarthestPointSampling(const Surface& surface,
 
 // Every vertex, in id order; coverage radius 0.
 SamplingResult AllVerticesSampling(const Surface& surface);
-
-// Registers sampling/farthest_point and sampling/all.
-void RegisterFarthestPointSampling(Registry& registry);
-void RegisterAllSampling(Registry& registry);
 
 }  // namespace symembed

@@ -1,12 +1,46 @@
+// The sampling stages: geodesic farthest points, or every vertex.
 #include "stages/register.h"
+
+#include <cstdint>
+#include <memory>
 
 #include "stages/sampling/farthest_point.h"
 
 namespace symembed {
 
+namespace {
+
+class FarthestPointStage : public SamplingStage {
+ public:
+  explicit FarthestPointStage(const FarthestPointOptions& options) : options_(options) {}
+  SamplingResult Run(const Surface& surface) const override {
+    return FarthestPointSampling(surface, options_);
+  }
+
+ private:
+  FarthestPointOptions options_;
+};
+
+class AllSamplingStage : public SamplingStage {
+ public:
+  SamplingResult Run(const Surface& surface) const override { return AllVerticesSampling(surface); }
+};
+
+}  // namespace
+
 void RegisterSamplingStages(Registry& registry) {
-  RegisterAllSampling(registry);
-  RegisterFarthestPointSampling(registry);
+  registry.Add(
+      "sampling", "all", "every vertex is a sample",
+      [](OptionReader&) -> std::unique_ptr<Stage> { return std::make_unique<AllSamplingStage>(); });
+  registry.Add("sampling", "farthest_point",
+               "geodesic farthest point sampling from a seeded start (options: count, seed)",
+               [](OptionReader& reader) -> std::unique_ptr<Stage> {
+                 FarthestPointOptions options;
+                 options.count = reader.GetInt("count", options.count, 1);
+                 options.seed = static_cast<std::uint32_t>(
+                     reader.GetInt("seed", static_cast<int>(options.seed), 0));
+                 return std::make_unique<FarthestPointStage>(options);
+               });
 }
 
 }  // namespace symembed

@@ -24,8 +24,8 @@ using testing::runner::ReadOff;
 using testing::runner::TestRegistry;
 using testing::runner::WriteTestDataset;
 
-RunStats RunConfig(const std::string& config_text, const std::string& out,
-                   const std::string& cache, RunOptions options = {}) {
+RunStats RunConfig(const std::string& config_text, const std::string& out, const std::string& cache,
+                   RunOptions options = {}) {
   const Registry registry = TestRegistry();
   const ExperimentConfig config = ParseExperimentConfig(config_text, "test.yaml", registry);
   options.out_dir = out;
@@ -33,7 +33,7 @@ RunStats RunConfig(const std::string& config_text, const std::string& out,
   options.quiet = true;
   options.jobs = 2;
   options.load_mesh = ReadOff;
-  EvaluatorHooks evaluation(&registry);
+  GroundTruthRunEvaluation evaluation(&registry);
   return RunExperiment(config, registry, options, evaluation);
 }
 
@@ -46,8 +46,8 @@ TEST(RunEvaluation, WritesTheEvaluatorsOutputs) {
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
   const RunStats stats = RunConfig(config, tmp.File("out"), tmp.File("cache"));
   EXPECT_TRUE(stats.ok());
-  for (const char* file : {"summary.json", "pairs.csv", "curve.csv", "timings.csv",
-                           "failures.csv", "config.yaml"}) {
+  for (const char* file :
+       {"summary.json", "pairs.csv", "curve.csv", "timings.csv", "failures.csv", "config.yaml"}) {
     EXPECT_TRUE(fs::exists(tmp.File("out/base/") + file)) << file;
   }
   EXPECT_TRUE(fs::exists(tmp.File("out/comparison.csv")));
@@ -102,8 +102,8 @@ TEST(RunEvaluation, PairRecordsKeepTheStageMessagesAndTheCandidatesErrors) {
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
   RunConfig(config, tmp.File("out"), tmp.File("cache"));
   const std::string csv = ReadText(tmp.File("out/base/pairs.csv"));
-  EXPECT_NE(csv.find(",candidate_errors,flip_message,refine_message,message\n"),
-            std::string::npos) << csv;
+  EXPECT_NE(csv.find(",candidate_errors,flip_message,refine_message,message\n"), std::string::npos)
+      << csv;
   EXPECT_NE(csv.find(",test flip chose 0,"), std::string::npos) << csv;
   const PairEvaluation record = ParsePairRecord(ReadText(tmp.File("out/base/pairs/s0_s1.rec")));
   EXPECT_EQ(record.stage_messages.at("flip"), "test flip chose 0");
@@ -147,12 +147,13 @@ TEST(RunEvaluation, ShardsMergedAndResumedRunsEqualASingleRun) {
     shards.push_back(tmp.File("shard" + std::to_string(i)));
     RunConfig(config, shards.back(), tmp.File("cache"), shard);
   }
-  EvaluatorHooks evaluation;
+  GroundTruthRunEvaluation evaluation;
   EXPECT_EQ(MergeRuns(shards, tmp.File("merged"), evaluation).size(), 2u * (1 + 6));
   EXPECT_EQ(Outputs(tmp.File("merged")), single);
 
   RunConfig(config, tmp.File("resumed"), tmp.File("cache"));
-  for (const char* stem : {"s0_s1", "s2_s1"}) fs::remove(tmp.File("resumed/base/pairs/") + stem + ".rec");
+  for (const char* stem : {"s0_s1", "s2_s1"})
+    fs::remove(tmp.File("resumed/base/pairs/") + stem + ".rec");
   fs::remove(tmp.File("resumed/base/summary.json"));
   RunOptions resume;
   resume.resume = true;

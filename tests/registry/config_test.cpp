@@ -334,3 +334,35 @@ TEST(Config, UnknownKeySetByAnOverrideNamesWhereItWasSet) {
 
 }  // namespace
 }  // namespace symembed
+
+namespace symembed {
+namespace {
+
+// The evaluation section is read by one parser, for a config and for a resolved config.yaml
+// read back by merge and eval (no registry: the geodesics name is not checked there).
+TEST(Config, EvaluationOptionsHaveOneStrictParser) {
+  const EvaluationOptions e = ParseEvaluationOptions(
+      YAML::Load("{geodesics: dijkstra, max_error: 0.5, step: 0.01, points: 200}"),
+      "run/base/config.yaml", nullptr);
+  EXPECT_EQ(e.geodesics, "dijkstra");
+  EXPECT_DOUBLE_EQ(e.max_error, 0.5);
+  EXPECT_DOUBLE_EQ(e.step, 0.01);
+  EXPECT_EQ(e.points, 200);
+  const EvaluationOptions defaults =
+      ParseEvaluationOptions(YAML::Node(), "run/base/config.yaml", nullptr);
+  EXPECT_EQ(defaults.geodesics, EvaluationOptions().geodesics);
+  EXPECT_EQ(defaults.points, 0);
+  try {
+    ParseEvaluationOptions(YAML::Load("{max_eror: 0.5}"), "run/base/config.yaml", nullptr);
+    FAIL() << "an unknown key was accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("run/base/config.yaml"), std::string::npos);
+    EXPECT_NE(std::string(error.what()).find("max_eror"), std::string::npos);
+  }
+  EXPECT_THROW(
+      ParseEvaluationOptions(YAML::Load("{points: some}"), "run/base/config.yaml", nullptr),
+      ConfigError);
+}
+
+}  // namespace
+}  // namespace symembed
