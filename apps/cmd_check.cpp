@@ -9,6 +9,7 @@
 #include "eval/baseline.h"
 #include "eval/json.h"
 #include "eval/report.h"
+#include "registry/files.h"
 
 namespace symembed {
 
@@ -77,21 +78,22 @@ int CheckCommand(const Args& input_args) {
   }
   const std::string summary_path = parser.positionals()[0];
   const std::string baseline_path = parser.Get("baseline");
-  const std::string summary_text = ReadFile(summary_path);
+  const std::string summary_text = ReadFileOrThrow(summary_path);
   const JsonValue current = ParseJson(summary_text, summary_path);
   const bool update = parser.Flag("update");
 
   if (!std::filesystem::exists(baseline_path)) {
     if (!update) throw IoError(baseline_path + ": baseline not found (use --update to create it)");
-    WriteFileAtomic(baseline_path, summary_text);
+    WriteFileAtomically(baseline_path, summary_text);
     std::cout << "check: created baseline " << baseline_path << "\n";
     return 0;
   }
-  const JsonValue baseline = ParseJson(ReadFile(baseline_path), baseline_path);
+  const JsonValue baseline = ParseJson(ReadFileOrThrow(baseline_path), baseline_path);
   const CheckResult result = CompareSummaries(baseline, current, tolerances);
-  std::cout << "baseline " << baseline_path << " -> " << summary_path << "\n" << FormatCheck(result);
+  std::cout << "baseline " << baseline_path << " -> " << summary_path << "\n"
+            << FormatCheck(result);
   if (update) {
-    WriteFileAtomic(baseline_path, summary_text);
+    WriteFileAtomically(baseline_path, summary_text);
     std::cout << "check: baseline " << baseline_path << " updated\n";
     return 0;
   }

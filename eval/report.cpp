@@ -2,16 +2,15 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "core/errors.h"
+#include "registry/files.h"
 
 namespace fs = std::filesystem;
 
@@ -98,8 +97,7 @@ JsonValue SummaryToJson(const VariantSummary& s) {
   j.Set("mean_flip_tolerant", JsonValue::Number(s.mean_flip_tolerant));
   j.Set("median_flip_tolerant", JsonValue::Number(s.median_flip_tolerant));
   j.Set("mean_of_pair_means_direct", JsonValue::Number(s.mean_of_pair_means_direct));
-  j.Set("mean_of_pair_means_flip_tolerant",
-        JsonValue::Number(s.mean_of_pair_means_flip_tolerant));
+  j.Set("mean_of_pair_means_flip_tolerant", JsonValue::Number(s.mean_of_pair_means_flip_tolerant));
   j.Set("pct_direct", Thresholded(s.pct_direct));
   j.Set("pct_flip_tolerant", Thresholded(s.pct_flip_tolerant));
   j.Set("auc_direct", JsonValue::Number(s.auc_direct));
@@ -115,8 +113,8 @@ JsonValue SummaryToJson(const VariantSummary& s) {
   refine.Set("to_direct", JsonValue::Number(s.refine_to_direct));
   j.Set("refine_changed_side", refine);
   j.Set("evaluation_geodesics", JsonValue::String(s.evaluation_geodesics));
-  j.Set("evaluation_points", s.points_option > 0 ? JsonValue::Number(s.points_option)
-                                                 : JsonValue::String("all"));
+  j.Set("evaluation_points",
+        s.points_option > 0 ? JsonValue::Number(s.points_option) : JsonValue::String("all"));
   j.Set("max_error", JsonValue::Number(s.max_error));
   j.Set("step", JsonValue::Number(s.step));
   j.Set("time_total_s", JsonValue::Number(s.time_total_s));
@@ -164,11 +162,11 @@ VariantSummary SummaryFromJson(const JsonValue& j, const std::string& where) {
 }
 
 void WriteSummaryJson(const std::string& path, const VariantSummary& summary) {
-  WriteFileAtomic(path, WriteJson(SummaryToJson(summary)) + "\n");
+  WriteFileAtomically(path, WriteJson(SummaryToJson(summary)) + "\n");
 }
 
 VariantSummary ReadSummaryJson(const std::string& path) {
-  return SummaryFromJson(ParseJson(ReadFile(path), path), path);
+  return SummaryFromJson(ParseJson(ReadFileOrThrow(path), path), path);
 }
 
 std::string PairsCsv(std::vector<PairEvaluation> pairs) {
@@ -247,24 +245,23 @@ std::string ComparisonCsv(const std::vector<VariantSummary>& variants) {
     for (double pct : s.pct_flip_tolerant) out << ',' << Num(pct);
     out << ',' << Num(s.auc_direct) << ',' << Num(s.auc_flip_tolerant) << ','
         << s.flipped_left_right << ',' << s.flipped_front_back << ',' << s.flipped_up_down << ','
-        << s.FlippedTotal() << ',' << Num(s.time_total_s) << ',' << Num(s.time_per_shape_s)
-        << ',' << Num(s.time_per_pair_s) << ',' << Num(s.peak_rss_mb) << '\n';
+        << s.FlippedTotal() << ',' << Num(s.time_total_s) << ',' << Num(s.time_per_shape_s) << ','
+        << Num(s.time_per_pair_s) << ',' << Num(s.peak_rss_mb) << '\n';
   }
   return out.str();
 }
 
 void WriteVariantOutputs(const std::string& dir, const VariantSummary& summary,
-                         const std::vector<PairEvaluation>& pairs,
-                         const VariantTimings& timings) {
+                         const std::vector<PairEvaluation>& pairs, const VariantTimings& timings) {
   WriteSummaryJson(dir + "/summary.json", summary);
-  WriteFileAtomic(dir + "/pairs.csv", PairsCsv(pairs));
-  WriteFileAtomic(dir + "/curve.csv", CurveCsv(summary));
-  WriteFileAtomic(dir + "/timings.csv", TimingsCsv(pairs, timings));
+  WriteFileAtomically(dir + "/pairs.csv", PairsCsv(pairs));
+  WriteFileAtomically(dir + "/curve.csv", CurveCsv(summary));
+  WriteFileAtomically(dir + "/timings.csv", TimingsCsv(pairs, timings));
 }
 
-bool WriteComparison(const std::string& experiment_dir,
-                     const std::vector<VariantSummary>& variants, std::string* warning) {
-  WriteFileAtomic(experiment_dir + "/comparison.csv", ComparisonCsv(variants));
+bool WriteComparison(const std::string& experiment_dir, const std::vector<VariantSummary>& variants,
+                     std::string* warning) {
+  WriteFileAtomically(experiment_dir + "/comparison.csv", ComparisonCsv(variants));
   return PlotCurves(experiment_dir, warning);
 }
 
@@ -289,8 +286,10 @@ std::string FindPlotScript() {
 std::string ShellQuote(const std::string& s) {
   std::string out = "'";
   for (char c : s) {
-    if (c == '\'') out += "'\\''";
-    else out += c;
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
   }
   return out + "'";
 }
@@ -385,37 +384,6 @@ PairEvaluation ParsePairRecord(const std::string& text, const std::string& where
     }
   }
   return p;
-}
-
-void WriteFileAtomic(const std::string& path, const std::string& text) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path target(path);
-  std::error_code ec;
-  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-  const std::string temp = path + ".tmp." + std::to_string(getpid()) + "." +
-                           std::to_string(counter.fetch_add(1));
-  {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    out.flush();
-    if (!out) {
-      fs::remove(temp, ec);
-      throw IoError(path + ": cannot write");
-    }
-  }
-  fs::rename(temp, target, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw IoError(path + ": cannot rename the temporary file into place");
-  }
-}
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 }  // namespace symembed

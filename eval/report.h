@@ -42,14 +42,13 @@ std::string ComparisonCsv(const std::vector<VariantSummary>& variants);
 // Writes summary.json, pairs.csv, curve.csv, timings.csv into dir (created when missing),
 // each atomically. Throws IoError.
 void WriteVariantOutputs(const std::string& dir, const VariantSummary& summary,
-                         const std::vector<PairEvaluation>& pairs,
-                         const VariantTimings& timings);
+                         const std::vector<PairEvaluation>& pairs, const VariantTimings& timings);
 
 // Writes comparison.csv into the experiment directory, atomically, then runs
 // scripts/plot-curves on it when available. Returns false and sets *warning when the plot
 // could not be made (never an error: the CSVs are the source of truth).
-bool WriteComparison(const std::string& experiment_dir,
-                     const std::vector<VariantSummary>& variants, std::string* warning);
+bool WriteComparison(const std::string& experiment_dir, const std::vector<VariantSummary>& variants,
+                     std::string* warning);
 
 // Runs `/usr/bin/python3 scripts/plot-curves DIR` (DIR: an experiment directory with
 // VARIANT/curve.csv, or a variant directory with curve.csv). The script is found through
@@ -61,11 +60,5 @@ bool PlotCurves(const std::string& dir, std::string* warning);
 // it gives back an equal PairEvaluation (every double exact). Throws InvalidInputError.
 std::string SerializePairRecord(const PairEvaluation& pair);
 PairEvaluation ParsePairRecord(const std::string& text, const std::string& where = "record");
-
-// Writes text to path through a temporary file in the same directory and a rename, creating
-// the directory when missing. Throws IoError.
-void WriteFileAtomic(const std::string& path, const std::string& text);
-// Throws IoError.
-std::string ReadFile(const std::string& path);
 
 }  // namespace symembed

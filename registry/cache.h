@@ -12,15 +12,10 @@
 #include <optional>
 #include <string>
 
+#include "registry/files.h"
 #include "registry/serialize.h"
 
 namespace symembed {
-
-// Writes bytes to path through a temporary file in the same folder and a rename; creates the
-// parent folders. Throws IoError.
-void WriteFileAtomically(const std::string& path, const std::string& bytes);
-// The bytes of a file, or std::nullopt when it cannot be opened.
-std::optional<std::string> ReadFileBytes(const std::string& path);
 
 class DiskCache {
  public:

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/parallel.h"
+#include "registry/files.h"
 #include "registry/progress.h"
 
 namespace fs = std::filesystem;
@@ -100,9 +101,9 @@ void FinishVariant(VariantResults results, RunEvaluation& evaluation) {
 // The work of one variant.
 class VariantRun {
  public:
-  VariantRun(const ExperimentConfig& config, const VariantConfig& variant,
-             const Registry& registry, const RunOptions& options, RunEvaluation& evaluation,
-             StageCounters* counters, RunStats* stats)
+  VariantRun(const ExperimentConfig& config, const VariantConfig& variant, const Registry& registry,
+             const RunOptions& options, RunEvaluation& evaluation, StageCounters* counters,
+             RunStats* stats)
       : config_(config),
         variant_(variant),
         options_(options),
@@ -120,7 +121,8 @@ class VariantRun {
       // Records made under other settings must not be mixed into this run's outputs.
       auto previous = ReadFileBytes(dir_ + "/config.yaml");
       if (previous && *previous != resolved) {
-        throw ConfigError(dir_ + "/config.yaml: the resolved config differs from the one of the "
+        throw ConfigError(dir_ +
+                          "/config.yaml: the resolved config differs from the one of the "
                           "run being resumed; run without --resume (or into another --out)");
       }
     }
@@ -241,15 +243,15 @@ class VariantRun {
   std::string RunPair(const DatasetPair& pair, const VariantEvaluation& evaluation) {
     auto source = shapes_.find(pair.source);
     auto target = shapes_.find(pair.target);
-    for (const auto& [name, it] : {std::make_pair(pair.source, source),
-                                   std::make_pair(pair.target, target)}) {
+    for (const auto& [name, it] :
+         {std::make_pair(pair.source, source), std::make_pair(pair.target, target)}) {
       if (it == shapes_.end()) {
         Fail("pair", pair.source, pair.target, "shape '" + name + "' failed");
         return "";
       }
     }
-    const PairGroundTruth truth = PairLines(source->second->ground_truth,
-                                            target->second->ground_truth);
+    const PairGroundTruth truth =
+        PairLines(source->second->ground_truth, target->second->ground_truth);
     const uint64_t key = PairKey(*source->second, *target->second, pipeline_, truth);
     PairEntry cached;
     if (cache_.Load("pair", key, &cached)) {
@@ -260,8 +262,8 @@ class VariantRun {
       ++stats_->pairs_done;
       return cached.record;
     }
-    const PairContext context{*index_.Find(pair.source), *index_.Find(pair.target),
-                              *source->second, *target->second, truth};
+    const PairContext context{*index_.Find(pair.source), *index_.Find(pair.target), *source->second,
+                              *target->second, truth};
     const PairOutcome outcome = ComputePair(
         *source->second, *target->second, pipeline_, truth.source_ids.empty() ? nullptr : &truth,
         [&](const std::vector<int>& predicted) { return evaluation.MeanError(context, predicted); },
@@ -348,12 +350,6 @@ std::vector<std::string> Lines(const std::string& text) {
   return lines;
 }
 
-std::string MustRead(const std::string& path) {
-  auto text = ReadFileBytes(path);
-  if (!text) throw IoError(path + ": cannot read");
-  return *text;
-}
-
 // Files of a folder with the given extension, sorted by name (none when it does not exist).
 std::vector<fs::path> FilesWithExtension(const std::string& dir, const std::string& extension) {
   std::vector<fs::path> files;
@@ -374,9 +370,9 @@ void CopyIfPresent(const fs::path& from, const std::string& to) {
 std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
                                const std::string& out_dir, RunEvaluation& evaluation) {
   if (shard_dirs.empty()) throw InvalidInputError("merge: no shard folders given");
-  const std::string variants_text = MustRead(shard_dirs[0] + "/variants.txt");
+  const std::string variants_text = ReadFileOrThrow(shard_dirs[0] + "/variants.txt");
   for (const std::string& shard : shard_dirs) {
-    if (MustRead(shard + "/variants.txt") != variants_text) {
+    if (ReadFileOrThrow(shard + "/variants.txt") != variants_text) {
       throw InvalidInputError(shard + "/variants.txt: differs from " + shard_dirs[0] +
                               "/variants.txt (shards of different experiments?)");
     }
@@ -404,7 +400,7 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
       }
       results.merged_from.push_back(dir);
       for (const fs::path& file : FilesWithExtension(dir + "/pairs", ".rec")) {
-        const std::string text = MustRead(file.string());
+        const std::string text = ReadFileOrThrow(file.string());
         const DatasetPair pair = evaluation.PairOfRecord(text, file.string());
         const std::string stem = PairStem(pair.source, pair.target);
         if (file.stem().string() != stem) {
