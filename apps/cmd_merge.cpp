@@ -3,6 +3,7 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "eval/run_evaluation.h"
+#include "registry/merge.h"
 #include "registry/runner.h"
 
 namespace symembed {

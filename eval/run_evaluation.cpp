@@ -181,7 +181,7 @@ void GroundTruthRunEvaluation::WriteVariant(const VariantResults& results) {
     auto& stages = timings.shape_stage_seconds[shape.name];
     for (const StageTime& t : shape.times) stages[t.stage] = t.seconds;
   }
-  const std::string config = results.dir + "/config.yaml";
+  const std::string config = VariantConfigPath(results.dir);
   const EvaluationOptions options =
       ParseEvaluationOptions(YAML::LoadFile(config)["evaluation"], config, registry_);
   const VariantSummary summary = Summarize(results.variant, pairs, options, timings);

@@ -55,12 +55,14 @@ std::vector<std::vector<std::string>> ParseCsv(const std::string& text, const st
       quoted = any = false;
       ++line;
     } else if (c != '\r') {
-      if (quoted) throw InvalidInputError(where + ":" + std::to_string(line) + ": text after a quoted field");
+      if (quoted)
+        throw InvalidInputError(where + ":" + std::to_string(line) + ": text after a quoted field");
       field += c;
       any = true;
     }
   }
-  if (in_quotes) throw InvalidInputError(where + ":" + std::to_string(line) + ": unterminated quote");
+  if (in_quotes)
+    throw InvalidInputError(where + ":" + std::to_string(line) + ": unterminated quote");
   if (any || !row.empty()) {
     row.push_back(field);
     rows.push_back(row);
@@ -182,6 +184,38 @@ ShapeRecord ParseShapeRecord(const std::string& name, const std::string& text,
 
 std::string PairStem(const std::string& source, const std::string& target) {
   return source + "_" + target;
+}
+
+std::string VariantsListPath(const std::string& out_dir) { return out_dir + "/variants.txt"; }
+
+std::string VariantConfigPath(const std::string& variant_dir) {
+  return variant_dir + "/config.yaml";
+}
+
+std::string PairMapPath(const std::string& variant_dir, const std::string& source,
+                        const std::string& target) {
+  return variant_dir + "/maps/" + PairStem(source, target) + ".map";
+}
+
+std::string PairRecordPath(const std::string& variant_dir, const std::string& source,
+                           const std::string& target) {
+  return variant_dir + "/pairs/" + PairStem(source, target) + ".rec";
+}
+
+std::string ShapeRecordPath(const std::string& variant_dir, const std::string& shape) {
+  return variant_dir + "/shapes/" + shape + ".rec";
+}
+
+std::vector<std::string> ParseVariantsList(const std::string& text) {
+  std::vector<std::string> lines;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    if (end > start) lines.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return lines;
 }
 
 }  // namespace symembed

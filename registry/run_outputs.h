@@ -17,9 +17,9 @@
 namespace symembed {
 
 struct Failure {
-  std::string kind;     // "shape" or "pair"
-  std::string source;   // the shape, or the pair's source
-  std::string target;   // the pair's target; empty for a shape
+  std::string kind;    // "shape" or "pair"
+  std::string source;  // the shape, or the pair's source
+  std::string target;  // the pair's target; empty for a shape
   std::string message;
   bool operator<(const Failure& other) const;
   bool operator==(const Failure& other) const;
@@ -46,5 +46,19 @@ std::string ShapesCsv(const std::vector<ShapeRecord>& shapes);
 
 // "A_B": the file stem of a pair's record and map.
 std::string PairStem(const std::string& source, const std::string& target);
+
+// The layout of an experiment's output folder OUT: OUT/variants.txt, and per variant folder
+// OUT/<variant>/ its config.yaml, maps/A_B.map, pairs/A_B.rec and shapes/NAME.rec (besides
+// failures.csv, shapes.csv and the evaluation's summary files).
+std::string VariantsListPath(const std::string& out_dir);
+std::string VariantConfigPath(const std::string& variant_dir);
+std::string PairMapPath(const std::string& variant_dir, const std::string& source,
+                        const std::string& target);
+std::string PairRecordPath(const std::string& variant_dir, const std::string& source,
+                           const std::string& target);
+std::string ShapeRecordPath(const std::string& variant_dir, const std::string& shape);
+
+// The variant names of a variants.txt, in order (empty lines skipped).
+std::vector<std::string> ParseVariantsList(const std::string& text);
 
 }  // namespace symembed

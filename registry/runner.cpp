@@ -20,18 +20,6 @@ double Since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string RecordPath(const std::string& dir, const DatasetPair& p) {
-  return dir + "/pairs/" + PairStem(p.source, p.target) + ".rec";
-}
-
-std::string MapPath(const std::string& dir, const DatasetPair& p) {
-  return dir + "/maps/" + PairStem(p.source, p.target) + ".map";
-}
-
-std::string ShapeRecordPath(const std::string& dir, const std::string& shape) {
-  return dir + "/shapes/" + shape + ".rec";
-}
-
 // A pair's cached result (the runner only caches pairs that succeeded).
 struct PairEntry {
   std::vector<int> map;
@@ -69,35 +57,6 @@ std::string VariantsText(const ExperimentConfig& config) {
   return text;
 }
 
-// Reads the shape records of the shapes used by the pairs that have a record.
-std::vector<ShapeRecord> ReadShapeRecords(const std::string& dir,
-                                          const std::vector<DatasetPair>& pairs,
-                                          const std::vector<std::string>& records) {
-  std::set<std::string> names;
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    if (records[i].empty()) continue;
-    names.insert(pairs[i].source);
-    names.insert(pairs[i].target);
-  }
-  std::vector<ShapeRecord> shapes;
-  for (const std::string& name : names) {
-    const std::string path = ShapeRecordPath(dir, name);
-    if (auto text = ReadFileBytes(path)) shapes.push_back(ParseShapeRecord(name, *text, path));
-  }
-  return shapes;
-}
-
-// Writes failures.csv and hands the variant to the evaluation.
-void FinishVariant(VariantResults results, RunEvaluation& evaluation) {
-  std::sort(results.failures.begin(), results.failures.end());
-  results.failures.erase(std::unique(results.failures.begin(), results.failures.end()),
-                         results.failures.end());
-  WriteFileAtomically(results.dir + "/failures.csv", FailuresCsv(results.failures));
-  results.shapes = ReadShapeRecords(results.dir, results.pairs, results.records);
-  WriteFileAtomically(results.dir + "/shapes.csv", ShapesCsv(results.shapes));
-  evaluation.WriteVariant(results);
-}
-
 // The work of one variant.
 class VariantRun {
  public:
@@ -119,14 +78,14 @@ class VariantRun {
     const std::string resolved = ResolvedConfigYaml(config_, variant_, pipeline_);
     if (options_.resume) {
       // Records made under other settings must not be mixed into this run's outputs.
-      auto previous = ReadFileBytes(dir_ + "/config.yaml");
+      auto previous = ReadFileBytes(VariantConfigPath(dir_));
       if (previous && *previous != resolved) {
         throw ConfigError(dir_ +
                           "/config.yaml: the resolved config differs from the one of the "
                           "run being resumed; run without --resume (or into another --out)");
       }
     }
-    WriteFileAtomically(dir_ + "/config.yaml", resolved);
+    WriteFileAtomically(VariantConfigPath(dir_), resolved);
     index_ = pipeline_.dataset->Load();
     SelectPairs();
     ComputeShapes();
@@ -161,7 +120,7 @@ class VariantRun {
     }
     records_.assign(pairs_.size(), "");
     for (size_t i = 0; i < pairs_.size(); ++i) {
-      const std::string record = RecordPath(dir_, pairs_[i]);
+      const std::string record = PairRecordPath(dir_, pairs_[i].source, pairs_[i].target);
       if (options_.resume) {
         if (auto text = ReadFileBytes(record); text && !text->empty()) {
           records_[i] = *text;
@@ -171,7 +130,7 @@ class VariantRun {
       } else {
         std::error_code ec;
         fs::remove(record, ec);
-        fs::remove(MapPath(dir_, pairs_[i]), ec);
+        fs::remove(PairMapPath(dir_, pairs_[i].source, pairs_[i].target), ec);
       }
       pending_.push_back(static_cast<int>(i));
     }
@@ -256,8 +215,8 @@ class VariantRun {
     PairEntry cached;
     if (cache_.Load("pair", key, &cached)) {
       counters_->Hit("pair");
-      WriteFileAtomically(MapPath(dir_, pair), MapText(cached.map));
-      WriteFileAtomically(RecordPath(dir_, pair), cached.record);
+      WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), MapText(cached.map));
+      WriteFileAtomically(PairRecordPath(dir_, pair.source, pair.target), cached.record);
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_->pairs_done;
       return cached.record;
@@ -268,7 +227,7 @@ class VariantRun {
         *source->second, *target->second, pipeline_, truth.source_ids.empty() ? nullptr : &truth,
         [&](const std::vector<int>& predicted) { return evaluation.MeanError(context, predicted); },
         counters_);
-    WriteFileAtomically(MapPath(dir_, pair), MapText(outcome.map));
+    WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), MapText(outcome.map));
     std::string failure;
     std::string record = evaluation.Evaluate(context, outcome, &failure);
     if (!failure.empty()) {
@@ -276,7 +235,7 @@ class VariantRun {
       return "";
     }
     SYMEMBED_CHECK(!record.empty(), "the evaluation returned an empty record");
-    WriteFileAtomically(RecordPath(dir_, pair), record);
+    WriteFileAtomically(PairRecordPath(dir_, pair.source, pair.target), record);
     counters_->Executed("pair");
     cache_.Store("pair", key, PairEntry{outcome.map, record});
     std::lock_guard<std::mutex> lock(mutex_);
@@ -304,6 +263,39 @@ class VariantRun {
 
 }  // namespace
 
+namespace {
+
+// Reads the shape records of the shapes used by the pairs that have a record.
+std::vector<ShapeRecord> ReadShapeRecords(const std::string& dir,
+                                          const std::vector<DatasetPair>& pairs,
+                                          const std::vector<std::string>& records) {
+  std::set<std::string> names;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    if (records[i].empty()) continue;
+    names.insert(pairs[i].source);
+    names.insert(pairs[i].target);
+  }
+  std::vector<ShapeRecord> shapes;
+  for (const std::string& name : names) {
+    const std::string path = ShapeRecordPath(dir, name);
+    if (auto text = ReadFileBytes(path)) shapes.push_back(ParseShapeRecord(name, *text, path));
+  }
+  return shapes;
+}
+
+}  // namespace
+
+// Writes failures.csv and hands the variant to the evaluation.
+void FinishVariant(VariantResults results, RunEvaluation& evaluation) {
+  std::sort(results.failures.begin(), results.failures.end());
+  results.failures.erase(std::unique(results.failures.begin(), results.failures.end()),
+                         results.failures.end());
+  WriteFileAtomically(results.dir + "/failures.csv", FailuresCsv(results.failures));
+  results.shapes = ReadShapeRecords(results.dir, results.pairs, results.records);
+  WriteFileAtomically(results.dir + "/shapes.csv", ShapesCsv(results.shapes));
+  evaluation.WriteVariant(results);
+}
+
 RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
                        const RunOptions& options, RunEvaluation& evaluation) {
   if (options.shard_count < 1 || options.shard_index < 0 ||
@@ -322,7 +314,7 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
     throw ConfigError(config.file + ": no variant '" + options.variant + "'; variants: " + names);
   }
   fs::create_directories(options.out_dir);
-  WriteFileAtomically(options.out_dir + "/variants.txt", VariantsText(config));
+  WriteFileAtomically(VariantsListPath(options.out_dir), VariantsText(config));
   RunStats stats;
   StageCounters counters;
   for (const VariantConfig* v : variants) {
@@ -334,119 +326,6 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
   stats.executed = counters.executed();
   stats.cache_hits = counters.hits();
   return stats;
-}
-
-namespace {
-
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> lines;
-  size_t start = 0;
-  while (start < text.size()) {
-    size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    if (end > start) lines.push_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return lines;
-}
-
-// Files of a folder with the given extension, sorted by name (none when it does not exist).
-std::vector<fs::path> FilesWithExtension(const std::string& dir, const std::string& extension) {
-  std::vector<fs::path> files;
-  std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    if (it->is_regular_file() && it->path().extension() == extension) files.push_back(it->path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-void CopyIfPresent(const fs::path& from, const std::string& to) {
-  if (auto bytes = ReadFileBytes(from.string())) WriteFileAtomically(to, *bytes);
-}
-
-}  // namespace
-
-std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
-                               const std::string& out_dir, RunEvaluation& evaluation) {
-  if (shard_dirs.empty()) throw InvalidInputError("merge: no shard folders given");
-  const std::string variants_text = ReadFileOrThrow(shard_dirs[0] + "/variants.txt");
-  for (const std::string& shard : shard_dirs) {
-    if (ReadFileOrThrow(shard + "/variants.txt") != variants_text) {
-      throw InvalidInputError(shard + "/variants.txt: differs from " + shard_dirs[0] +
-                              "/variants.txt (shards of different experiments?)");
-    }
-  }
-  fs::create_directories(out_dir);
-  WriteFileAtomically(out_dir + "/variants.txt", variants_text);
-  const std::vector<std::string> names = Lines(variants_text);
-  std::vector<Failure> all_failures;
-  for (const std::string& name : names) {
-    VariantResults results;
-    results.variant = name;
-    results.dir = out_dir + "/" + name;
-    std::string config_text;
-    std::map<std::pair<std::string, std::string>, std::string> records;
-    std::set<Failure> failures;
-    for (const std::string& shard : shard_dirs) {
-      const std::string dir = shard + "/" + name;
-      auto config = ReadFileBytes(dir + "/config.yaml");
-      if (!config) continue;
-      if (results.merged_from.empty()) {
-        config_text = *config;
-      } else if (*config != config_text) {
-        throw InvalidInputError(dir + "/config.yaml: differs from " + results.merged_from[0] +
-                                "/config.yaml");
-      }
-      results.merged_from.push_back(dir);
-      for (const fs::path& file : FilesWithExtension(dir + "/pairs", ".rec")) {
-        const std::string text = ReadFileOrThrow(file.string());
-        const DatasetPair pair = evaluation.PairOfRecord(text, file.string());
-        const std::string stem = PairStem(pair.source, pair.target);
-        if (file.stem().string() != stem) {
-          throw InvalidInputError(file.string() + ": holds the record of " + stem);
-        }
-        records[{pair.source, pair.target}] = text;
-        WriteFileAtomically(results.dir + "/pairs/" + stem + ".rec", text);
-        CopyIfPresent(dir + "/maps/" + stem + ".map", results.dir + "/maps/" + stem + ".map");
-      }
-      for (const fs::path& file : FilesWithExtension(dir + "/shapes", ".rec")) {
-        CopyIfPresent(file, results.dir + "/shapes/" + file.filename().string());
-      }
-      if (auto text = ReadFileBytes(dir + "/failures.csv")) {
-        for (Failure& f : ParseFailuresCsv(*text, dir + "/failures.csv")) {
-          failures.insert(std::move(f));
-        }
-      }
-    }
-    if (results.merged_from.empty()) continue;
-    WriteFileAtomically(results.dir + "/config.yaml", config_text);
-    // Failed pairs keep their map (written before the evaluation failed), when there is one.
-    std::set<std::pair<std::string, std::string>> pair_set;
-    for (const auto& [key, text] : records) pair_set.insert(key);
-    for (const Failure& f : failures) {
-      if (f.kind != "pair" || records.count({f.source, f.target})) continue;
-      pair_set.insert({f.source, f.target});
-      results.failures.push_back(f);
-      const std::string stem = PairStem(f.source, f.target);
-      for (const std::string& shard_variant : results.merged_from) {
-        CopyIfPresent(shard_variant + "/maps/" + stem + ".map",
-                      results.dir + "/maps/" + stem + ".map");
-      }
-    }
-    for (const Failure& f : failures) {
-      if (f.kind == "shape") results.failures.push_back(f);
-    }
-    for (const auto& [source, target] : pair_set) {
-      results.pairs.push_back({source, target});
-      auto it = records.find({source, target});
-      results.records.push_back(it == records.end() ? "" : it->second);
-    }
-    all_failures.insert(all_failures.end(), results.failures.begin(), results.failures.end());
-    FinishVariant(std::move(results), evaluation);
-  }
-  evaluation.WriteExperiment(out_dir, names);
-  return all_failures;
 }
 
 }  // namespace symembed

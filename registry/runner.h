@@ -55,11 +55,11 @@ class VariantEvaluation {
 
 struct VariantResults {
   std::string variant;
-  std::string dir;                      // the variant folder (holds config.yaml)
-  std::vector<DatasetPair> pairs;       // the run's pairs, in (source, target) order
-  std::vector<std::string> records;     // per pair: record text, empty when it failed
-  std::vector<Failure> failures;        // sorted
-  std::vector<ShapeRecord> shapes;      // shapes of the pairs that have a record, by name
+  std::string dir;                   // the variant folder (holds config.yaml)
+  std::vector<DatasetPair> pairs;    // the run's pairs, in (source, target) order
+  std::vector<std::string> records;  // per pair: record text, empty when it failed
+  std::vector<Failure> failures;     // sorted
+  std::vector<ShapeRecord> shapes;   // shapes of the pairs that have a record, by name
   double wall_seconds = 0.0;
   std::vector<std::string> merged_from;  // MergeRuns: the shards' variant folders; else empty
 };
@@ -74,29 +74,30 @@ class RunEvaluation {
   virtual void WriteVariant(const VariantResults& results) = 0;
   // Writes the cross-variant files of the experiment folder (variants in config order; the
   // ones without outputs in the folder are skipped).
-  virtual void WriteExperiment(const std::string& dir, const std::vector<std::string>& variants) = 0;
+  virtual void WriteExperiment(const std::string& dir,
+                               const std::vector<std::string>& variants) = 0;
 };
 
 struct RunOptions {
-  std::string out_dir;        // results/<experiment>
-  std::string cache_dir;      // per-shape cache; empty: none
-  std::string variant;        // run only this one (empty: all)
-  int jobs = 0;               // worker threads (0: all cores)
-  bool resume = false;        // keep the pairs that already have a record
-  int shard_index = 0;        // this run's shard, in [0, shard_count)
+  std::string out_dir;    // results/<experiment>
+  std::string cache_dir;  // per-shape cache; empty: none
+  std::string variant;    // run only this one (empty: all)
+  int jobs = 0;           // worker threads (0: all cores)
+  bool resume = false;    // keep the pairs that already have a record
+  int shard_index = 0;    // this run's shard, in [0, shard_count)
   int shard_count = 1;
   bool quiet = false;
-  MeshLoader load_mesh;       // reads a mesh file (core/mesh_io.h LoadSurface)
+  MeshLoader load_mesh;  // reads a mesh file (core/mesh_io.h LoadSurface)
 };
 
 struct RunStats {
-  std::map<std::string, int> executed;   // stage -> computations (cache misses included)
-  std::map<std::string, int> cache_hits; // stage -> disk cache hits
+  std::map<std::string, int> executed;    // stage -> computations (cache misses included)
+  std::map<std::string, int> cache_hits;  // stage -> disk cache hits
   int shapes_computed = 0;
-  int pairs_total = 0;                   // pairs of the run (shard), all variants
-  int pairs_skipped = 0;                 // already had a record (--resume)
-  int pairs_done = 0;                    // computed now
-  std::vector<Failure> failures;         // this run's, all variants
+  int pairs_total = 0;            // pairs of the run (shard), all variants
+  int pairs_skipped = 0;          // already had a record (--resume)
+  int pairs_done = 0;             // computed now
+  std::vector<Failure> failures;  // this run's, all variants
   bool ok() const { return failures.empty(); }
 };
 
@@ -106,11 +107,8 @@ struct RunStats {
 RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
                        const RunOptions& options, RunEvaluation& evaluation);
 
-// Joins the output folders of sharded runs (each an out_dir of RunExperiment) into out_dir:
-// copies every variant's config.yaml (which must agree), maps, pair and shape records, merges
-// failures, then writes the summaries as a single run would. Throws InvalidInputError/IoError.
-// Returns the merged failures.
-std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
-                               const std::string& out_dir, RunEvaluation& evaluation);
+// Writes failures.csv (sorted, without duplicates) and shapes.csv into results.dir and hands
+// the variant to evaluation.WriteVariant: the end of a variant for RunExperiment and MergeRuns.
+void FinishVariant(VariantResults results, RunEvaluation& evaluation);
 
 }  // namespace symembed

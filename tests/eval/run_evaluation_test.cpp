@@ -11,6 +11,7 @@
 #include "core/errors.h"
 #include "eval/report.h"
 #include "registry/config.h"
+#include "registry/merge.h"
 #include "tests/eval/run_outputs_fixture.h"
 #include "tests/registry/runner_fixture.h"
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "registry/config.h"
+#include "registry/merge.h"
 #include "registry/shape_pipeline.h"
 #include "tests/registry/runner_fixture.h"
 
@@ -50,8 +51,9 @@ struct RunResult {
   std::map<std::string, int> calls;  // test stage calls during the run
 };
 
-RunResult RunConfig(const std::string& config_text, const std::string& out, const std::string& cache,
-              RunOptions options = {}, TestEvaluation* evaluation = nullptr) {
+RunResult RunConfig(const std::string& config_text, const std::string& out,
+                    const std::string& cache, RunOptions options = {},
+                    TestEvaluation* evaluation = nullptr) {
   const Registry registry = TestRegistry();
   const ExperimentConfig config = ParseExperimentConfig(config_text, "test.yaml", registry);
   options.out_dir = out;
@@ -62,8 +64,8 @@ RunResult RunConfig(const std::string& config_text, const std::string& out, cons
   TestEvaluation default_evaluation;
   CallCounter::Get().Take();
   RunResult run;
-  run.stats = RunExperiment(config, registry, options,
-                            evaluation ? *evaluation : default_evaluation);
+  run.stats =
+      RunExperiment(config, registry, options, evaluation ? *evaluation : default_evaluation);
   run.calls = CallCounter::Get().Take();
   return run;
 }
@@ -160,11 +162,11 @@ TEST(Runner, ANewPrepareVersionRecomputesThePreparedDataAndThePairs) {
 
 TEST(Runner, VariantChangingALaterStageRecomputesNothingBeforeIt) {
   TempDir tmp;
-  const std::string config = WriteTestDataset(
-      tmp.File("data"), 3,
-      "variants:\n"
-      "  - {name: scaled, set: {pipeline.embedding.scale: 2.0}}\n"
-      "  - {name: flip1, set: {pipeline.flip.choose: 1}}\n");
+  const std::string config =
+      WriteTestDataset(tmp.File("data"), 3,
+                       "variants:\n"
+                       "  - {name: scaled, set: {pipeline.embedding.scale: 2.0}}\n"
+                       "  - {name: flip1, set: {pipeline.flip.choose: 1}}\n");
   const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
   EXPECT_TRUE(run.stats.ok());
   // preprocess, sampling and geodesics once per shape for all three variants.
@@ -224,8 +226,8 @@ TEST(Runner, ResumeRefusesAChangedConfig) {
 
 TEST(Runner, ShardsMergedEqualASingleRun) {
   TempDir tmp;
-  const std::string config =
-      WriteTestDataset(tmp.File("data"), 4, "variants:\n  - {name: flip1, set: {pipeline.flip.choose: 1}}\n");
+  const std::string config = WriteTestDataset(
+      tmp.File("data"), 4, "variants:\n  - {name: flip1, set: {pipeline.flip.choose: 1}}\n");
   RunConfig(config, tmp.File("single"), tmp.File("cache"));
   std::vector<std::string> shards;
   int pairs = 0;
@@ -331,8 +333,10 @@ namespace {
 
 TEST(Runner, CacheKeysIgnoreThreadCounts) {
   testing::runner::TestSampling a(3), b(3);
-  a.set_resolved_options(YAML::Load("{type: x, count: 3, threads: 4, common: {threads: 2, precision: float}}"));
-  b.set_resolved_options(YAML::Load("{type: x, count: 3, threads: 1, common: {threads: 8, precision: float}}"));
+  a.set_resolved_options(
+      YAML::Load("{type: x, count: 3, threads: 4, common: {threads: 2, precision: float}}"));
+  b.set_resolved_options(
+      YAML::Load("{type: x, count: 3, threads: 1, common: {threads: 8, precision: float}}"));
   EXPECT_EQ(OptionsText(a), OptionsText(b));
   EXPECT_EQ(OptionsText(a).find("threads"), std::string::npos);
   EXPECT_NE(OptionsText(a).find("precision: float"), std::string::npos) << OptionsText(a);

@@ -1,0 +1,18 @@
+// `symembed merge`: the output folders of sharded runs joined into one, equal to a single run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "registry/runner.h"
+
+namespace symembed {
+
+// Joins the output folders of sharded runs (each an out_dir of RunExperiment) into out_dir:
+// copies every variant's config.yaml (which must agree), maps, pair and shape records, merges
+// failures, then writes the summaries as a single run would. Throws InvalidInputError/IoError.
+// Returns the merged failures.
+std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
+                               const std::string& out_dir, RunEvaluation& evaluation);
+
+}  // namespace symembed
