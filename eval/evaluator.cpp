@@ -66,7 +66,7 @@ EvalShape MakeEvalShape(const PreprocessResult& pre, int num_input_vertices) {
   return shape;
 }
 
-PairGroundTruth SelectPoints(const PairGroundTruth& gt, const EvalShape& target, int n) {
+InputGroundTruth SelectPoints(const InputGroundTruth& gt, const EvalShape& target, int n) {
   const int lines = static_cast<int>(gt.target_ids.size());
   if (n <= 0 || n >= lines) return gt;
   std::vector<Eigen::Vector3d> p(lines);
@@ -93,7 +93,7 @@ PairGroundTruth SelectPoints(const PairGroundTruth& gt, const EvalShape& target,
     }
     next = best;
   }
-  PairGroundTruth out;
+  InputGroundTruth out;
   const bool sym = !gt.target_sym_ids.empty();
   for (int i = 0; i < lines; ++i) {
     if (!taken[i]) continue;
@@ -159,9 +159,9 @@ void Evaluator::Account(const std::string& target_name, TargetCache& entry, int6
 
 std::vector<double> Evaluator::Errors(const std::string& target_name, const EvalShape& target,
                                       const std::vector<int>& map_input_ids,
-                                      const PairGroundTruth& all_gt,
+                                      const InputGroundTruth& all_gt,
                                       std::vector<double>* sym) const {
-  const PairGroundTruth gt = SelectPoints(all_gt, target, options_.points);
+  const InputGroundTruth gt = SelectPoints(all_gt, target, options_.points);
   const int lines = static_cast<int>(gt.target_ids.size());
   const bool has_sym = sym != nullptr && !gt.target_sym_ids.empty();
   if (lines == 0) throw InvalidInputError("no ground-truth points for this pair");
@@ -173,8 +173,8 @@ std::vector<double> Evaluator::Errors(const std::string& target_name, const Eval
   const int num_target = target.NumInputVertices();
   auto target_vertex = [&](int id, const char* what) {
     if (id < 0 || id >= num_target) {
-      throw InvalidInputError(std::string(what) + " " + std::to_string(id) +
-                              " out of range [0, " + std::to_string(num_target) + ")");
+      throw InvalidInputError(std::string(what) + " " + std::to_string(id) + " out of range [0, " +
+                              std::to_string(num_target) + ")");
     }
     return target.vertex_of_input[id];
   };
@@ -217,9 +217,9 @@ std::vector<double> Evaluator::Errors(const std::string& target_name, const Eval
       const std::vector<int> chunk(missing.begin() + begin,
                                    missing.begin() + std::min(missing.size(), begin + kChunk));
       const Eigen::MatrixXd D = entry->solver->Distances(chunk);
-      SYMEMBED_CHECK(D.rows() == static_cast<Eigen::Index>(chunk.size()) &&
-                         D.cols() == num_vertices,
-                     "geodesic solver returned " << D.rows() << " x " << D.cols());
+      SYMEMBED_CHECK(
+          D.rows() == static_cast<Eigen::Index>(chunk.size()) && D.cols() == num_vertices,
+          "geodesic solver returned " << D.rows() << " x " << D.cols());
       std::vector<std::vector<float>> chunk_rows(chunk.size(), std::vector<float>(num_vertices));
       for (int v = 0; v < num_vertices; ++v) {
         for (size_t k = 0; k < chunk.size(); ++k) chunk_rows[k][v] = static_cast<float>(D(k, v));
@@ -244,10 +244,9 @@ std::vector<double> Evaluator::Errors(const std::string& target_name, const Eval
   return errors;
 }
 
-PairEvaluation Evaluator::Evaluate(const std::string& source_name,
-                                   const std::string& target_name, const EvalShape& target,
-                                   const std::vector<int>& map_input_ids,
-                                   const PairGroundTruth& gt, int chosen, int oracle) const {
+PairEvaluation Evaluator::Evaluate(const std::string& source_name, const std::string& target_name,
+                                   const EvalShape& target, const std::vector<int>& map_input_ids,
+                                   const InputGroundTruth& gt, int chosen, int oracle) const {
   const auto start = std::chrono::steady_clock::now();
   PairEvaluation pair;
   pair.source = source_name;
@@ -275,7 +274,7 @@ PairEvaluation Evaluator::Evaluate(const std::string& source_name,
 
 double Evaluator::MeanError(const std::string& target_name, const EvalShape& target,
                             const std::vector<int>& map_input_ids,
-                            const PairGroundTruth& gt) const {
+                            const InputGroundTruth& gt) const {
   return Mean(Errors(target_name, target, map_input_ids, gt, nullptr));
 }
 

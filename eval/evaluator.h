@@ -47,7 +47,7 @@ EvalShape MakeEvalShape(const PreprocessResult& pre, int num_input_vertices);
 // Euclidean farthest-point sampling of the target points b_i on target.surface, starting from
 // line 0, ties to the lowest line index; the kept lines stay in their original order.
 // (Kim et al. 2011 evaluate 1,024 FPS points; Euclidean FPS is deterministic and cheap.)
-PairGroundTruth SelectPoints(const PairGroundTruth& gt, const EvalShape& target, int n);
+InputGroundTruth SelectPoints(const InputGroundTruth& gt, const EvalShape& target, int n);
 
 class Evaluator {
  public:
@@ -64,12 +64,12 @@ class Evaluator {
   // record with ok = false and the message. Sets stage_seconds["evaluation"]. Thread-safe.
   PairEvaluation Evaluate(const std::string& source_name, const std::string& target_name,
                           const EvalShape& target, const std::vector<int>& map_input_ids,
-                          const PairGroundTruth& gt, int chosen = -1, int oracle = -1) const;
+                          const InputGroundTruth& gt, int chosen = -1, int oracle = -1) const;
 
   // Mean direct error of a map over the (selected) ground-truth lines, for choosing the
   // oracle's candidate. Throws InvalidInputError when the map does not fit. Thread-safe.
   double MeanError(const std::string& target_name, const EvalShape& target,
-                   const std::vector<int>& map_input_ids, const PairGroundTruth& gt) const;
+                   const std::vector<int>& map_input_ids, const InputGroundTruth& gt) const;
 
   const EvaluationOptions& options() const { return options_; }
   // Distance rows computed so far (single-source solves), for tests and reports.
@@ -79,7 +79,7 @@ class Evaluator {
   struct TargetCache;
   // Errors of each line against gt.target_ids (and target_sym_ids into *sym when given).
   std::vector<double> Errors(const std::string& target_name, const EvalShape& target,
-                             const std::vector<int>& map_input_ids, const PairGroundTruth& gt,
+                             const std::vector<int>& map_input_ids, const InputGroundTruth& gt,
                              std::vector<double>* sym) const;
   std::shared_ptr<TargetCache> Acquire(const std::string& target_name) const;
   void Account(const std::string& target_name, TargetCache& entry, int64_t rows,

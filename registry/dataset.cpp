@@ -11,8 +11,8 @@ const DatasetShape* DatasetIndex::Find(const std::string& name) const {
   return nullptr;
 }
 
-PairGroundTruth PairLines(const ShapeGroundTruth& source, const ShapeGroundTruth& target) {
-  PairGroundTruth gt;
+InputGroundTruth PairLines(const ShapeGroundTruth& source, const ShapeGroundTruth& target) {
+  InputGroundTruth gt;
   const size_t n = std::min(source.ids.size(), target.ids.size());
   const bool sym = target.sym_ids.size() == target.ids.size();
   for (size_t i = 0; i < n; ++i) {

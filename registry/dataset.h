@@ -34,7 +34,7 @@ struct ShapeGroundTruth {
 };
 
 // Pairs the lines of two shapes' ground truth (both present); the result is in input ids.
-PairGroundTruth PairLines(const ShapeGroundTruth& source, const ShapeGroundTruth& target);
+InputGroundTruth PairLines(const ShapeGroundTruth& source, const ShapeGroundTruth& target);
 
 class Dataset : public Stage {
  public:

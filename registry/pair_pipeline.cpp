@@ -19,7 +19,6 @@ Eigen::MatrixX3d Rotated(const Eigen::MatrixX3d& Y, const Eigen::Matrix3d& R) {
   return Y * R.transpose();
 }
 
-
 void CheckMap(const MatchResult& result, int source_vertices, int target_vertices,
               const char* stage) {
   if (static_cast<int>(result.map.size()) != source_vertices) {
@@ -46,7 +45,7 @@ EmbeddedPoints EmbeddedShape(const ShapeData& shape, const Eigen::Matrix3d& R) {
 }
 
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
-                 const PairGroundTruth& ground_truth) {
+                 const InputGroundTruth& ground_truth) {
   Hasher h;
   h.AddString("symembed-pair-cache-4").AddString(source.name).AddU64(source.key);
   h.AddString(target.name).AddU64(target.key);
@@ -60,16 +59,16 @@ uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const P
   std::snprintf(numbers, sizeof numbers, "%.17g %.17g %d", pipeline.evaluation.max_error,
                 pipeline.evaluation.step, pipeline.evaluation.points);
   h.AddString(numbers);
-  for (const std::vector<int>* ids : {&ground_truth.source_ids, &ground_truth.target_ids,
-                                      &ground_truth.target_sym_ids}) {
+  for (const std::vector<int>* ids :
+       {&ground_truth.source_ids, &ground_truth.target_ids, &ground_truth.target_sym_ids}) {
     h.AddU64(ids->size()).AddBytes(ids->data(), ids->size() * sizeof(int));
   }
   return h.Digest();
 }
 
-PairGroundTruth ToPreprocessedIds(const PairGroundTruth& ground_truth, const ShapeOutcome& source,
-                                  const ShapeOutcome& target) {
-  PairGroundTruth out;
+PreprocessedGroundTruth ToPreprocessedIds(const InputGroundTruth& ground_truth,
+                                          const ShapeOutcome& source, const ShapeOutcome& target) {
+  PreprocessedGroundTruth out;
   const bool sym = ground_truth.target_sym_ids.size() == ground_truth.target_ids.size();
   auto kept = [](const std::vector<int>& of_input, int v) {
     return v >= 0 && v < static_cast<int>(of_input.size()) ? of_input[v] : -1;
@@ -87,14 +86,14 @@ PairGroundTruth ToPreprocessedIds(const PairGroundTruth& ground_truth, const Sha
 }
 
 PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
-                        const Pipeline& pipeline, const PairGroundTruth* ground_truth,
+                        const Pipeline& pipeline, const InputGroundTruth* ground_truth,
                         const MeanErrorFunction& mean_error, StageCounters* counters) {
   PairOutcome out;
   const ShapeData& a = *source.data;
   const ShapeData& b = *target.data;
   const int nb = b.surface.NumVertices();
 
-  PairGroundTruth truth_pre;
+  PreprocessedGroundTruth truth_pre;
   if (ground_truth) truth_pre = ToPreprocessedIds(*ground_truth, source, target);
   const PairInput input{a, b, ground_truth ? &truth_pre : nullptr};
 
@@ -142,8 +141,8 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
       const int v = ground_truth->source_ids[i];
       if (v < 0 || v >= static_cast<int>(source.nearest_kept.size())) {
         throw InvalidInputError("ground truth names source vertex " + std::to_string(v) +
-                                " of a mesh with " +
-                                std::to_string(source.nearest_kept.size()) + " vertices");
+                                " of a mesh with " + std::to_string(source.nearest_kept.size()) +
+                                " vertices");
       }
       points.Y.row(i) = source_points.Y.row(source.nearest_kept[v]);
       points.N.row(i) = source_points.N.row(source.nearest_kept[v]);

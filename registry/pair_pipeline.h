@@ -21,14 +21,14 @@
 namespace symembed {
 
 struct PairOutcome {
-  std::vector<int> map;             // #V_source_input: 0-based target input id per source vertex
-  std::vector<int> initial_map;     // the same before refinement; empty when refine kept the map
-  FlipResult flip;                  // scores and chosen candidate
-  int oracle = -1;                  // candidate with the lowest ground-truth error; -1: unknown
+  std::vector<int> map;          // #V_source_input: 0-based target input id per source vertex
+  std::vector<int> initial_map;  // the same before refinement; empty when refine kept the map
+  FlipResult flip;               // scores and chosen candidate
+  int oracle = -1;               // candidate with the lowest ground-truth error; -1: unknown
   std::array<double, 4> oracle_errors{};  // mean error of each candidate (when oracle >= 0)
   StageStatus matching_status;
   StageStatus refine_status;
-  std::vector<StageTime> times;     // flip, matching, refine, oracle
+  std::vector<StageTime> times;  // flip, matching, refine, oracle
 };
 
 // Points and normals rotated by R (y' = R y for every row y).
@@ -46,17 +46,17 @@ using MeanErrorFunction = std::function<double(const std::vector<int>& predicted
 // used for the oracle candidate when ground_truth is given and has lines. Throws what a stage
 // throws.
 PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
-                        const Pipeline& pipeline, const PairGroundTruth* ground_truth,
+                        const Pipeline& pipeline, const InputGroundTruth* ground_truth,
                         const MeanErrorFunction& mean_error, StageCounters* counters);
 
 // The cache key of a pair's map and evaluation record: both shapes' names and keys, the
 // per-pair stages' options, the evaluation options and the ground truth.
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
-                 const PairGroundTruth& ground_truth);
+                 const InputGroundTruth& ground_truth);
 
 // Ground truth in input ids -> preprocessed ids; lines whose source or target vertex was removed
 // are dropped (PairInput::ground_truth, used by the oracle flip scorer).
-PairGroundTruth ToPreprocessedIds(const PairGroundTruth& ground_truth, const ShapeOutcome& source,
-                                  const ShapeOutcome& target);
+PreprocessedGroundTruth ToPreprocessedIds(const InputGroundTruth& ground_truth,
+                                          const ShapeOutcome& source, const ShapeOutcome& target);
 
 }  // namespace symembed

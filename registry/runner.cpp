@@ -209,7 +209,7 @@ class VariantRun {
         return "";
       }
     }
-    const PairGroundTruth truth =
+    const InputGroundTruth truth =
         PairLines(source->second->ground_truth, target->second->ground_truth);
     const uint64_t key = PairKey(*source->second, *target->second, pipeline_, truth);
     PairEntry cached;

@@ -37,7 +37,7 @@ struct PairContext {
   const DatasetShape& target_info;
   const ShapeOutcome& source;
   const ShapeOutcome& target;
-  const PairGroundTruth& ground_truth;  // input ids (PairLines); empty without ground truth
+  const InputGroundTruth& ground_truth;  // input ids (PairLines); empty without ground truth
 };
 
 // The evaluation of one variant's pairs. Thread-safe.

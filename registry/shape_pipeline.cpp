@@ -227,7 +227,9 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
 
   data->embedding = Cached<EmbeddingResult>(
       context, "embedding", emb_key,
-      [&] { return pipeline.embedding->Run(EmbeddingInput{data->surface, data->samples, D()}); },
+      [&] {
+        return pipeline.embedding->Run(EmbeddingInput{data->surface, data->samples, D()});
+      },
       &out.times);
   data->symmetry = Cached<SymmetryResult>(
       context, "symmetry", sym_key,
@@ -263,7 +265,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   if (!out.ground_truth.sym_ids.empty()) {
     // The shape's lines against themselves: target_sym_ids are the symmetric partners, in
     // preprocessed ids like the pairs' ground truth (lines of removed vertices dropped).
-    const PairGroundTruth self =
+    const PreprocessedGroundTruth self =
         ToPreprocessedIds(PairLines(out.ground_truth, out.ground_truth), out, out);
     const double error = SymmetryGroundTruthError(data->Y, self.source_ids, self.target_sym_ids);
     if (error >= 0.0) out.report.push_back({"symmetry_gt_error", error});

@@ -24,39 +24,39 @@ struct StageStatus {
 using Report = std::vector<std::pair<std::string, double>>;
 
 struct PreprocessResult {
-  Surface surface;              // repaired surface, scaled to unit total area
-  std::vector<int> input_ids;   // #V: input vertex id of each kept vertex
-  double scale = 1.0;           // output coordinates = input coordinates * scale (after centring)
-  Report report;                // every change counted
+  Surface surface;             // repaired surface, scaled to unit total area
+  std::vector<int> input_ids;  // #V: input vertex id of each kept vertex
+  double scale = 1.0;          // output coordinates = input coordinates * scale (after centring)
+  Report report;               // every change counted
   StageStatus status;
 };
 
 struct SamplingResult {
-  std::vector<int> samples;     // #S vertex ids, in sampling order
-  double coverage_radius = 0.0; // max over vertices of the distance to the nearest sample
+  std::vector<int> samples;      // #S vertex ids, in sampling order
+  double coverage_radius = 0.0;  // max over vertices of the distance to the nearest sample
   StageStatus status;
 };
 
 struct EmbeddingResult {
-  Eigen::MatrixXd Y;                  // #V x dims embedding of every vertex (sample rows exact)
-  double normalized_stress = 0.0;     // sqrt(stress / sum d_ij^2) over sample pairs
-  int reflection = 1;                 // sign of det of the Procrustes fit input -> embedding
-  std::vector<double> stress_history; // per iteration (lsmds), empty otherwise
+  Eigen::MatrixXd Y;                   // #V x dims embedding of every vertex (sample rows exact)
+  double normalized_stress = 0.0;      // sqrt(stress / sum d_ij^2) over sample pairs
+  int reflection = 1;                  // sign of det of the Procrustes fit input -> embedding
+  std::vector<double> stress_history;  // per iteration (lsmds), empty otherwise
   StageStatus status;
 };
 
 struct SymmetryResult {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // unit plane normal in the 3D embedding
-  double offset = 0.0;                // plane: normal . y = offset
-  std::vector<int> sigma;             // #S: sample index -> index of its mirror sample
-  Eigen::VectorXd confidence;         // #S in [0, 1]
-  double score = 0.0;                 // symmetry quality, lower is better (relative to size)
+  double offset = 0.0;                                // plane: normal . y = offset
+  std::vector<int> sigma;      // #S: sample index -> index of its mirror sample
+  Eigen::VectorXd confidence;  // #S in [0, 1]
+  double score = 0.0;          // symmetry quality, lower is better (relative to size)
   StageStatus status;
 };
 
 struct SymmetrizeResult {
-  Eigen::MatrixX3d Y;                 // #V x 3, symmetric about the plane x = 0
-  double asymmetry_before = 0.0;      // mean ||M y_i - y_sigma(i)|| / size, M = diag(-1,1,1)
+  Eigen::MatrixX3d Y;             // #V x 3, symmetric about the plane x = 0
+  double asymmetry_before = 0.0;  // mean ||M y_i - y_sigma(i)|| / size, M = diag(-1,1,1)
   double asymmetry_after = 0.0;
   StageStatus status;
 };
@@ -65,13 +65,13 @@ struct SymmetrizeResult {
 // every pair and every variant that resolves to the same per-shape stages.
 struct ShapeData {
   std::string name;
-  Surface surface;                    // after preprocessing
-  std::vector<int> input_ids;         // #V: input vertex id of each vertex
+  Surface surface;             // after preprocessing
+  std::vector<int> input_ids;  // #V: input vertex id of each vertex
   double scale = 1.0;
-  std::vector<int> samples;           // #S
-  EmbeddingResult embedding;          // before symmetrization
+  std::vector<int> samples;   // #S
+  EmbeddingResult embedding;  // before symmetrization
   SymmetryResult symmetry;
-  Eigen::MatrixX3d Y;                 // #V x 3 canonical symmetric embedding (plane normal = x)
+  Eigen::MatrixX3d Y;  // #V x 3 canonical symmetric embedding (plane normal = x)
   // Per-shape data computed by per-pair stages' PrepareShape (features, eigenbases, ...).
   std::map<std::string, Eigen::MatrixXd> aux;
 };
@@ -79,16 +79,27 @@ struct ShapeData {
 // Ground truth of one pair in the vertex ids of the preprocessed shapes: line i says that
 // source_ids[i] corresponds to target_ids[i] (and to target_sym_ids[i] under the symmetry).
 // Lines whose vertex was removed by preprocessing are dropped.
-struct PairGroundTruth {
+// The ground-truth lines of a pair: line r says that source vertex source_ids[r] corresponds to
+// target vertex target_ids[r] (and to target_sym_ids[r] under the left-right symmetry). The
+// ids are in one id space, named by the type: InputGroundTruth in the vertex ids of the input
+// mesh files (the datasets', the evaluator's and the maps' space), PreprocessedGroundTruth in
+// those of the preprocessed surfaces the stages see (ToPreprocessedIds, pair_pipeline.h). The
+// two are distinct types so that one cannot be passed for the other.
+template <typename IdSpace>
+struct GroundTruthLines {
   std::vector<int> source_ids;
   std::vector<int> target_ids;
-  std::vector<int> target_sym_ids;    // empty when the dataset has no symmetric ground truth
+  std::vector<int> target_sym_ids;  // empty when the dataset has no symmetric ground truth
 };
+struct InputIdSpace {};
+struct PreprocessedIdSpace {};
+using InputGroundTruth = GroundTruthLines<InputIdSpace>;
+using PreprocessedGroundTruth = GroundTruthLines<PreprocessedIdSpace>;
 
 struct PairInput {
   const ShapeData& source;
   const ShapeData& target;
-  const PairGroundTruth* ground_truth = nullptr;  // only the oracle may use it
+  const PreprocessedGroundTruth* ground_truth = nullptr;  // only the oracle may use it
 };
 
 // The four proper rotations that remain once both shapes are in their canonical frames:
@@ -96,7 +107,7 @@ struct PairInput {
 std::array<Eigen::Matrix3d, 4> CandidateRotations();
 
 struct FlipResult {
-  std::array<double, 4> scores{};     // per candidate, lower is better
+  std::array<double, 4> scores{};  // per candidate, lower is better
   // Index into CandidateRotations(): the argmin of scores unless the stage's last step decides
   // otherwise (MakeFlipResult; the extrinsic scorer's refined term).
   int chosen = 0;
@@ -104,7 +115,7 @@ struct FlipResult {
 };
 
 struct MatchResult {
-  std::vector<int> map;               // #V_source: target vertex of each source vertex
+  std::vector<int> map;  // #V_source: target vertex of each source vertex
   StageStatus status;
 };
 

@@ -10,10 +10,10 @@ namespace symembed {
 
 std::array<double, 4> OracleFlipScores(const PairInput& pair, int threads) {
   CheckFlipPair(pair);
-  const PairGroundTruth* gt = pair.ground_truth;
+  const PreprocessedGroundTruth* gt = pair.ground_truth;
   if (gt == nullptr) {
-    throw InvalidInputError("flip oracle: pair '" + pair.source.name + "' -> '" +
-                            pair.target.name + "' has no ground truth; the oracle scorer is "
+    throw InvalidInputError("flip oracle: pair '" + pair.source.name + "' -> '" + pair.target.name +
+                            "' has no ground truth; the oracle scorer is "
                             "for evaluation on datasets with ground truth only");
   }
   if (gt->source_ids.empty() || gt->source_ids.size() != gt->target_ids.size()) {

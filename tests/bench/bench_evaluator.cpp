@@ -23,7 +23,7 @@ struct ToscaPair {
   bool ok = false;
   EvalShape target;
   std::vector<int> map;  // the ground-truth map on ground-truth lines, 0 elsewhere
-  PairGroundTruth gt;
+  InputGroundTruth gt;
 };
 
 ShapeGroundTruth ReadVts(const std::string& base) {

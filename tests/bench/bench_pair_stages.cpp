@@ -37,7 +37,7 @@ constexpr int kSamples = 1000;
 
 struct Pair {
   ShapeData source, target;
-  PairGroundTruth gt;
+  PreprocessedGroundTruth gt;
   std::vector<int> samples;
   Eigen::MatrixXd D;  // #S x #V Euclidean distances of the source
   SymmetryResult symmetry;

@@ -81,7 +81,7 @@ TEST(PairsVts, ReadsShapesPairsAndOneBasedGroundTruth) {
   const ShapeGroundTruth dog1 = dataset->GroundTruth(*index.Find("dog1"), 5);
   EXPECT_EQ(dog1.ids, (std::vector<int>{-1, 0}));
   EXPECT_TRUE(dog1.sym_ids.empty());
-  const PairGroundTruth pair = PairLines(dataset->GroundTruth(*index.Find("dog0"), 5), dog1);
+  const InputGroundTruth pair = PairLines(dataset->GroundTruth(*index.Find("dog0"), 5), dog1);
   EXPECT_EQ(pair.source_ids, (std::vector<int>{0}));
   EXPECT_EQ(pair.target_ids, (std::vector<int>{0}));
 }

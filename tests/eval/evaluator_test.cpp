@@ -26,8 +26,8 @@ PreprocessResult Identity(const Surface& s) {
 }
 
 // Ground truth: every vertex to itself; symmetric ground truth: mirrored in x (x -> 4 - x).
-PairGroundTruth GridTruth() {
-  PairGroundTruth gt;
+InputGroundTruth GridTruth() {
+  InputGroundTruth gt;
   for (int y = 0; y < kN; ++y) {
     for (int x = 0; x < kN; ++x) {
       gt.source_ids.push_back(Id(x, y));
@@ -127,7 +127,7 @@ TEST_F(EvaluatorTest, MapsThatDoNotFitFailThePairWithoutThrowing) {
   const auto q = evaluator.Evaluate("a", "b", shape_, bad, GridTruth());
   EXPECT_FALSE(q.ok);
   EXPECT_NE(q.message.find("map entry 99 out of range"), std::string::npos) << q.message;
-  EXPECT_FALSE(evaluator.Evaluate("a", "b", shape_, bad, PairGroundTruth{}).ok);
+  EXPECT_FALSE(evaluator.Evaluate("a", "b", shape_, bad, InputGroundTruth{}).ok);
 }
 
 TEST_F(EvaluatorTest, DistancesAreComputedOncePerTargetAndSourceSet) {
@@ -159,9 +159,13 @@ TEST_F(EvaluatorTest, ThreadedEvaluationMatchesSerial) {
     expected.push_back(
         serial.Evaluate("a", "t" + std::to_string(i % 3), shape_, maps[i], GridTruth()));
   }
-  ParallelFor(static_cast<int>(maps.size()), [&](int i) {
-    actual[i] = threaded.Evaluate("a", "t" + std::to_string(i % 3), shape_, maps[i], GridTruth());
-  }, 4);
+  ParallelFor(
+      static_cast<int>(maps.size()),
+      [&](int i) {
+        actual[i] =
+            threaded.Evaluate("a", "t" + std::to_string(i % 3), shape_, maps[i], GridTruth());
+      },
+      4);
   for (size_t i = 0; i < maps.size(); ++i) {
     EXPECT_EQ(actual[i].errors_direct, expected[i].errors_direct) << i;
     EXPECT_EQ(actual[i].errors_sym, expected[i].errors_sym) << i;
@@ -171,13 +175,13 @@ TEST_F(EvaluatorTest, ThreadedEvaluationMatchesSerial) {
 TEST_F(EvaluatorTest, PointsSelectsFarthestGroundTruthPoints) {
   EvaluationOptions options;
   options.points = 4;
-  const PairGroundTruth selected = SelectPoints(GridTruth(), shape_, 4);
+  const InputGroundTruth selected = SelectPoints(GridTruth(), shape_, 4);
   // From corner (0,0): (4,4), then (4,0) (lower line index than (0,4)), then (0,4).
   EXPECT_EQ(selected.target_ids, (std::vector<int>{Id(0, 0), Id(4, 0), Id(0, 4), Id(4, 4)}));
   EXPECT_EQ(selected.target_sym_ids.size(), 4u);
   Evaluator evaluator(options, geodesics_);
-  const auto p = evaluator.Evaluate("a", "b", shape_, MapOf([](int, int) { return Id(0, 0); }),
-                                    GridTruth());
+  const auto p =
+      evaluator.Evaluate("a", "b", shape_, MapOf([](int, int) { return Id(0, 0); }), GridTruth());
   ASSERT_TRUE(p.ok);
   EXPECT_EQ(p.points, 4);
   EXPECT_NEAR(p.mean_direct, (0 + 1 + 1 + std::sqrt(2.0)) / 4, kTol);

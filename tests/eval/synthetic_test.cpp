@@ -379,7 +379,7 @@ TEST(Synthetic, PairsVtsLoaderReadsTheWrittenGroundTruth) {
     EXPECT_EQ(present, t.surface.NumVertices());
   }
   // Pair lines: the rest vertices both shapes kept.
-  const PairGroundTruth pair = PairLines(loader.GroundTruth(*index.Find("humanoid0"), 500),
+  const InputGroundTruth pair = PairLines(loader.GroundTruth(*index.Find("humanoid0"), 500),
                                          loader.GroundTruth(*index.Find("humanoid1"), 500));
   EXPECT_GT(pair.source_ids.size(), 50u);
 }

@@ -28,7 +28,7 @@ TEST(FlipDefault, RefinedMapsKeepTheFrontOfAStretchedHumanoidWhereTheFormerTerms
   // Ground truth: the generator's rest vertex ids.
   const std::vector<int> of_rest =
       testing::VertexOfRest(cls.shapes[8].shape, cls.rest.surface.NumVertices());
-  PairGroundTruth gt;
+  PreprocessedGroundTruth gt;
   const std::vector<int>& source_rest = cls.shapes[0].shape.rest_ids;
   for (size_t v = 0; v < source_rest.size(); ++v) {
     if (of_rest[source_rest[v]] < 0) continue;

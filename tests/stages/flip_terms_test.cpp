@@ -185,7 +185,7 @@ TEST(FlipTermOptions, VariantAndCommandLineOverridesOfNestedPaths) {
 // the target's embedding turned by candidate `turn`, with what every part reads.
 struct TermInputs {
   std::array<ShapeData, 2> shapes;
-  PairGroundTruth gt;
+  PreprocessedGroundTruth gt;
   CandidateMaps maps;
   LaplaceBasis source_basis, target_basis;
 

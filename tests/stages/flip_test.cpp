@@ -38,7 +38,7 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
                                             "pipeline.flip");
   ShapeData source = FlipShape("rest", testing::SymmetricFigure());
   const ShapeData posed = FlipShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2));
-  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
+  const PreprocessedGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
   stage->PrepareShape(source);
   // The right candidate for the unturned target, from the ground truth.
   const int base = OracleChoice(source, posed);

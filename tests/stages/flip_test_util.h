@@ -25,8 +25,9 @@ inline std::string FormerTerms(double descriptor, double orientation,
                                const std::string& descriptor_options = "") {
   std::ostringstream yaml;
   yaml << "{type: extrinsic, terms: {curvature: {weight: 1}, descriptor: {weight: " << descriptor
-       << descriptor_options << "}, refined_maps: {weight: 0}, orientation: {weight: "
-       << orientation << "}}, decide: " << decide << "}";
+       << descriptor_options
+       << "}, refined_maps: {weight: 0}, orientation: {weight: " << orientation
+       << "}}, decide: " << decide << "}";
   return yaml.str();
 }
 
@@ -45,8 +46,8 @@ inline ShapeData FlipShape(const std::string& name, const Surface& surface) {
   return shape;
 }
 
-inline PairGroundTruth IdentityGroundTruth(int n) {
-  PairGroundTruth gt;
+inline PreprocessedGroundTruth IdentityGroundTruth(int n) {
+  PreprocessedGroundTruth gt;
   for (int i = 0; i < n; ++i) {
     gt.source_ids.push_back(i);
     gt.target_ids.push_back(i);
@@ -59,7 +60,7 @@ inline int OracleChoice(const ShapeData& source, const ShapeData& target) {
   Registry registry;
   RegisterBuiltinStages(registry);
   auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
-  const PairGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
+  const PreprocessedGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
   return oracle->Run(PairInput{source, target, &gt}).chosen;
 }
 

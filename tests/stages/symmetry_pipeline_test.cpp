@@ -91,7 +91,7 @@ PairErrors RunPair(FigureKind kind, const std::string& symmetry, const std::stri
   const Chain chain = MakeChain(registry, symmetry, symmetrize, flip);
   const ShapeData source = RunShape(chain, "a", a.surface);
   const ShapeData target = RunShape(chain, "b", b.surface);
-  PairGroundTruth gt;
+  PreprocessedGroundTruth gt;
   for (const auto& [s, t] : direct) {
     gt.source_ids.push_back(s);
     gt.target_ids.push_back(t);
