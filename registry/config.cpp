@@ -13,31 +13,13 @@
 
 namespace symembed {
 
-const std::vector<std::string>& PipelineKinds() {
-  static const std::vector<std::string> kinds = {"preprocess", "sampling", "geodesics",
-                                                 "embedding",  "symmetry", "symmetrize",
-                                                 "flip",       "matching", "refine"};
-  return kinds;
-}
-
-std::string DefaultStageType(const std::string& kind) {
-  static const std::map<std::string, std::string> defaults = {
-      {"preprocess", "standard"}, {"sampling", "farthest_point"}, {"geodesics", "dijkstra"},
-      {"embedding", "lsmds"},     {"symmetry", "plane2d"},        {"symmetrize", "ceres"},
-      {"flip", "extrinsic"},      {"matching", "nearest"},        {"refine", "none"}};
-  auto it = defaults.find(kind);
-  return it == defaults.end() ? "" : it->second;
-}
-
 const Stage& Pipeline::StageOf(const std::string& kind) const {
-  const Stage* stages[] = {preprocess.get(), sampling.get(), geodesics.get(),
-                           embedding.get(),  symmetry.get(), symmetrize.get(),
-                           flip.get(),       matching.get(), refine.get()};
-  const auto& kinds = PipelineKinds();
-  for (size_t i = 0; i < kinds.size(); ++i) {
-    if (kinds[i] == kind) return *stages[i];
-  }
-  SYMEMBED_CHECK(false, "unknown pipeline kind '" << kind << "'");
+  const Stage* found = nullptr;
+  ForEachStage(*this, [&](const char* name, const auto& stage) {
+    if (kind == name) found = stage.get();
+  });
+  SYMEMBED_CHECK(found != nullptr, "unknown pipeline kind '" << kind << "'");
+  return *found;
 }
 
 const VariantConfig* ExperimentConfig::Find(const std::string& variant) const {
@@ -367,21 +349,13 @@ Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& vari
   auto node = [&](const std::string& kind) {
     return stages.IsDefined() && stages.IsMap() ? stages[kind] : YAML::Node();
   };
-  auto create = [&](const std::string& kind, auto* tag) {
-    using T = std::remove_pointer_t<decltype(tag)>;
-    return registry.CreateAs<T>(kind, node(kind), file, "pipeline." + kind, DefaultStageType(kind));
-  };
   Pipeline p;
   p.dataset = registry.CreateAs<Dataset>("dataset", tree["dataset"], file, "dataset", "", "format");
-  p.preprocess = create("preprocess", static_cast<PreprocessStage*>(nullptr));
-  p.sampling = create("sampling", static_cast<SamplingStage*>(nullptr));
-  p.geodesics = create("geodesics", static_cast<GeodesicsStage*>(nullptr));
-  p.embedding = create("embedding", static_cast<EmbeddingStage*>(nullptr));
-  p.symmetry = create("symmetry", static_cast<SymmetryStage*>(nullptr));
-  p.symmetrize = create("symmetrize", static_cast<SymmetrizeStage*>(nullptr));
-  p.flip = create("flip", static_cast<FlipStage*>(nullptr));
-  p.matching = create("matching", static_cast<MatchingStage*>(nullptr));
-  p.refine = create("refine", static_cast<RefineStage*>(nullptr));
+  Pipeline::ForEachStage(p, [&](const char* kind, auto& stage) {
+    using T = typename std::remove_reference_t<decltype(stage)>::element_type;
+    stage = registry.CreateAs<T>(kind, node(kind), file, std::string("pipeline.") + kind,
+                                 DefaultStageType(kind));
+  });
   p.evaluation = ParseEvaluationOptions(tree["evaluation"], file, &registry);
   YAML::Node geodesics_node(YAML::NodeType::Map);
   geodesics_node["type"] = p.evaluation.geodesics;

@@ -28,13 +28,9 @@
 
 #include "registry/dataset.h"
 #include "registry/registry.h"
+#include "registry/stage_kinds.h"
 
 namespace symembed {
-
-// Stage kinds of the per-shape and per-pair pipeline, in order (StageKinds() without dataset).
-const std::vector<std::string>& PipelineKinds();
-// The built-in type used when the config does not name one for a kind.
-std::string DefaultStageType(const std::string& kind);
 
 struct EvaluationOptions {
   std::string geodesics = "fast_marching";  // a registered geodesics type
@@ -66,6 +62,22 @@ struct Pipeline {
 
   // The stage of a pipeline kind ("sampling", ...).
   const Stage& StageOf(const std::string& kind) const;
+
+  // Calls f(kind name, unique_ptr member) for each stage of pipeline (a Pipeline or a const
+  // Pipeline), in the order of kPipelineStageKinds (registry/stage_kinds.h): the one binding of
+  // the kinds to the members (tests/registry/config_test.cpp checks it against the table).
+  template <typename P, typename F>
+  static void ForEachStage(P& pipeline, F&& f) {
+    f("preprocess", pipeline.preprocess);
+    f("sampling", pipeline.sampling);
+    f("geodesics", pipeline.geodesics);
+    f("embedding", pipeline.embedding);
+    f("symmetry", pipeline.symmetry);
+    f("symmetrize", pipeline.symmetrize);
+    f("flip", pipeline.flip);
+    f("matching", pipeline.matching);
+    f("refine", pipeline.refine);
+  }
 };
 
 struct VariantConfig {

@@ -4,13 +4,6 @@
 
 namespace symembed {
 
-const std::vector<std::string>& StageKinds() {
-  static const std::vector<std::string> kinds = {
-      "preprocess", "sampling", "geodesics", "embedding", "symmetry", "symmetrize",
-      "flip",       "matching", "refine",    "dataset"};
-  return kinds;
-}
-
 namespace {
 
 std::string JoinNames(const std::vector<std::string>& names) {
@@ -21,8 +14,8 @@ std::string JoinNames(const std::vector<std::string>& names) {
 
 }  // namespace
 
-void Registry::Add(const std::string& kind, const std::string& name,
-                   const std::string& description, Factory factory) {
+void Registry::Add(const std::string& kind, const std::string& name, const std::string& description,
+                   Factory factory) {
   const auto& kinds = StageKinds();
   if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) {
     throw ConfigError("cannot register '" + name + "': unknown stage kind '" + kind +
@@ -46,8 +39,8 @@ std::unique_ptr<Stage> Registry::Create(const std::string& kind, const YAML::Nod
   OptionReader reader(node, file, path);
   std::string type = reader.GetString(type_key, default_type);
   if (type.empty()) {
-    reader.Fail("", "missing required key '" + type_key + "'; known " + kind + " types: " +
-                        JoinNames(Names(kind)));
+    reader.Fail("", "missing required key '" + type_key + "'; known " + kind +
+                        " types: " + JoinNames(Names(kind)));
   }
   auto it = entries_.find(std::make_pair(kind, type));
   if (it == entries_.end()) {

@@ -14,12 +14,10 @@
 
 #include "core/errors.h"
 #include "registry/options.h"
+#include "registry/stage_kinds.h"
 #include "registry/stages.h"
 
 namespace symembed {
-
-// The stage kinds, in pipeline order, then `dataset`.
-const std::vector<std::string>& StageKinds();
 
 class Registry {
  public:

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 #include <limits>
+#include <type_traits>
 
 #include "core/canonical_frame.h"
 #include "core/errors.h"
@@ -271,28 +272,29 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
     if (error >= 0.0) out.report.push_back({"symmetry_gt_error", error});
   }
 
-  const std::pair<const char*, const PairStage*> pair_stages[] = {
-      {"flip", pipeline.flip.get()},
-      {"matching", pipeline.matching.get()},
-      {"refine", pipeline.refine.get()}};
+  // Each per-pair stage's per-shape data, in pipeline order.
   Hasher data_key(symz_key);
-  for (const auto& [kind, stage] : pair_stages) {
-    const std::string name = std::string("prepare_") + kind;
-    const uint64_t key = Hasher(StageKey(symz_key, name, *stage))
-                             .AddU64(static_cast<uint64_t>(stage->PrepareVersion()))
-                             .Digest();
-    data_key.AddU64(key);
-    AuxMap aux = Cached<AuxMap>(
-        context, name, key,
-        [&, stage = stage] {
-          ShapeData copy = *data;
-          copy.aux.clear();
-          stage->PrepareShape(copy);
-          return copy.aux;
-        },
-        &out.times);
-    MergeAux(std::move(aux), &data->aux);
-  }
+  Pipeline::ForEachStage(pipeline, [&](const char* kind, const auto& member) {
+    using T = typename std::decay_t<decltype(member)>::element_type;
+    if constexpr (std::is_base_of_v<PairStage, T>) {
+      const PairStage* stage = member.get();
+      const std::string name = std::string("prepare_") + kind;
+      const uint64_t key = Hasher(StageKey(symz_key, name, *stage))
+                               .AddU64(static_cast<uint64_t>(stage->PrepareVersion()))
+                               .Digest();
+      data_key.AddU64(key);
+      AuxMap aux = Cached<AuxMap>(
+          context, name, key,
+          [&] {
+            ShapeData copy = *data;
+            copy.aux.clear();
+            stage->PrepareShape(copy);
+            return copy.aux;
+          },
+          &out.times);
+      MergeAux(std::move(aux), &data->aux);
+    }
+  });
   out.data = std::move(data);
   out.key = data_key.Digest();
   return out;

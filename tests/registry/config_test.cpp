@@ -366,3 +366,28 @@ TEST(Config, EvaluationOptionsHaveOneStrictParser) {
 
 }  // namespace
 }  // namespace symembed
+
+namespace symembed {
+namespace {
+
+// The kinds come from one table; the pipeline's members are bound to it in its order, and the
+// registry accepts exactly the table's kinds and `dataset`.
+TEST(Config, PipelineMembersAreBoundToTheKindTableInItsOrder) {
+  Pipeline pipeline;
+  std::vector<std::string> visited;
+  Pipeline::ForEachStage(pipeline, [&](const char* kind, auto&) { visited.push_back(kind); });
+  EXPECT_EQ(visited, PipelineKinds());
+  std::vector<std::string> expected;
+  for (const StageKind& kind : kPipelineStageKinds) {
+    expected.push_back(kind.name);
+    EXPECT_FALSE(std::string(kind.default_type).empty()) << kind.name;
+    EXPECT_EQ(DefaultStageType(kind.name), kind.default_type);
+  }
+  EXPECT_EQ(PipelineKinds(), expected);
+  expected.push_back("dataset");
+  EXPECT_EQ(StageKinds(), expected);
+  EXPECT_EQ(DefaultStageType("dataset"), "");
+}
+
+}  // namespace
+}  // namespace symembed
