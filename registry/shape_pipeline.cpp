@@ -171,6 +171,65 @@ double SymmetryGroundTruthError(const Eigen::MatrixX3d& Y, const std::vector<int
   return sum / lines / size;
 }
 
+namespace {
+
+// The per-shape measures of shapes.csv: what the sampling, embedding, symmetry, symmetrize and
+// canonical-frame stages report, and with symmetric ground truth the error of the symmetric
+// embedding against it.
+void AddShapeMeasures(const SamplingResult& sampling, const SymmetrizeResult& symmetrized,
+                      double axis_ratio, const ShapeData& data, ShapeOutcome* out) {
+  out->report.push_back({"samples", static_cast<double>(data.samples.size())});
+  out->report.push_back({"coverage_radius", sampling.coverage_radius});
+  out->report.push_back({"normalized_stress", data.embedding.normalized_stress});
+  out->report.push_back({"reflection", static_cast<double>(data.embedding.reflection)});
+  out->report.push_back({"symmetry_score", data.symmetry.score});
+  out->report.push_back({"asymmetry_before", symmetrized.asymmetry_before});
+  out->report.push_back({"asymmetry_after", symmetrized.asymmetry_after});
+  out->report.push_back(
+      {"symmetrize_iterations", static_cast<double>(symmetrized.status.iterations)});
+  out->report.push_back({"frame_axis_ratio", axis_ratio});
+  if (!out->ground_truth.sym_ids.empty()) {
+    // The shape's lines against themselves: target_sym_ids are the symmetric partners, in
+    // preprocessed ids like the pairs' ground truth (lines of removed vertices dropped).
+    const PreprocessedGroundTruth self =
+        ToPreprocessedIds(PairLines(out->ground_truth, out->ground_truth), *out, *out);
+    const double error = SymmetryGroundTruthError(data.Y, self.source_ids, self.target_sym_ids);
+    if (error >= 0.0) out->report.push_back({"symmetry_gt_error", error});
+  }
+}
+
+// Runs (or loads) each per-pair stage's PrepareShape on the shape, in pipeline order, merging
+// what they add into data->aux. Returns the shape's key for the pair cache: symz_key and the
+// key of every preparation.
+uint64_t PreparePairStages(const Pipeline& pipeline, const ShapeContext& context, uint64_t symz_key,
+                           ShapeData* data, ShapeOutcome* out) {
+  Hasher data_key(symz_key);
+  Pipeline::ForEachStage(pipeline, [&](const char* kind, const auto& member) {
+    using T = typename std::decay_t<decltype(member)>::element_type;
+    if constexpr (std::is_base_of_v<PairStage, T>) {
+      const PairStage* stage = member.get();
+      const std::string name = std::string("prepare_") + kind;
+      const uint64_t key = Hasher(StageKey(symz_key, name, *stage))
+                               .AddU64(static_cast<uint64_t>(stage->PrepareVersion()))
+                               .Digest();
+      data_key.AddU64(key);
+      AuxMap aux = Cached<AuxMap>(
+          context, name, key,
+          [&] {
+            ShapeData copy = *data;
+            copy.aux.clear();
+            stage->PrepareShape(copy);
+            return copy.aux;
+          },
+          &out->times);
+      MergeAux(std::move(aux), &data->aux);
+    }
+  });
+  return data_key.Digest();
+}
+
+}  // namespace
+
 ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
                           const ShapeContext& context) {
   ShapeOutcome out;
@@ -253,50 +312,10 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   data->Y = CanonicalFrame(symmetrized.Y, nullptr, nullptr, &axis_ratio);
   out.times.push_back({"canonical_frame", Since(start), false});
 
-  out.report.push_back({"samples", static_cast<double>(data->samples.size())});
-  out.report.push_back({"coverage_radius", sampling.coverage_radius});
-  out.report.push_back({"normalized_stress", data->embedding.normalized_stress});
-  out.report.push_back({"reflection", static_cast<double>(data->embedding.reflection)});
-  out.report.push_back({"symmetry_score", data->symmetry.score});
-  out.report.push_back({"asymmetry_before", symmetrized.asymmetry_before});
-  out.report.push_back({"asymmetry_after", symmetrized.asymmetry_after});
-  out.report.push_back(
-      {"symmetrize_iterations", static_cast<double>(symmetrized.status.iterations)});
-  out.report.push_back({"frame_axis_ratio", axis_ratio});
-  if (!out.ground_truth.sym_ids.empty()) {
-    // The shape's lines against themselves: target_sym_ids are the symmetric partners, in
-    // preprocessed ids like the pairs' ground truth (lines of removed vertices dropped).
-    const PreprocessedGroundTruth self =
-        ToPreprocessedIds(PairLines(out.ground_truth, out.ground_truth), out, out);
-    const double error = SymmetryGroundTruthError(data->Y, self.source_ids, self.target_sym_ids);
-    if (error >= 0.0) out.report.push_back({"symmetry_gt_error", error});
-  }
+  AddShapeMeasures(sampling, symmetrized, axis_ratio, *data, &out);
 
-  // Each per-pair stage's per-shape data, in pipeline order.
-  Hasher data_key(symz_key);
-  Pipeline::ForEachStage(pipeline, [&](const char* kind, const auto& member) {
-    using T = typename std::decay_t<decltype(member)>::element_type;
-    if constexpr (std::is_base_of_v<PairStage, T>) {
-      const PairStage* stage = member.get();
-      const std::string name = std::string("prepare_") + kind;
-      const uint64_t key = Hasher(StageKey(symz_key, name, *stage))
-                               .AddU64(static_cast<uint64_t>(stage->PrepareVersion()))
-                               .Digest();
-      data_key.AddU64(key);
-      AuxMap aux = Cached<AuxMap>(
-          context, name, key,
-          [&] {
-            ShapeData copy = *data;
-            copy.aux.clear();
-            stage->PrepareShape(copy);
-            return copy.aux;
-          },
-          &out.times);
-      MergeAux(std::move(aux), &data->aux);
-    }
-  });
+  out.key = PreparePairStages(pipeline, context, symz_key, data.get(), &out);
   out.data = std::move(data);
-  out.key = data_key.Digest();
   return out;
 }
 
