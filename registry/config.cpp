@@ -207,6 +207,96 @@ EvaluationOptions ParseEvaluationOptions(const YAML::Node& node, const std::stri
   return e;
 }
 
+namespace {
+
+// The top level of a config besides its variants: name, description, that a dataset is given,
+// and that every key of `pipeline` is a stage kind. Throws ConfigError.
+void ReadTopLevel(const YAML::Node& croot, const std::string& file, ExperimentConfig* config) {
+  if (!croot["name"] || !croot["name"].IsScalar() || croot["name"].Scalar().empty()) {
+    throw ConfigError(NodeLocation(file, croot) +
+                      ": name: missing required key 'name' "
+                      "(the experiment's name; outputs go to results/<name>/)");
+  }
+  config->name = croot["name"].Scalar();
+  ValidateVariantName(config->name, croot["name"], file);
+  if (croot["description"]) {
+    if (!croot["description"].IsScalar()) {
+      throw ConfigError(NodeLocation(file, croot["description"]) +
+                        ": description: expected a string");
+    }
+    config->description = croot["description"].Scalar();
+  }
+  if (!croot["dataset"]) {
+    throw ConfigError(NodeLocation(file, croot) +
+                      ": dataset: missing required key 'dataset' "
+                      "(a map with `format` and the loader's options)");
+  }
+  const YAML::Node pipeline = croot["pipeline"];
+  if (pipeline.IsDefined() && !pipeline.IsNull()) {
+    if (!pipeline.IsMap())
+      throw ConfigError(NodeLocation(file, pipeline) + ": pipeline: expected a map of stage kinds");
+    const auto& kinds = PipelineKinds();
+    for (const auto& kv : pipeline) {
+      const std::string key = kv.first.Scalar();
+      if (std::find(kinds.begin(), kinds.end(), key) == kinds.end()) {
+        throw ConfigError(
+            NodeLocation(file, kv.first) + ": pipeline." + key + ": unknown stage kind '" + key +
+            "'; known: " + JoinSet(std::set<std::string>(kinds.begin(), kinds.end())));
+      }
+    }
+  }
+}
+
+// Variant i of the config's `variants` list: its name (unique in *names) and its tree, parsed
+// afresh by `parse`, with the command-line overrides and then its own `set` applied (type
+// changes first, so that options set next to them are kept). Throws ConfigError.
+template <typename Parse>
+VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& parse,
+                          const std::vector<std::string>& overrides, const std::string& file,
+                          std::set<std::string>* names) {
+  const YAML::Node v = variants[i];
+  const std::string path = "variants[" + std::to_string(i) + "]";
+  if (!v.IsMap())
+    throw ConfigError(NodeLocation(file, v) + ": " + path + ": expected a map with keys name, set");
+  for (const auto& kv : v) {
+    const std::string key = kv.first.Scalar();
+    if (key != "name" && key != "set") {
+      throw ConfigError(NodeLocation(file, kv.first) + ": " + path + "." + key + ": unknown key '" +
+                        key + "'; known keys: name, set");
+    }
+  }
+  if (!v["name"] || !v["name"].IsScalar()) {
+    throw ConfigError(NodeLocation(file, v) + ": " + path + ".name: missing required key 'name'");
+  }
+  const std::string name = v["name"].Scalar();
+  ValidateVariantName(name, v["name"], file);
+  if (!names->insert(name).second) {
+    throw ConfigError(NodeLocation(file, v["name"]) + ": " + path +
+                      ".name: duplicate variant name '" + name + "'");
+  }
+  YAML::Node tree = parse();
+  const YAML::Node set = static_cast<const YAML::Node&>(tree)["variants"][i]["set"];
+  tree.remove("variants");
+  ApplyCommandLineOverrides(tree, overrides, file);
+  if (set.IsDefined() && !set.IsNull()) {
+    if (!set.IsMap())
+      throw ConfigError(NodeLocation(file, set) + ": " + path +
+                        ".set: expected a map of dotted.path: value");
+    // Type changes first, so that options set next to them are kept.
+    for (int pass = 0; pass < 2; ++pass) {
+      for (const auto& kv : set) {
+        const std::string key = kv.first.Scalar();
+        const bool is_type =
+            key.size() >= 5 && (key.substr(key.size() - 5) == ".type" || key == "dataset.format");
+        if ((pass == 0) == is_type) ApplyOverride(tree, key, kv.second, kv.first, file);
+      }
+    }
+  }
+  return VariantConfig{name, tree};
+}
+
+}  // namespace
+
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
                                        const Registry& registry,
                                        const std::vector<std::string>& overrides) {
@@ -237,39 +327,7 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
   ExperimentConfig config;
   config.file = file;
   const YAML::Node& croot = root;
-  if (!croot["name"] || !croot["name"].IsScalar() || croot["name"].Scalar().empty()) {
-    throw ConfigError(NodeLocation(file, croot) +
-                      ": name: missing required key 'name' "
-                      "(the experiment's name; outputs go to results/<name>/)");
-  }
-  config.name = croot["name"].Scalar();
-  ValidateVariantName(config.name, croot["name"], file);
-  if (croot["description"]) {
-    if (!croot["description"].IsScalar()) {
-      throw ConfigError(NodeLocation(file, croot["description"]) +
-                        ": description: expected a string");
-    }
-    config.description = croot["description"].Scalar();
-  }
-  if (!croot["dataset"]) {
-    throw ConfigError(NodeLocation(file, croot) +
-                      ": dataset: missing required key 'dataset' "
-                      "(a map with `format` and the loader's options)");
-  }
-  const YAML::Node pipeline = croot["pipeline"];
-  if (pipeline.IsDefined() && !pipeline.IsNull()) {
-    if (!pipeline.IsMap())
-      throw ConfigError(NodeLocation(file, pipeline) + ": pipeline: expected a map of stage kinds");
-    const auto& kinds = PipelineKinds();
-    for (const auto& kv : pipeline) {
-      const std::string key = kv.first.Scalar();
-      if (std::find(kinds.begin(), kinds.end(), key) == kinds.end()) {
-        throw ConfigError(
-            NodeLocation(file, kv.first) + ": pipeline." + key + ": unknown stage kind '" + key +
-            "'; known: " + JoinSet(std::set<std::string>(kinds.begin(), kinds.end())));
-      }
-    }
-  }
+  ReadTopLevel(croot, file, &config);
 
   YAML::Node base = parse();
   base.remove("variants");
@@ -284,47 +342,7 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
     }
     std::set<std::string> names = {"base"};
     for (size_t i = 0; i < variants.size(); ++i) {
-      const YAML::Node v = variants[i];
-      const std::string path = "variants[" + std::to_string(i) + "]";
-      if (!v.IsMap())
-        throw ConfigError(NodeLocation(file, v) + ": " + path +
-                          ": expected a map with keys name, set");
-      for (const auto& kv : v) {
-        const std::string key = kv.first.Scalar();
-        if (key != "name" && key != "set") {
-          throw ConfigError(NodeLocation(file, kv.first) + ": " + path + "." + key +
-                            ": unknown key '" + key + "'; known keys: name, set");
-        }
-      }
-      if (!v["name"] || !v["name"].IsScalar()) {
-        throw ConfigError(NodeLocation(file, v) + ": " + path +
-                          ".name: missing required key 'name'");
-      }
-      const std::string name = v["name"].Scalar();
-      ValidateVariantName(name, v["name"], file);
-      if (!names.insert(name).second) {
-        throw ConfigError(NodeLocation(file, v["name"]) + ": " + path +
-                          ".name: duplicate variant name '" + name + "'");
-      }
-      YAML::Node tree = parse();
-      const YAML::Node set = static_cast<const YAML::Node&>(tree)["variants"][i]["set"];
-      tree.remove("variants");
-      ApplyCommandLineOverrides(tree, overrides, file);
-      if (set.IsDefined() && !set.IsNull()) {
-        if (!set.IsMap())
-          throw ConfigError(NodeLocation(file, set) + ": " + path +
-                            ".set: expected a map of dotted.path: value");
-        // Type changes first, so that options set next to them are kept.
-        for (int pass = 0; pass < 2; ++pass) {
-          for (const auto& kv : set) {
-            const std::string key = kv.first.Scalar();
-            const bool is_type = key.size() >= 5 &&
-                                 (key.substr(key.size() - 5) == ".type" || key == "dataset.format");
-            if ((pass == 0) == is_type) ApplyOverride(tree, key, kv.second, kv.first, file);
-          }
-        }
-      }
-      config.variants.push_back(VariantConfig{name, tree});
+      config.variants.push_back(ReadVariant(variants, i, parse, overrides, file, &names));
     }
   }
   // Validate every variant completely before anything runs.
