@@ -25,6 +25,62 @@ int ParsePoints(const std::string& text) {
   throw UsageError{"--points expects 'all' or a positive integer, got '" + text + "'"};
 }
 
+// What scoring maps needs besides the maps: the dataset, its preprocess stage, and the
+// evaluation's geodesics and options, from --dataset (an experiment config: its dataset,
+// preprocess and evaluation; or a pairs_vts folder: the default preprocess), --geodesics and
+// --points.
+struct EvalSetup {
+  std::unique_ptr<Dataset> dataset;
+  std::unique_ptr<PreprocessStage> preprocess;
+  std::unique_ptr<GeodesicsStage> geodesics;
+  EvaluationOptions evaluation;
+};
+
+EvalSetup ReadEvalSetup(const ArgParser& parser, const Registry& registry) {
+  const std::string dataset_arg = parser.Get("dataset");
+  EvalSetup s;
+  if (std::filesystem::is_regular_file(dataset_arg)) {
+    const ExperimentConfig config = LoadExperimentConfig(dataset_arg, registry);
+    Pipeline pipeline = BuildPipeline(config, config.variants.front(), registry);
+    s.dataset = std::move(pipeline.dataset);
+    s.preprocess = std::move(pipeline.preprocess);
+    s.geodesics = std::move(pipeline.evaluation_geodesics);
+    s.evaluation = pipeline.evaluation;
+  } else if (std::filesystem::is_directory(dataset_arg)) {
+    YAML::Node node;
+    node["format"] = "pairs_vts";
+    node["root"] = dataset_arg;
+    s.dataset = registry.CreateAs<Dataset>("dataset", node, "--dataset", "dataset", "", "format");
+    s.preprocess =
+        registry.CreateAs<PreprocessStage>("preprocess", YAML::Node(), "--dataset",
+                                           "pipeline.preprocess", DefaultStageType("preprocess"));
+  } else {
+    throw IoError(dataset_arg + ": no such config file or dataset folder");
+  }
+  if (parser.Given("geodesics") || !s.geodesics) {
+    if (parser.Given("geodesics")) s.evaluation.geodesics = parser.Get("geodesics");
+    YAML::Node node;
+    node["type"] = s.evaluation.geodesics;
+    s.geodesics =
+        registry.CreateAs<GeodesicsStage>("geodesics", node, "--geodesics", "evaluation.geodesics");
+  }
+  if (parser.Given("points")) s.evaluation.points = ParsePoints(parser.Get("points"));
+  return s;
+}
+
+// The failed pairs on stderr, the summary line on stdout.
+void PrintEvalReport(const std::string& name, const std::string& out, const ScoreMapsResult& result,
+                     const VariantSummary& summary) {
+  for (const auto& p : result.pairs) {
+    if (!p.ok)
+      std::cerr << "symembed eval: " << p.source << " -> " << p.target << ": " << p.message << "\n";
+  }
+  std::cout << "eval " << name << ": " << summary.pairs << " pairs, " << summary.failed_pairs
+            << " failed; mean error direct " << summary.mean_direct << ", flip-tolerant "
+            << summary.mean_flip_tolerant << "; flipped pairs " << summary.FlippedTotal()
+            << " (left-right " << summary.flipped_left_right << "); outputs in " << out << "\n";
+}
+
 }  // namespace
 
 int EvalCommand(const Args& args) {
@@ -40,12 +96,15 @@ int EvalCommand(const Args& args) {
       "every pair was scored, 1 when some failed.");
   parser.Option("dataset",
                 "an experiment config (its dataset, preprocess and evaluation are used) or a "
-                "dataset folder in the pairs_vts layout (default preprocess)", "");
+                "dataset folder in the pairs_vts layout (default preprocess)",
+                "");
   parser.Option("maps", "folder with the A_B.map files", "");
   parser.Option("base", "0 or 1: the id of the first vertex in the map files", "");
   parser.Option("name", "name of the evaluation (output folder results/NAME)", "");
-  parser.Option("geodesics", "geodesics stage of the evaluation (dijkstra, fast_marching, "
-                "heat; default: the config's, else fast_marching)", "");
+  parser.Option("geodesics",
+                "geodesics stage of the evaluation (dijkstra, fast_marching, "
+                "heat; default: the config's, else fast_marching)",
+                "");
   parser.Option("points", "ground-truth points per pair: all, or N farthest-point samples",
                 "config's, else all");
   parser.Switch("reverse", "the file A_B.map maps B to A (scored as the pair B -> A)");
@@ -71,37 +130,8 @@ int EvalCommand(const Args& args) {
 
   Registry registry;
   RegisterBuiltinStages(registry);
-  const std::string dataset_arg = parser.Get("dataset");
-  std::unique_ptr<Dataset> dataset;
-  std::unique_ptr<PreprocessStage> preprocess;
-  std::unique_ptr<GeodesicsStage> geodesics;
-  EvaluationOptions evaluation;
-  if (std::filesystem::is_regular_file(dataset_arg)) {
-    const ExperimentConfig config = LoadExperimentConfig(dataset_arg, registry);
-    Pipeline pipeline = BuildPipeline(config, config.variants.front(), registry);
-    dataset = std::move(pipeline.dataset);
-    preprocess = std::move(pipeline.preprocess);
-    geodesics = std::move(pipeline.evaluation_geodesics);
-    evaluation = pipeline.evaluation;
-  } else if (std::filesystem::is_directory(dataset_arg)) {
-    YAML::Node node;
-    node["format"] = "pairs_vts";
-    node["root"] = dataset_arg;
-    dataset = registry.CreateAs<Dataset>("dataset", node, "--dataset", "dataset", "", "format");
-    preprocess = registry.CreateAs<PreprocessStage>("preprocess", YAML::Node(), "--dataset",
-                                                    "pipeline.preprocess",
-                                                    DefaultStageType("preprocess"));
-  } else {
-    throw IoError(dataset_arg + ": no such config file or dataset folder");
-  }
-  if (parser.Given("geodesics") || !geodesics) {
-    if (parser.Given("geodesics")) evaluation.geodesics = parser.Get("geodesics");
-    YAML::Node node;
-    node["type"] = evaluation.geodesics;
-    geodesics = registry.CreateAs<GeodesicsStage>("geodesics", node, "--geodesics",
-                                                  "evaluation.geodesics");
-  }
-  if (parser.Given("points")) evaluation.points = ParsePoints(parser.Get("points"));
+  EvalSetup setup = ReadEvalSetup(parser, registry);
+  const EvaluationOptions& evaluation = setup.evaluation;
 
   double cache_mb = 2048;
   try {
@@ -109,21 +139,14 @@ int EvalCommand(const Args& args) {
   } catch (const std::exception&) {
     throw UsageError{"--cache-mb expects a number"};
   }
-  const Evaluator evaluator(evaluation, *geodesics, cache_mb);
-  const ScoreMapsResult result = ScoreMaps(*dataset, *preprocess, evaluator, options);
+  const Evaluator evaluator(evaluation, *setup.geodesics, cache_mb);
+  const ScoreMapsResult result = ScoreMaps(*setup.dataset, *setup.preprocess, evaluator, options);
   const VariantSummary summary = Summarize(name, result.pairs, evaluation, result.timings);
   WriteVariantOutputs(out, summary, result.pairs, result.timings);
   std::string warning;
   if (!PlotCurves(out, &warning)) std::cerr << "symembed eval: warning: " << warning << "\n";
 
-  for (const auto& p : result.pairs) {
-    if (!p.ok) std::cerr << "symembed eval: " << p.source << " -> " << p.target << ": "
-                         << p.message << "\n";
-  }
-  std::cout << "eval " << name << ": " << summary.pairs << " pairs, " << summary.failed_pairs
-            << " failed; mean error direct " << summary.mean_direct << ", flip-tolerant "
-            << summary.mean_flip_tolerant << "; flipped pairs " << summary.FlippedTotal()
-            << " (left-right " << summary.flipped_left_right << "); outputs in " << out << "\n";
+  PrintEvalReport(name, out, result, summary);
   return summary.failed_pairs > 0 ? 1 : 0;
 }
 
