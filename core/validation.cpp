@@ -1,12 +1,11 @@
 #include "core/validation.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
-
-#include <Eigen/Geometry>
 
 #include "core/errors.h"
 
@@ -95,6 +94,84 @@ struct HalfEdge {
   bool forward;  // traversed lo -> hi
 };
 
+// Non-manifold ("bow-tie") vertices: around each vertex the two edges of a face that meet at a
+// corner are joined, and a vertex whose incident edges fall into more than one group is
+// non-manifold. Node 2e + side stands for edge e seen from its endpoint edges[e][side].
+// proper: per face, whether it has valid, distinct ids; face_edge: the edge id of each face
+// corner. Adds the vertices to *examples and returns their count.
+int CountNonManifoldVertices(const Surface& s, const std::vector<char>& proper,
+                             const std::vector<int>& face_edge,
+                             const std::vector<std::array<int, 2>>& edges, Examples* examples) {
+  const int num_edges = static_cast<int>(edges.size());
+  DisjointSets fans(2 * num_edges);
+  auto node = [&](int e, int v) { return 2 * e + (edges[e][0] == v ? 0 : 1); };
+  for (int f = 0; f < s.NumFaces(); ++f) {
+    if (!proper[f]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int v = s.F(f, k);
+      fans.Union(node(face_edge[3 * f + k], v), node(face_edge[3 * f + (k + 2) % 3], v));
+    }
+  }
+  std::vector<int> fan_count(s.NumVertices(), 0);
+  for (int x = 0; x < 2 * num_edges; ++x) {
+    if (fans.Find(x) == x) ++fan_count[edges[x / 2][x % 2]];
+  }
+  int count = 0;
+  for (int i = 0; i < s.NumVertices(); ++i) {
+    if (fan_count[i] > 1) {
+      ++count;
+      examples->Add(std::to_string(i));
+    }
+  }
+  return count;
+}
+
+// Faces that appear flipped on an orientable mesh: per orientation component (the parity sets of
+// the proper faces), the smaller side is the one to flip.
+int CountFlippedFaces(const std::vector<char>& proper, ParitySets* orientation) {
+  const int nf = static_cast<int>(proper.size());
+  std::vector<int> size(nf, 0), odd(nf, 0);
+  for (int f = 0; f < nf; ++f) {
+    if (!proper[f]) continue;
+    int parity;
+    const int root = orientation->Find(f, &parity);
+    ++size[root];
+    odd[root] += parity;
+  }
+  int flipped = 0;
+  for (int f = 0; f < nf; ++f) flipped += std::min(odd[f], size[f] - odd[f]);
+  return flipped;
+}
+
+// The report's issue lines, each with its count and up to max_examples examples.
+std::vector<std::string> Issues(const MeshReport& r, const Examples& invalid,
+                                const Examples& nonfinite, const Examples& degenerate,
+                                const Examples& duplicate, const Examples& nm_edges,
+                                const Examples& nm_vertices, const Examples& unreferenced) {
+  std::vector<std::string> issues;
+  auto add = [&issues](const std::string& what, int count, const std::string& suffix) {
+    if (count > 0) issues.push_back(what + ": " + std::to_string(count) + suffix);
+  };
+  add("faces with vertex ids out of range", r.invalid_faces, invalid.Suffix("faces"));
+  add("vertices with NaN/Inf coordinates", r.nonfinite_vertices, nonfinite.Suffix("vertices"));
+  add("degenerate (zero-area) faces", r.degenerate_faces, degenerate.Suffix("faces"));
+  add("duplicate faces", r.duplicate_faces, duplicate.Suffix("face=earlier face"));
+  add("non-manifold edges", r.non_manifold_edges, nm_edges.Suffix("edges"));
+  add("non-manifold vertices", r.non_manifold_vertices, nm_vertices.Suffix("vertices"));
+  add("boundary edges", r.boundary_edges,
+      " in " + std::to_string(r.boundary_loops) + (r.boundary_loops == 1 ? " loop" : " loops"));
+  if (r.components > 1) add("connected components", r.components, "");
+  if (!r.orientable) {
+    issues.push_back("non-orientable: no consistent face orientation exists (" +
+                     std::to_string(r.inconsistent_edges) + " inconsistent edges)");
+  } else {
+    add("inconsistently oriented edges", r.inconsistent_edges,
+        " (" + std::to_string(r.flipped_faces) + " faces appear flipped)");
+  }
+  add("unreferenced vertices", r.unreferenced_vertices, unreferenced.Suffix("vertices"));
+  return issues;
+}
+
 }  // namespace
 
 bool ValidationOptions::IsValid(std::string* error) const {
@@ -145,8 +222,8 @@ MeshReport ValidateMesh(const Surface& s, const std::string& name,
     sorted_faces.push_back(key);
     const Eigen::Vector3d pa = s.V.row(a), pb = s.V.row(b), pc = s.V.row(c);
     const double twice_area = (pb - pa).cross(pc - pa).norm();
-    const double longest_sq = std::max({(pb - pa).squaredNorm(), (pc - pb).squaredNorm(),
-                                        (pa - pc).squaredNorm()});
+    const double longest_sq =
+        std::max({(pb - pa).squaredNorm(), (pc - pb).squaredNorm(), (pa - pc).squaredNorm()});
     if (std::isfinite(twice_area)) r.total_area += 0.5 * twice_area;
     const bool repeats = a == b || b == c || a == c;
     if (repeats || twice_area <= options.degenerate_tolerance * longest_sq) {
@@ -187,7 +264,7 @@ MeshReport ValidateMesh(const Surface& s, const std::string& name,
     return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.face < y.face;
   });
   std::vector<int> face_edge(3 * static_cast<size_t>(nf), -1);  // edge id per face corner
-  std::vector<std::array<int, 2>> edges;                          // endpoints per edge id
+  std::vector<std::array<int, 2>> edges;                        // endpoints per edge id
   DisjointSets boundary_sets(nv), vertex_sets(nv);
   ParitySets orientation(nf);
   std::vector<char> on_boundary(nv, 0);
@@ -221,28 +298,7 @@ MeshReport ValidateMesh(const Surface& s, const std::string& name,
   }
   r.num_edges = static_cast<int>(edges.size());
 
-  // Fans around each vertex: the two edges of a face that meet at a corner are joined; a vertex
-  // whose incident edges fall into more than one group is a non-manifold ("bow-tie") vertex.
-  // Node 2e + side stands for edge e seen from its endpoint edges[e][side].
-  DisjointSets fans(2 * r.num_edges);
-  auto node = [&](int e, int v) { return 2 * e + (edges[e][0] == v ? 0 : 1); };
-  for (int f = 0; f < nf; ++f) {
-    if (!proper[f]) continue;
-    for (int k = 0; k < 3; ++k) {
-      const int v = s.F(f, k);
-      fans.Union(node(face_edge[3 * f + k], v), node(face_edge[3 * f + (k + 2) % 3], v));
-    }
-  }
-  std::vector<int> fan_count(nv, 0);
-  for (int x = 0; x < 2 * r.num_edges; ++x) {
-    if (fans.Find(x) == x) ++fan_count[edges[x / 2][x % 2]];
-  }
-  for (int i = 0; i < nv; ++i) {
-    if (fan_count[i] > 1) {
-      ++r.non_manifold_vertices;
-      nm_vertices.Add(std::to_string(i));
-    }
-  }
+  r.non_manifold_vertices = CountNonManifoldVertices(s, proper, face_edge, edges, &nm_vertices);
 
   // Faces that repeat a vertex still connect their vertices.
   for (int f = 0; f < nf; ++f) {
@@ -257,18 +313,7 @@ MeshReport ValidateMesh(const Surface& s, const std::string& name,
     if (on_boundary[i] && boundary_sets.Find(i) == i) ++r.boundary_loops;
   }
 
-  if (r.orientable) {
-    // Per orientation component, the smaller side is the one to flip.
-    std::vector<int> size(nf, 0), odd(nf, 0);
-    for (int f = 0; f < nf; ++f) {
-      if (!proper[f]) continue;
-      int parity;
-      const int root = orientation.Find(f, &parity);
-      ++size[root];
-      odd[root] += parity;
-    }
-    for (int f = 0; f < nf; ++f) r.flipped_faces += std::min(odd[f], size[f] - odd[f]);
-  }
+  if (r.orientable) r.flipped_faces = CountFlippedFaces(proper, &orientation);
 
   r.euler_characteristic = num_referenced - r.num_edges + num_proper;
   r.closed_manifold = num_proper > 0 && num_proper == nf && r.boundary_edges == 0 &&
@@ -277,26 +322,8 @@ MeshReport ValidateMesh(const Surface& s, const std::string& name,
     r.genus = (2 * r.components - r.euler_characteristic) / 2;
   }
 
-  auto add = [&r](const std::string& what, int count, const std::string& suffix) {
-    if (count > 0) r.issues.push_back(what + ": " + std::to_string(count) + suffix);
-  };
-  add("faces with vertex ids out of range", r.invalid_faces, invalid.Suffix("faces"));
-  add("vertices with NaN/Inf coordinates", r.nonfinite_vertices, nonfinite.Suffix("vertices"));
-  add("degenerate (zero-area) faces", r.degenerate_faces, degenerate.Suffix("faces"));
-  add("duplicate faces", r.duplicate_faces, duplicate.Suffix("face=earlier face"));
-  add("non-manifold edges", r.non_manifold_edges, nm_edges.Suffix("edges"));
-  add("non-manifold vertices", r.non_manifold_vertices, nm_vertices.Suffix("vertices"));
-  add("boundary edges", r.boundary_edges,
-      " in " + std::to_string(r.boundary_loops) + (r.boundary_loops == 1 ? " loop" : " loops"));
-  if (r.components > 1) add("connected components", r.components, "");
-  if (!r.orientable) {
-    r.issues.push_back("non-orientable: no consistent face orientation exists (" +
-                       std::to_string(r.inconsistent_edges) + " inconsistent edges)");
-  } else {
-    add("inconsistently oriented edges", r.inconsistent_edges,
-        " (" + std::to_string(r.flipped_faces) + " faces appear flipped)");
-  }
-  add("unreferenced vertices", r.unreferenced_vertices, unreferenced.Suffix("vertices"));
+  r.issues =
+      Issues(r, invalid, nonfinite, degenerate, duplicate, nm_edges, nm_vertices, unreferenced);
   return r;
 }
 
