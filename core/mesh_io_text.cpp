@@ -128,22 +128,31 @@ double ColorComponent(std::string_view token, double value) {
 
 }  // namespace
 
-void ReadOff(std::string_view data, const std::string& name, RawMesh* mesh) {
-  TextCursor c(data, name, '#');
+namespace {
+
+// What the OFF header says: the variant's optional per-vertex fields and the counts.
+struct OffHeader {
+  bool has_st = false, has_color = false, has_normal = false;
+  int64_t vertices = 0, faces = 0;
+};
+
+// The OFF header: its variant letters and the counts line. Leaves the cursor at the first vertex
+// line.
+OffHeader ReadOffHeader(TextCursor& c) {
   if (!c.SkipToContent()) c.Fail("no OFF header (the file holds only blanks and comments)");
   const std::string_view header = c.Token();
   std::string_view h = header;
-  bool has_st = false, has_color = false, has_normal = false;
+  OffHeader out;
   if (h.substr(0, 2) == "ST") {
-    has_st = true;
+    out.has_st = true;
     h.remove_prefix(2);
   }
   if (h.substr(0, 1) == "C") {
-    has_color = true;
+    out.has_color = true;
     h.remove_prefix(1);
   }
   if (h.substr(0, 1) == "N") {
-    has_normal = true;
+    out.has_normal = true;
     h.remove_prefix(1);
   }
   if (h == "4OFF" || h == "nOFF" || h == "4nOFF") {
@@ -156,7 +165,8 @@ void ReadOff(std::string_view data, const std::string& name, RawMesh* mesh) {
     // Counts may follow the header on the same line; "OFF BINARY" is the binary variant.
     const std::string_view next = c.Token();
     if (next == "BINARY") c.Fail("binary OFF is not supported");
-    c.Fail("unexpected token " + Quote(next) + " after the OFF header (counts go on the next line)");
+    c.Fail("unexpected token " + Quote(next) +
+           " after the OFF header (counts go on the next line)");
   }
   auto count = [&](const char* what) {
     if (!c.SkipToContent()) c.Fail(std::string("truncated header: missing the ") + what);
@@ -164,15 +174,21 @@ void ReadOff(std::string_view data, const std::string& name, RawMesh* mesh) {
     if (n < 0 || n > 1000000000) c.Fail(std::string("invalid ") + what + " " + std::to_string(n));
     return n;
   };
-  const int64_t nv = count("vertex count");
-  const int64_t nf = count("face count");
+  out.vertices = count("vertex count");
+  out.faces = count("face count");
   count("edge count");
   if (!c.AtLineEnd()) c.Fail("unexpected token " + Quote(c.Token()) + " after the counts line");
   c.NextLine();
+  return out;
+}
 
+// The header's vertices: positions, and colours when the variant has them.
+void ReadOffVertices(TextCursor& c, const OffHeader& h, size_t data_size, RawMesh* mesh) {
+  const int64_t nv = h.vertices;
+  const bool has_st = h.has_st, has_color = h.has_color, has_normal = h.has_normal;
   // Reserve no more than the file could hold, so a garbage count cannot exhaust memory.
-  mesh->positions.reserve(3 * std::min<int64_t>(nv, data.size() / 6 + 1));
-  if (has_color) mesh->colors.reserve(3 * std::min<int64_t>(nv, data.size() / 6 + 1));
+  mesh->positions.reserve(3 * std::min<int64_t>(nv, data_size / 6 + 1));
+  if (has_color) mesh->colors.reserve(3 * std::min<int64_t>(nv, data_size / 6 + 1));
   const int base = 3 + (has_normal ? 3 : 0) + (has_st ? 2 : 0);
   const std::string hint = " (does the header's vertex count " + std::to_string(nv) + " match?)";
   for (int64_t i = 0; i < nv; ++i) {
@@ -200,12 +216,19 @@ void ReadOff(std::string_view data, const std::string& name, RawMesh* mesh) {
     mesh->positions.insert(mesh->positions.end(), values, values + 3);
     if (has_color) {
       const int at = 3 + (has_normal ? 3 : 0);
-      for (int j = at; j < at + 3; ++j) mesh->colors.push_back(ColorComponent(tokens[j], values[j]));
+      for (int j = at; j < at + 3; ++j)
+        mesh->colors.push_back(ColorComponent(tokens[j], values[j]));
     }
     c.NextLine();
   }
+}
 
-  mesh->triangles.reserve(3 * std::min<int64_t>(nf, data.size() / 8 + 1));
+// The header's faces, each fanned into triangles; per-face colours are skipped (but must be
+// numeric).
+void ReadOffFaces(TextCursor& c, const OffHeader& h, size_t data_size, RawMesh* mesh) {
+  const int64_t nv = h.vertices, nf = h.faces;
+  const std::string hint = " (does the header's vertex count " + std::to_string(nv) + " match?)";
+  mesh->triangles.reserve(3 * std::min<int64_t>(nf, data_size / 8 + 1));
   std::vector<int> ids;
   for (int64_t f = 0; f < nf; ++f) {
     if (!c.SkipToContent()) {
@@ -245,8 +268,17 @@ void ReadOff(std::string_view data, const std::string& name, RawMesh* mesh) {
     AppendFan(ids.data(), static_cast<int>(ids.size()), &mesh->triangles);
     c.NextLine();
   }
+}
+
+}  // namespace
+
+void ReadOff(std::string_view data, const std::string& name, RawMesh* mesh) {
+  TextCursor c(data, name, '#');
+  const OffHeader header = ReadOffHeader(c);
+  ReadOffVertices(c, header, data.size(), mesh);
+  ReadOffFaces(c, header, data.size(), mesh);
   if (c.SkipToContent()) {
-    c.Fail("unexpected data " + Quote(c.Token()) + " after the " + std::to_string(nf) +
+    c.Fail("unexpected data " + Quote(c.Token()) + " after the " + std::to_string(header.faces) +
            " faces declared in the header");
   }
 }
@@ -255,10 +287,11 @@ namespace {
 
 bool IsIgnoredObjStatement(std::string_view kw) {
   static const char* const kIgnored[] = {
-      "vt",   "vn",   "vp",   "o",     "g",       "s",    "usemtl", "mtllib", "l",
-      "p",    "mg",   "cstype", "deg", "bmat",    "step", "curv",   "curv2",  "surf",
-      "parm", "trim", "hole", "scrv",  "sp",      "end",  "con",    "bevel",  "c_interp",
-      "d_interp", "lod", "usemap", "maplib", "shadow_obj", "trace_obj", "ctech", "stech"};
+      "vt",     "vn",     "vp",     "o",          "g",         "s",        "usemtl",
+      "mtllib", "l",      "p",      "mg",         "cstype",    "deg",      "bmat",
+      "step",   "curv",   "curv2",  "surf",       "parm",      "trim",     "hole",
+      "scrv",   "sp",     "end",    "con",        "bevel",     "c_interp", "d_interp",
+      "lod",    "usemap", "maplib", "shadow_obj", "trace_obj", "ctech",    "stech"};
   for (const char* s : kIgnored) {
     if (kw == s) return true;
   }
@@ -325,8 +358,8 @@ void ReadObj(std::string_view data, const std::string& name, RawMesh* mesh) {
   const int64_t nv = mesh->NumVertices();
   for (const auto& [line, id] : forward_refs) {
     if (id >= nv) {
-      Fail(name, line, "vertex id " + std::to_string(id + 1) + " out of range [1, " +
-                           std::to_string(nv) + "]");
+      Fail(name, line,
+           "vertex id " + std::to_string(id + 1) + " out of range [1, " + std::to_string(nv) + "]");
     }
   }
   if (colored != nv) mesh->colors.clear();
