@@ -15,11 +15,11 @@ enum class Encoding { kAscii, kLittleEndian, kBigEndian };
 
 bool ParsePlyType(std::string_view s, PlyType* type) {
   static const std::pair<const char*, PlyType> kNames[] = {
-      {"char", PlyType::kInt8},     {"int8", PlyType::kInt8},       {"uchar", PlyType::kUint8},
-      {"uint8", PlyType::kUint8},   {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
-      {"ushort", PlyType::kUint16}, {"uint16", PlyType::kUint16},   {"int", PlyType::kInt32},
-      {"int32", PlyType::kInt32},   {"uint", PlyType::kUint32},     {"uint32", PlyType::kUint32},
-      {"float", PlyType::kFloat32}, {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
+      {"char", PlyType::kInt8},      {"int8", PlyType::kInt8},       {"uchar", PlyType::kUint8},
+      {"uint8", PlyType::kUint8},    {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
+      {"ushort", PlyType::kUint16},  {"uint16", PlyType::kUint16},   {"int", PlyType::kInt32},
+      {"int32", PlyType::kInt32},    {"uint", PlyType::kUint32},     {"uint32", PlyType::kUint32},
+      {"float", PlyType::kFloat32},  {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
       {"float64", PlyType::kFloat64}};
   for (const auto& [n, t] : kNames) {
     if (s == n) {
@@ -32,10 +32,18 @@ bool ParsePlyType(std::string_view s, PlyType* type) {
 
 int SizeOf(PlyType t) {
   switch (t) {
-    case PlyType::kInt8: case PlyType::kUint8: return 1;
-    case PlyType::kInt16: case PlyType::kUint16: return 2;
-    case PlyType::kInt32: case PlyType::kUint32: case PlyType::kFloat32: return 4;
-    case PlyType::kFloat64: return 8;
+    case PlyType::kInt8:
+    case PlyType::kUint8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUint16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUint32:
+    case PlyType::kFloat32:
+      return 4;
+    case PlyType::kFloat64:
+      return 8;
   }
   return 8;
 }
@@ -66,7 +74,10 @@ bool HostIsLittleEndian() {
 class PlyBody {
  public:
   PlyBody(std::string_view body, int first_line, Encoding encoding, const std::string& name)
-      : encoding_(encoding), text_(body, name, 0, first_line), bytes_(body), name_(name),
+      : encoding_(encoding),
+        text_(body, name, 0, first_line),
+        bytes_(body),
+        name_(name),
         swap_(encoding != Encoding::kAscii &&
               (encoding == Encoding::kLittleEndian) != HostIsLittleEndian()) {}
 
@@ -103,14 +114,22 @@ class PlyBody {
     pos_ += size;
     if (swap_) std::reverse(b, b + size);
     switch (t) {
-      case PlyType::kInt8: return Cast<int8_t>(b);
-      case PlyType::kUint8: return Cast<uint8_t>(b);
-      case PlyType::kInt16: return Cast<int16_t>(b);
-      case PlyType::kUint16: return Cast<uint16_t>(b);
-      case PlyType::kInt32: return Cast<int32_t>(b);
-      case PlyType::kUint32: return Cast<uint32_t>(b);
-      case PlyType::kFloat32: return Cast<float>(b);
-      case PlyType::kFloat64: return Cast<double>(b);
+      case PlyType::kInt8:
+        return Cast<int8_t>(b);
+      case PlyType::kUint8:
+        return Cast<uint8_t>(b);
+      case PlyType::kInt16:
+        return Cast<int16_t>(b);
+      case PlyType::kUint16:
+        return Cast<uint16_t>(b);
+      case PlyType::kInt32:
+        return Cast<int32_t>(b);
+      case PlyType::kUint32:
+        return Cast<uint32_t>(b);
+      case PlyType::kFloat32:
+        return Cast<float>(b);
+      case PlyType::kFloat64:
+        return Cast<double>(b);
     }
     return 0.0;
   }
@@ -130,8 +149,9 @@ class PlyBody {
     }
     for (size_t i = pos_; i < bytes_.size(); ++i) {
       if (bytes_[i] != '\n' && bytes_[i] != '\r') {
-        Fail(name_, 0, std::to_string(bytes_.size() - pos_) +
-                           " bytes of unexpected data after the last element");
+        Fail(name_, 0,
+             std::to_string(bytes_.size() - pos_) +
+                 " bytes of unexpected data after the last element");
       }
     }
   }
@@ -163,16 +183,24 @@ int FindProperty(const PlyElement& e, std::initializer_list<const char*> names) 
 
 }  // namespace
 
-void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
-  TextCursor c(data, name, 0);
+namespace {
+
+// The PLY header: the magic line, the format and the elements with their properties. Leaves the
+// cursor at the start of the body.
+struct PlyHeader {
+  Encoding encoding = Encoding::kAscii;
+  std::vector<PlyElement> elements;
+};
+
+PlyHeader ReadPlyHeader(TextCursor& c) {
   const std::string_view magic = c.Token();
   if (magic != "ply" || !c.AtLineEnd()) {
     c.Fail("not a PLY file: expected 'ply' on the first line, found " + Quote(magic));
   }
   c.NextLine();
-  Encoding encoding = Encoding::kAscii;
+  PlyHeader out;
   bool has_format = false;
-  std::vector<PlyElement> elements;
+  std::vector<PlyElement>& elements = out.elements;
   while (true) {
     if (!c.SkipToContent()) c.Fail("truncated header: no 'end_header' line");
     const std::string_view kw = c.Token();
@@ -183,11 +211,11 @@ void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
     } else if (kw == "format") {
       const std::string_view f = c.Token();
       if (f == "ascii") {
-        encoding = Encoding::kAscii;
+        out.encoding = Encoding::kAscii;
       } else if (f == "binary_little_endian") {
-        encoding = Encoding::kLittleEndian;
+        out.encoding = Encoding::kLittleEndian;
       } else if (f == "binary_big_endian") {
-        encoding = Encoding::kBigEndian;
+        out.encoding = Encoding::kBigEndian;
       } else {
         c.Fail("unknown PLY format " + Quote(f));
       }
@@ -231,6 +259,16 @@ void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
   }
   if (!has_format) c.Fail("header has no 'format' line");
   c.NextLine();
+  return out;
+}
+
+}  // namespace
+
+void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
+  TextCursor c(data, name, 0);
+  const PlyHeader header = ReadPlyHeader(c);
+  const Encoding encoding = header.encoding;
+  const std::vector<PlyElement>& elements = header.elements;
 
   const auto vertex_it = std::find_if(elements.begin(), elements.end(),
                                       [](const PlyElement& e) { return e.name == "vertex"; });
@@ -265,8 +303,9 @@ void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
     for (const auto& p : e.properties) record_bytes += SizeOf(p.is_list ? p.count_type : p.type);
     if (encoding != Encoding::kAscii && record_bytes > 0 &&
         e.count > static_cast<int64_t>(body.Remaining()) / record_bytes) {
-      Fail(name, 0, "truncated binary data: element '" + e.name + "' declares " +
-                        std::to_string(e.count) + " records, more than the file holds");
+      Fail(name, 0,
+           "truncated binary data: element '" + e.name + "' declares " + std::to_string(e.count) +
+               " records, more than the file holds");
     }
     if (is_vertex) mesh->positions.reserve(3 * e.count);
     if (is_vertex && has_color) mesh->colors.reserve(3 * e.count);
@@ -284,8 +323,9 @@ void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
         body.Require(static_cast<int64_t>(n) * SizeOf(p.type));
         const bool face_ids = is_face && static_cast<int>(j) == ids_prop;
         if (face_ids && n < 3) {
-          Fail(name, 0, "face " + std::to_string(i) + " has " + std::to_string(int64_t(n)) +
-                            " vertices; a face needs at least 3");
+          Fail(name, 0,
+               "face " + std::to_string(i) + " has " + std::to_string(int64_t(n)) +
+                   " vertices; a face needs at least 3");
         }
         if (face_ids) ids.clear();
         for (int64_t k = 0; k < static_cast<int64_t>(n); ++k) {
@@ -294,8 +334,9 @@ void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
           if (!(id >= 0 && id < static_cast<double>(nv)) || id != std::floor(id)) {
             char id_text[32];
             std::snprintf(id_text, sizeof(id_text), "%.17g", id);
-            Fail(name, 0, "face " + std::to_string(i) + ": vertex id " + id_text +
-                              " out of range [0, " + std::to_string(nv) + ")");
+            Fail(name, 0,
+                 "face " + std::to_string(i) + ": vertex id " + id_text + " out of range [0, " +
+                     std::to_string(nv) + ")");
           }
           ids.push_back(static_cast<int>(id));
         }
