@@ -36,6 +36,10 @@ bool DiscreteOptOptions::IsValid(std::string* error) const {
   return false;
 }
 
+WksProducts DiscreteWksProducts(const LaplaceBasis& basis, int k_end) {
+  return ComputeWksProducts(basis, k_end, k_end);
+}
+
 namespace {
 
 // What one shape contributes to the iterations: the vertices that query (their weights, basis
@@ -136,15 +140,17 @@ std::vector<int> Query(const TermRows& rows, const std::vector<int>& candidates,
 }
 
 // Descriptor coefficients (k_end x count) of both shapes: wave kernel signatures at energies
-// shared by the pair, in the first k_end eigenfunctions.
+// shared by the pair, in the first k_end eigenfunctions. products: each shape's
+// DiscreteWksProducts (computed here when null).
 void Descriptors(const LaplaceBasis& source, const LaplaceBasis& target, int k_end, int count,
+                 const WksProducts* source_products, const WksProducts* target_products,
                  Eigen::MatrixXd* A_s, Eigen::MatrixXd* A_t) {
   double sigma = 0.0;
   const Eigen::VectorXd energies =
       WksEnergies(source.evals.head(k_end), target.evals.head(k_end), count, 2.0, &sigma);
-  *A_s = WksCoefficients(ComputeWksProducts(source, k_end, k_end),
+  *A_s = WksCoefficients(source_products ? *source_products : DiscreteWksProducts(source, k_end),
                          EnergyWeights(source.evals.head(k_end), energies, sigma));
-  *A_t = WksCoefficients(ComputeWksProducts(target, k_end, k_end),
+  *A_t = WksCoefficients(target_products ? *target_products : DiscreteWksProducts(target, k_end),
                          EnergyWeights(target.evals.head(k_end), energies, sigma));
 }
 
@@ -153,7 +159,8 @@ void Descriptors(const LaplaceBasis& source, const LaplaceBasis& target, int k_e
 DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& target,
                               const std::vector<int>& initial_map, const std::vector<int>& samples,
                               const std::vector<int>& target_samples,
-                              const DiscreteOptOptions& options) {
+                              const DiscreteOptOptions& options, const WksProducts* source_products,
+                              const WksProducts* target_products) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("discrete: " + error);
   const int ns = source.NumVertices(), nt = target.NumVertices(), k_end = options.k_end;
@@ -172,7 +179,10 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
   const Side T = MakeSide(target, target_samples, k_end, options.sample_candidates, "target");
   const DiscreteOptWeights& w = options.weights;
   Eigen::MatrixXd A_s, A_t;
-  if (w.descriptor > 0.0) Descriptors(source, target, k_end, options.descriptors, &A_s, &A_t);
+  if (w.descriptor > 0.0) {
+    Descriptors(source, target, k_end, options.descriptors, source_products, target_products, &A_s,
+                &A_t);
+  }
 
   std::vector<int> sizes;
   for (int k = options.k_start; k < k_end; k += options.step) sizes.push_back(k);

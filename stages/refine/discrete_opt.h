@@ -25,6 +25,7 @@
 
 #include "core/spectral.h"
 #include "registry/types.h"
+#include "stages/flip/descriptor_map.h"
 
 namespace symembed {
 
@@ -69,9 +70,18 @@ struct DiscreteOptResult {
 // the lumped areas as weights; else both non-empty, uniform weights, each enough well-spread
 // vertices to determine k_end coefficients). Throws ConfigError for invalid options,
 // InvalidInputError for inconsistent inputs.
+// source_products, target_products (optional): each shape's DiscreteWksProducts for k_end,
+// which depend on the shape alone (the refine stage prepares them per shape); computed here when
+// null.
 DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& target,
                               const std::vector<int>& initial_map, const std::vector<int>& samples,
                               const std::vector<int>& target_samples,
-                              const DiscreteOptOptions& options);
+                              const DiscreteOptOptions& options,
+                              const WksProducts* source_products = nullptr,
+                              const WksProducts* target_products = nullptr);
+
+// What the descriptor term needs of one shape, whatever the pair: the wave kernel signature
+// products (stages/flip/descriptor_map.h) of the first k_end eigenpairs.
+WksProducts DiscreteWksProducts(const LaplaceBasis& basis, int k_end);
 
 }  // namespace symembed

@@ -4,6 +4,7 @@
 #include "stages/register.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/spectral.h"
@@ -117,7 +118,18 @@ class DiscreteRefine : public RefineStage {
   DiscreteRefine(const DiscreteOptOptions& options, int sample_count)
       : options_(options), sample_count_(sample_count) {}
 
-  void PrepareShape(ShapeData& shape) const override { PrepareBasis(shape, options_.k_end); }
+  // The basis, and the descriptor term's products, which depend on the shape alone.
+  void PrepareShape(ShapeData& shape) const override {
+    PrepareBasis(shape, options_.k_end);
+    if (options_.weights.descriptor > 0.0) {
+      const WksProducts products =
+          DiscreteWksProducts(GetLaplaceBasis(shape.aux, options_.k_end), options_.k_end);
+      shape.aux[kWksPKey] = products.P;
+      shape.aux[kWksQKey] = products.Q;
+    }
+  }
+  // 2: PrepareShape adds the descriptor products.
+  int PrepareVersion() const override { return 2; }
 
   MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
     bool computed = false;
@@ -128,22 +140,34 @@ class DiscreteRefine : public RefineStage {
       samples = SamplesOrAll(pair.source, source);
       target_samples = SamplesOrAll(pair.target, target);
     }
-    DiscreteOptResult r =
-        DiscreteOpt(source, target, initial_map, samples, target_samples, options_);
+    const std::optional<WksProducts> source_products = ProductsOf(pair.source);
+    const std::optional<WksProducts> target_products = ProductsOf(pair.target);
+    DiscreteOptResult r = DiscreteOpt(source, target, initial_map, samples, target_samples,
+                                      options_, source_products ? &*source_products : nullptr,
+                                      target_products ? &*target_products : nullptr);
     r.status.message += BasisNote(computed);
     return MatchResult{std::move(r.map), std::move(r.status)};
   }
 
  private:
+  // Keys of the descriptor products in ShapeData::aux.
+  static constexpr const char* kWksPKey = "discrete_wks_P";
+  static constexpr const char* kWksQKey = "discrete_wks_Q";
+
   // Samples of a shape, or every vertex with area when it has no more than sample_count_.
   std::vector<int> SamplesOrAll(const ShapeData& shape, const LaplaceBasis& basis) const {
     std::vector<int> ids = Samples(shape, basis, sample_count_);
-    if (ids.empty()) {
-      for (int i = 0; i < basis.NumVertices(); ++i) {
-        if (basis.mass(i) > 0.0) ids.push_back(i);
-      }
+    return ids.empty() ? MatchableTargets(basis.mass) : ids;
+  }
+
+  // The prepared descriptor products of a shape for k_end, if PrepareShape stored them.
+  std::optional<WksProducts> ProductsOf(const ShapeData& shape) const {
+    const auto p = shape.aux.find(kWksPKey), q = shape.aux.find(kWksQKey);
+    if (p == shape.aux.end() || q == shape.aux.end() || p->second.rows() != options_.k_end ||
+        q->second.rows() != options_.k_end) {
+      return std::nullopt;
     }
-    return ids;
+    return WksProducts{p->second, q->second};
   }
 
   DiscreteOptOptions options_;

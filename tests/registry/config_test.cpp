@@ -155,7 +155,8 @@ TEST(Config, UnknownTopLevelKeyAndStageKind) {
   EXPECT_NE(msg.find("exp.yaml:10:1: evalution: unknown key"), std::string::npos) << msg;
   EXPECT_NE(msg.find("evaluation"), std::string::npos) << msg;
   msg = ErrorOf(Replace(kConfig, "  sampling:", "  smapling:"));
-  EXPECT_NE(msg.find("exp.yaml:4:3: pipeline.smapling: unknown stage kind"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("exp.yaml:4:3: pipeline.smapling: unknown stage kind"), std::string::npos)
+      << msg;
 }
 
 TEST(Config, WrongTypeNamesExpectation) {
@@ -214,14 +215,16 @@ TEST(Config, MissingRequiredKeys) {
   EXPECT_NE(msg.find("missing required key 'name'"), std::string::npos) << msg;
   msg = ErrorOf(Replace(kConfig, "format: pairs_vts, ", ""));
   EXPECT_NE(msg.find("dataset: missing required key 'format'; known dataset types: pairs_vts"),
-            std::string::npos) << msg;
+            std::string::npos)
+      << msg;
 }
 
 TEST(Config, VariantErrorsPointAtTheVariant) {
-  std::string msg = ErrorOf(Replace(kConfig, "pipeline.sampling.count: 2000",
-                                    "pipeline.sampling.count: -3"));
+  std::string msg =
+      ErrorOf(Replace(kConfig, "pipeline.sampling.count: 2000", "pipeline.sampling.count: -3"));
   EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("pipeline.sampling.count: value -3 is out of range"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pipeline.sampling.count: value -3 is out of range"), std::string::npos)
+      << msg;
   msg = ErrorOf(Replace(kConfig, "pipeline.sampling.count", "pipeline.smpling.count"));
   EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("unknown stage kind 'smpling'"), std::string::npos) << msg;
@@ -273,8 +276,9 @@ namespace {
 
 TEST(Config, CommandLineOverridesApplyToEveryVariant) {
   const Registry registry = FakeRegistry();
-  const ExperimentConfig c = ParseExperimentConfig(
-      kConfig, "exp.yaml", registry, {"evaluation.geodesics=fast_marching", "pipeline.sampling.seed=7"});
+  const ExperimentConfig c =
+      ParseExperimentConfig(kConfig, "exp.yaml", registry,
+                            {"evaluation.geodesics=fast_marching", "pipeline.sampling.seed=7"});
   for (const auto& v : c.variants) {
     const Pipeline p = BuildPipeline(c, v, registry);
     EXPECT_EQ(p.evaluation.geodesics, "fast_marching") << v.name;
@@ -284,11 +288,12 @@ TEST(Config, CommandLineOverridesApplyToEveryVariant) {
   const ExperimentConfig d =
       ParseExperimentConfig(kConfig, "exp.yaml", registry, {"pipeline.sampling.count=50"});
   EXPECT_EQ(BuildPipeline(d, *d.Find("more_samples"), registry)
-                .sampling->resolved_options()["count"].as<int>(),
+                .sampling->resolved_options()["count"]
+                .as<int>(),
             2000);
-  EXPECT_EQ(BuildPipeline(d, *d.Find("base"), registry)
-                .sampling->resolved_options()["count"].as<int>(),
-            50);
+  EXPECT_EQ(
+      BuildPipeline(d, *d.Find("base"), registry).sampling->resolved_options()["count"].as<int>(),
+      50);
   EXPECT_THROW(ParseExperimentConfig(kConfig, "exp.yaml", registry, {"evaluation.geodesics"}),
                ConfigError);
   EXPECT_THROW(ParseExperimentConfig(kConfig, "exp.yaml", registry, {"pipline.x.y=1"}),
@@ -303,8 +308,8 @@ namespace {
 
 TEST(Config, PipelineAndEvaluationSectionsAreOptional) {
   const Registry registry = FakeRegistry();
-  const ExperimentConfig c =
-      ParseExperimentConfig("name: minimal\ndataset: {format: pairs_vts, root: /x}\n", "m.yaml", registry);
+  const ExperimentConfig c = ParseExperimentConfig(
+      "name: minimal\ndataset: {format: pairs_vts, root: /x}\n", "m.yaml", registry);
   const Pipeline p = BuildPipeline(c, c.variants[0], registry);
   EXPECT_EQ(p.embedding->resolved_options()["type"].as<std::string>(), "lsmds");
   EXPECT_EQ(p.evaluation.geodesics, "fast_marching");
@@ -318,8 +323,8 @@ namespace {
 
 TEST(Config, UnknownKeySetByAnOverrideNamesWhereItWasSet) {
   // By a variant: the line of its value in the variant.
-  std::string msg = ErrorOf(Replace(kConfig, "pipeline.sampling.count: 2000",
-                                    "pipeline.sampling.cuont: 2000"));
+  std::string msg =
+      ErrorOf(Replace(kConfig, "pipeline.sampling.count: 2000", "pipeline.sampling.cuont: 2000"));
   EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("pipeline.sampling.cuont: unknown key 'cuont'"), std::string::npos) << msg;
   // By --set: no position (one in the --set text is not one in the file).
@@ -377,16 +382,18 @@ TEST(Config, PipelineMembersAreBoundToTheKindTableInItsOrder) {
   std::vector<std::string> visited;
   Pipeline::ForEachStage(pipeline, [&](const char* kind, auto&) { visited.push_back(kind); });
   EXPECT_EQ(visited, PipelineKinds());
-  std::vector<std::string> expected;
+  // Every default type is a registered stage of its kind, and the registry accepts the kinds of
+  // the table and `dataset`, no other.
+  Registry registry;
+  RegisterBuiltinStages(registry);
   for (const StageKind& kind : kPipelineStageKinds) {
-    expected.push_back(kind.name);
-    EXPECT_FALSE(std::string(kind.default_type).empty()) << kind.name;
-    EXPECT_EQ(DefaultStageType(kind.name), kind.default_type);
+    EXPECT_TRUE(registry.Has(kind.name, kind.default_type))
+        << kind.name << ": default type '" << kind.default_type << "' is not registered";
   }
-  EXPECT_EQ(PipelineKinds(), expected);
-  expected.push_back("dataset");
-  EXPECT_EQ(StageKinds(), expected);
-  EXPECT_EQ(DefaultStageType("dataset"), "");
+  EXPECT_EQ(StageKinds().back(), "dataset");
+  EXPECT_THROW(
+      registry.Add("not_a_kind", "x", "", [](OptionReader&) { return std::unique_ptr<Stage>(); }),
+      ConfigError);
 }
 
 }  // namespace
