@@ -10,10 +10,13 @@
 #include "eval/json.h"
 #include "eval/report.h"
 #include "registry/files.h"
+#include "registry/run_outputs.h"
 
 namespace symembed {
 
 namespace {
+
+constexpr int kMalformedInput = 3;  // exit code: a file check could not read or trust
 
 std::string ToleranceHelp() {
   std::ostringstream out;
@@ -52,6 +55,8 @@ std::vector<std::string> TakeTolerances(Args& args) {
   return specs;
 }
 
+int CheckSummary(const ArgParser& parser, const std::map<std::string, double>& tolerances);
+
 }  // namespace
 
 int CheckCommand(const Args& input_args) {
@@ -61,7 +66,9 @@ int CheckCommand(const Args& input_args) {
                    "worse by more than its tolerance (mean and median errors up, % <= "
                    "thresholds or AUC down, failed or flipped pairs up); exits 0 otherwise. "
                    "Timings are not checked. With --update, the baseline is rewritten with "
-                   "SUMMARY (after printing the comparison) and the exit code is 0.");
+                   "SUMMARY (after printing the comparison) and the exit code is 0. A summary or "
+                   "baseline that cannot be read, is malformed, or belongs to an unfinished run "
+                   "exits 3.");
   parser.Positionals("SUMMARY", "summary.json of a run (or symembed eval)", 1, 1);
   parser.Option("baseline", "baseline summary file (e.g. results/baselines/synthetic.json)", "");
   parser.Option("tolerance", ToleranceHelp(), "");
@@ -76,10 +83,26 @@ int CheckCommand(const Args& input_args) {
   } catch (const ConfigError& e) {
     throw UsageError{e.what()};
   }
+  try {
+    return CheckSummary(parser, tolerances);
+  } catch (const InvalidInputError& e) {
+    std::cerr << "symembed check: error: " << e.what() << "\n";
+    return kMalformedInput;
+  } catch (const IoError& e) {
+    std::cerr << "symembed check: error: " << e.what() << "\n";
+    return kMalformedInput;
+  }
+}
+
+namespace {
+
+int CheckSummary(const ArgParser& parser, const std::map<std::string, double>& tolerances) {
   const std::string summary_path = parser.positionals()[0];
   const std::string baseline_path = parser.Get("baseline");
+  RequireNotInProgress(std::filesystem::path(summary_path).parent_path().string());
   const std::string summary_text = ReadFileOrThrow(summary_path);
   const JsonValue current = ParseJson(summary_text, summary_path);
+  ValidateSummary(current, summary_path);
   const bool update = parser.Flag("update");
 
   if (!std::filesystem::exists(baseline_path)) {
@@ -89,6 +112,7 @@ int CheckCommand(const Args& input_args) {
     return 0;
   }
   const JsonValue baseline = ParseJson(ReadFileOrThrow(baseline_path), baseline_path);
+  ValidateSummary(baseline, baseline_path);
   const CheckResult result = CompareSummaries(baseline, current, tolerances);
   std::cout << "baseline " << baseline_path << " -> " << summary_path << "\n"
             << FormatCheck(result);
@@ -99,5 +123,7 @@ int CheckCommand(const Args& input_args) {
   }
   return result.worse ? 1 : 0;
 }
+
+}  // namespace
 
 }  // namespace symembed

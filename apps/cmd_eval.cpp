@@ -9,6 +9,7 @@
 #include "eval/report.h"
 #include "eval/score_maps.h"
 #include "registry/config.h"
+#include "registry/run_outputs.h"
 
 namespace symembed {
 
@@ -125,6 +126,10 @@ int EvalCommand(const Args& args) {
   if (!std::filesystem::is_directory(options.maps_dir)) {
     throw IoError(options.maps_dir + ": maps folder not found");
   }
+  // The maps of a run that has not finished are not all there.
+  std::filesystem::path maps_path = std::filesystem::path(options.maps_dir).lexically_normal();
+  if (maps_path.filename().empty()) maps_path = maps_path.parent_path();
+  if (maps_path.has_parent_path()) RequireNotInProgress(maps_path.parent_path().string());
   const std::string name = parser.Get("name");
   const std::string out = parser.Given("out") ? parser.Get("out") : "results/" + name;
 
@@ -142,7 +147,9 @@ int EvalCommand(const Args& args) {
   const Evaluator evaluator(evaluation, *setup.geodesics, cache_mb);
   const ScoreMapsResult result = ScoreMaps(*setup.dataset, *setup.preprocess, evaluator, options);
   const VariantSummary summary = Summarize(name, result.pairs, evaluation, result.timings);
+  MarkInProgress(out, "symembed eval");
   WriteVariantOutputs(out, summary, result.pairs, result.timings);
+  ClearInProgress(out);
   std::string warning;
   if (!PlotCurves(out, &warning)) std::cerr << "symembed eval: warning: " << warning << "\n";
 

@@ -71,13 +71,20 @@ int RunCommand(const Args& args) {
 
   GroundTruthRunEvaluation evaluation(&registry);
   const RunStats stats = RunExperiment(config, registry, options, evaluation);
-  for (const std::string& warning : evaluation.warnings()) {
+  std::vector<std::string> warnings = stats.warnings;
+  warnings.insert(warnings.end(), evaluation.warnings().begin(), evaluation.warnings().end());
+  for (const std::string& warning : warnings) {
     std::cerr << "symembed run: warning: " << warning << "\n";
   }
   if (!options.quiet) {
     std::cerr << "symembed run: " << stats.pairs_done << " pairs computed, " << stats.pairs_skipped
-              << " kept from an earlier run, " << stats.failures.size() << " failures; outputs in "
-              << options.out_dir << "\n";
+              << " kept from an earlier run";
+    if (stats.pairs_recomputed > 0) {
+      std::cerr << " (" << stats.pairs_recomputed
+                << " more had outputs that did not match this run and were computed again)";
+    }
+    std::cerr << ", " << stats.failures.size() << " failures; outputs in " << options.out_dir
+              << "\n";
   }
   if (!stats.ok()) {
     std::cerr << "symembed run: " << stats.failures.size()

@@ -91,6 +91,17 @@ std::map<std::string, double> ParseTolerances(const std::vector<std::string>& sp
   return tolerances;
 }
 
+void ValidateSummary(const JsonValue& summary, const std::string& where) {
+  if (!summary.IsObject()) throw InvalidInputError(where + ": expected a JSON object");
+  for (const auto& metric : CheckedMetrics()) {
+    const JsonValue* value = Lookup(summary, metric.key);
+    if (value && !value->IsNumber() && !value->IsNull()) {
+      throw InvalidInputError(where + ": " + metric.key + ": expected a number or null, got " +
+                              WriteJson(*value, 0));
+    }
+  }
+}
+
 CheckResult CompareSummaries(const JsonValue& baseline, const JsonValue& current,
                              const std::map<std::string, double>& tolerances) {
   const double nan = std::numeric_limits<double>::quiet_NaN();

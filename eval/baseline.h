@@ -43,6 +43,10 @@ struct CheckResult {
   std::vector<std::string> notes;   // evaluation settings that differ (not failures)
 };
 
+// Checks that `summary` is a JSON object whose checked metrics, where present, are numbers or
+// null (NaN). Throws InvalidInputError naming `where` and the key otherwise.
+void ValidateSummary(const JsonValue& summary, const std::string& where);
+
 // Compares two parsed summaries; tolerances override the defaults (keys as ParseTolerances).
 CheckResult CompareSummaries(const JsonValue& baseline, const JsonValue& current,
                              const std::map<std::string, double>& tolerances = {});

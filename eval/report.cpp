@@ -1,7 +1,12 @@
 #include "eval/report.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -283,15 +288,32 @@ std::string FindPlotScript() {
   return "";
 }
 
-std::string ShellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
+// Runs argv[0] with argv (stdout and stderr to /dev/null) and returns its wait status, or -1 when
+// it could not be started. The child dies with this process: a run killed while it plots must
+// not leave a helper that writes figures later.
+int RunChild(const std::vector<std::string>& argv) {
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(126);  // the parent died before prctl took effect
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (null_fd >= 0) {
+      dup2(null_fd, 1);
+      dup2(null_fd, 2);
+    }
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    _exit(127);
   }
-  return out + "'";
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return status;
 }
 
 }  // namespace
@@ -305,9 +327,8 @@ bool PlotCurves(const std::string& dir, std::string* warning) {
   if (access(python.c_str(), X_OK) != 0) return fail(python + " not found");
   const std::string script = FindPlotScript();
   if (script.empty()) return fail("scripts/plot-curves not found (set SYMEMBED_ROOT)");
-  const std::string command =
-      python + " " + ShellQuote(script) + " " + ShellQuote(dir) + " > /dev/null 2>&1";
-  const int status = std::system(command.c_str());
+  const int status = RunChild({python, script, dir});
+  if (status < 0) return fail("cannot start " + python);
   if (status != 0) {
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return fail(code == 3 ? "matplotlib is not installed for " + python

@@ -51,7 +51,8 @@ bool WriteComparison(const std::string& experiment_dir, const std::vector<Varian
                      std::string* warning);
 
 // Runs `/usr/bin/python3 scripts/plot-curves DIR` (DIR: an experiment directory with
-// VARIANT/curve.csv, or a variant directory with curve.csv). The script is found through
+// VARIANT/curve.csv, or a variant directory with curve.csv) and waits for it; the helper is
+// killed when this process dies. The script is found through
 // $SYMEMBED_ROOT, else by walking up from the executable. Returns false and sets *warning
 // when the script, python3 or matplotlib is missing, or the script fails.
 bool PlotCurves(const std::string& dir, std::string* warning);

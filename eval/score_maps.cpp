@@ -40,7 +40,7 @@ struct LoadedShape {
   std::map<std::string, double> seconds;
 };
 
-void LoadShape(const Dataset& dataset, const PreprocessStage& preprocess, const MeshLoader& load,
+void LoadShape(const Dataset& dataset, const PreprocessStage& preprocess, const DatasetMeshLoader& load,
                LoadedShape& s) {
   try {
     auto start = std::chrono::steady_clock::now();
@@ -63,7 +63,7 @@ void LoadShape(const Dataset& dataset, const PreprocessStage& preprocess, const 
 
 ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preprocess,
                           const Evaluator& evaluator, const ScoreMapsOptions& options,
-                          const MeshLoader& load) {
+                          const DatasetMeshLoader& load) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("eval options: " + error);
   const auto start = std::chrono::steady_clock::now();

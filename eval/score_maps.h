@@ -22,7 +22,7 @@ struct ScoreMapsOptions {
 };
 
 // Reads a mesh of the dataset (default: LoadSurface(shape.mesh_path)).
-using MeshLoader = std::function<Surface(const DatasetShape& shape)>;
+using DatasetMeshLoader = std::function<Surface(const DatasetShape& shape)>;
 
 struct ScoreMapsResult {
   std::vector<PairEvaluation> pairs;  // one per dataset pair, sorted by (source, target)
@@ -36,6 +36,6 @@ struct ScoreMapsResult {
 // Throws only for a dataset index that cannot be read.
 ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preprocess,
                           const Evaluator& evaluator, const ScoreMapsOptions& options,
-                          const MeshLoader& load = MeshLoader());
+                          const DatasetMeshLoader& load = DatasetMeshLoader());
 
 }  // namespace symembed

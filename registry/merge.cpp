@@ -56,7 +56,9 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
       const std::string dir = shard + "/" + name;
       auto config = ReadFileBytes(VariantConfigPath(dir));
       if (!config) continue;
+      RequireNotInProgress(dir);
       if (results.merged_from.empty()) {
+        MarkInProgress(results.dir, "symembed merge");
         config_text = *config;
       } else if (*config != config_text) {
         throw InvalidInputError(dir + "/config.yaml: differs from " + results.merged_from[0] +
@@ -107,7 +109,9 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
       results.records.push_back(it == records.end() ? "" : it->second);
     }
     all_failures.insert(all_failures.end(), results.failures.begin(), results.failures.end());
+    const std::string variant_dir = results.dir;
     FinishVariant(std::move(results), evaluation);
+    ClearInProgress(variant_dir);
   }
   evaluation.WriteExperiment(out_dir, names);
   return all_failures;

@@ -10,7 +10,9 @@ namespace symembed {
 
 // Joins the output folders of sharded runs (each an out_dir of RunExperiment) into out_dir:
 // copies every variant's config.yaml (which must agree), maps, pair and shape records, merges
-// failures, then writes the summaries as a single run would. Throws InvalidInputError/IoError.
+// failures, then writes the summaries as a single run would; each merged variant folder holds
+// IN_PROGRESS until its summary is written. Throws InvalidInputError naming the folder when a
+// shard's variant folder is in progress (its run did not finish), IoError.
 // Returns the merged failures.
 std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
                                const std::string& out_dir, RunEvaluation& evaluation);

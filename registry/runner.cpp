@@ -85,10 +85,13 @@ class VariantRun {
                           "run being resumed; run without --resume (or into another --out)");
       }
     }
+    MarkInProgress(dir_, "symembed run (variant " + variant_.name + ")");
+    if (!options_.resume) RemoveSummaryFiles();
     WriteFileAtomically(VariantConfigPath(dir_), resolved);
     index_ = pipeline_.dataset->Load();
     SelectPairs();
     ComputeShapes();
+    VerifyKeptPairs();
     ComputePairs();
     shapes_.clear();
     VariantResults results;
@@ -99,6 +102,7 @@ class VariantRun {
     results.failures = failures_;
     results.wall_seconds = Since(start);
     FinishVariant(std::move(results), evaluation_);
+    ClearInProgress(dir_);
     stats_->failures.insert(stats_->failures.end(), failures_.begin(), failures_.end());
   }
 
@@ -107,6 +111,15 @@ class VariantRun {
             const std::string& message) {
     std::lock_guard<std::mutex> lock(mutex_);
     failures_.push_back({kind, source, target, message});
+  }
+
+  // A run into a folder that holds an earlier run's outputs must not leave them beside its own.
+  void RemoveSummaryFiles() {
+    std::error_code ec;
+    for (const char* file : {"summary.json", "pairs.csv", "curve.csv", "timings.csv",
+                             "failures.csv", "shapes.csv"}) {
+      fs::remove(dir_ + "/" + file, ec);
+    }
   }
 
   void SelectPairs() {
@@ -122,9 +135,8 @@ class VariantRun {
     for (size_t i = 0; i < pairs_.size(); ++i) {
       const std::string record = PairRecordPath(dir_, pairs_[i].source, pairs_[i].target);
       if (options_.resume) {
-        if (auto text = ReadFileBytes(record); text && !text->empty()) {
-          records_[i] = *text;
-          ++stats_->pairs_skipped;
+        if (fs::exists(record)) {
+          kept_.push_back(static_cast<int>(i));  // verified once its shapes are known
           continue;
         }
       } else {
@@ -134,19 +146,16 @@ class VariantRun {
       }
       pending_.push_back(static_cast<int>(i));
     }
-    // Pairs of one target run together: the evaluator computes and caches distances per target
-    // and evicts whole targets, so this order computes each target's distances about once.
-    // Outputs do not depend on the order.
-    std::stable_sort(pending_.begin(), pending_.end(),
-                     [&](int a, int b) { return pairs_[a].target < pairs_[b].target; });
     stats_->pairs_total += static_cast<int>(pairs_.size());
   }
 
   void ComputeShapes() {
     std::set<std::string> names;
-    for (int i : pending_) {
-      names.insert(pairs_[i].source);
-      names.insert(pairs_[i].target);
+    for (const std::vector<int>* list : {&pending_, &kept_}) {
+      for (int i : *list) {
+        names.insert(pairs_[i].source);
+        names.insert(pairs_[i].target);
+      }
     }
     std::vector<std::string> order(names.begin(), names.end());
     std::vector<std::unique_ptr<ShapeOutcome>> outcomes(order.size());
@@ -178,6 +187,82 @@ class VariantRun {
     }
   }
 
+  // --resume keeps a pair only when its record reads back, carries the inputs of this run and
+  // its map is a complete map between the two meshes; any other pair is computed again.
+  void VerifyKeptPairs() {
+    for (int i : kept_) {
+      const DatasetPair& pair = pairs_[i];
+      const std::string path = PairRecordPath(dir_, pair.source, pair.target);
+      const std::optional<PairSetup> setup = Setup(pair);
+      if (!setup) {
+        pending_.push_back(i);  // a shape failed: RunPair records the pair's failure
+        continue;
+      }
+      std::string problem;
+      const std::optional<std::string> text = ReadFileBytes(path);
+      try {
+        if (!text) throw InvalidInputError("cannot read it");
+        evaluation_.PairOfRecord(*text, path);
+        problem = InputsProblem(PairInputsOfRecord(*text), setup->inputs);
+      } catch (const std::exception& e) {
+        problem = std::string("unreadable record (") + e.what() + ")";
+      }
+      if (problem.empty()) {
+        const std::string map_path = PairMapPath(dir_, pair.source, pair.target);
+        const std::optional<std::string> map = ReadFileBytes(map_path);
+        problem = !map ? "its map " + map_path + " is missing"
+                       : MapTextProblem(*map, setup->source->input.NumVertices(),
+                                        setup->target->input.NumVertices());
+        if (!problem.empty() && map) problem = "its map " + map_path + ": " + problem;
+      }
+      if (problem.empty()) {
+        records_[i] = *text;
+        ++stats_->pairs_skipped;
+        continue;
+      }
+      stats_->warnings.push_back(path + ": computed again: " + problem);
+      ++stats_->pairs_recomputed;
+      pending_.push_back(i);
+    }
+    kept_.clear();
+    // Pairs of one target run together: the evaluator computes and caches distances per target
+    // and evicts whole targets, so this order computes each target's distances about once.
+    // Outputs do not depend on the order.
+    std::sort(pending_.begin(), pending_.end(), [&](int a, int b) {
+      return std::tie(pairs_[a].target, a) < std::tie(pairs_[b].target, b);
+    });
+  }
+
+  static std::string InputsProblem(const std::optional<PairInputs>& recorded,
+                                   const PairInputs& now) {
+    if (!recorded) return "the record carries no inputs (written by an older symembed)";
+    if (recorded->source != now.source) return "the source mesh or a per-shape option changed";
+    if (recorded->target != now.target) return "the target mesh or a per-shape option changed";
+    if (recorded->pair != now.pair) return "a per-pair option or the ground truth changed";
+    return "";
+  }
+
+  // What a pair is computed from; std::nullopt when one of its shapes failed.
+  struct PairSetup {
+    const ShapeOutcome* source = nullptr;
+    const ShapeOutcome* target = nullptr;
+    InputGroundTruth truth;
+    PairInputs inputs;
+  };
+
+  std::optional<PairSetup> Setup(const DatasetPair& pair) const {
+    auto source = shapes_.find(pair.source);
+    auto target = shapes_.find(pair.target);
+    if (source == shapes_.end() || target == shapes_.end()) return std::nullopt;
+    PairSetup setup;
+    setup.source = source->second.get();
+    setup.target = target->second.get();
+    setup.truth = PairLines(setup.source->ground_truth, setup.target->ground_truth);
+    setup.inputs = {setup.source->key, setup.target->key,
+                    PairKey(*setup.source, *setup.target, pipeline_, setup.truth)};
+    return setup;
+  }
+
   void ComputePairs() {
     std::unique_ptr<VariantEvaluation> evaluation = evaluation_.ForVariant(pipeline_);
     Progress progress(variant_.name + ": pairs", static_cast<int>(pending_.size()),
@@ -200,44 +285,43 @@ class VariantRun {
 
   // Returns the record text (empty when the pair failed; the failure is recorded).
   std::string RunPair(const DatasetPair& pair, const VariantEvaluation& evaluation) {
-    auto source = shapes_.find(pair.source);
-    auto target = shapes_.find(pair.target);
-    for (const auto& [name, it] :
-         {std::make_pair(pair.source, source), std::make_pair(pair.target, target)}) {
-      if (it == shapes_.end()) {
-        Fail("pair", pair.source, pair.target, "shape '" + name + "' failed");
-        return "";
-      }
+    const std::optional<PairSetup> setup = Setup(pair);
+    if (!setup) {
+      const std::string name = shapes_.count(pair.source) ? pair.target : pair.source;
+      Fail("pair", pair.source, pair.target, "shape '" + name + "' failed");
+      return "";
     }
-    const InputGroundTruth truth =
-        PairLines(source->second->ground_truth, target->second->ground_truth);
-    const uint64_t key = PairKey(*source->second, *target->second, pipeline_, truth);
+    const ShapeOutcome& source = *setup->source;
+    const ShapeOutcome& target = *setup->target;
+    const InputGroundTruth& truth = setup->truth;
     PairEntry cached;
-    if (cache_.Load("pair", key, &cached)) {
+    if (cache_.Load("pair", setup->inputs.pair, &cached)) {
       counters_->Hit("pair");
+      const std::string record = StampPairInputs(cached.record, setup->inputs);
       WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), MapText(cached.map));
-      WriteFileAtomically(PairRecordPath(dir_, pair.source, pair.target), cached.record);
+      WriteFileAtomically(PairRecordPath(dir_, pair.source, pair.target), record);
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_->pairs_done;
-      return cached.record;
+      return record;
     }
-    const PairContext context{*index_.Find(pair.source), *index_.Find(pair.target), *source->second,
-                              *target->second, truth};
+    const PairContext context{*index_.Find(pair.source), *index_.Find(pair.target), source, target,
+                              truth};
     const PairOutcome outcome = ComputePair(
-        *source->second, *target->second, pipeline_, truth.source_ids.empty() ? nullptr : &truth,
+        source, target, pipeline_, truth.source_ids.empty() ? nullptr : &truth,
         [&](const std::vector<int>& predicted) { return evaluation.MeanError(context, predicted); },
         counters_);
     WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), MapText(outcome.map));
     std::string failure;
-    std::string record = evaluation.Evaluate(context, outcome, &failure);
+    const std::string evaluated = evaluation.Evaluate(context, outcome, &failure);
     if (!failure.empty()) {
       Fail("pair", pair.source, pair.target, failure);
       return "";
     }
-    SYMEMBED_CHECK(!record.empty(), "the evaluation returned an empty record");
+    SYMEMBED_CHECK(!evaluated.empty(), "the evaluation returned an empty record");
+    const std::string record = StampPairInputs(evaluated, setup->inputs);
     WriteFileAtomically(PairRecordPath(dir_, pair.source, pair.target), record);
     counters_->Executed("pair");
-    cache_.Store("pair", key, PairEntry{outcome.map, record});
+    cache_.Store("pair", setup->inputs.pair, PairEntry{outcome.map, evaluated});
     std::lock_guard<std::mutex> lock(mutex_);
     ++stats_->pairs_done;
     return record;
@@ -256,6 +340,7 @@ class VariantRun {
   std::vector<DatasetPair> pairs_;
   std::vector<std::string> records_;
   std::vector<int> pending_;
+  std::vector<int> kept_;  // --resume: pairs with a record, until VerifyKeptPairs
   std::map<std::string, std::unique_ptr<ShapeOutcome>> shapes_;
   std::mutex mutex_;  // guards failures_ and stats_ during the parallel phases
   std::vector<Failure> failures_;

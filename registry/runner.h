@@ -6,7 +6,9 @@
 //   variants.txt                    the config's variant names in order
 //   <variant>/config.yaml           ResolvedConfigYaml
 //   <variant>/maps/A_B.map          1-based target input id per source input vertex (atomic)
-//   <variant>/pairs/A_B.rec         the evaluation's record of the pair (atomic, after the map)
+//   <variant>/IN_PROGRESS           while the variant runs (registry/run_outputs.h)
+//   <variant>/pairs/A_B.rec         the evaluation's record of the pair (atomic, after the map),
+//                                   stamped with the pair's PairInputs
 //   <variant>/shapes/NAME.rec       per-shape stage times and report (registry/run_outputs.h)
 //   <variant>/failures.csv          every failed shape and pair with its message
 //   + what RunEvaluation::WriteVariant / WriteExperiment write (summary, curves, comparison).
@@ -16,6 +18,8 @@
 // Pairs are processed in (source, target) order; shard i of N takes the pairs whose index in
 // that order is i modulo N. Whatever is in the variant folder depends only on the set of pair
 // records and failures, so shards merged (MergeRuns) and resumed runs equal a single run.
+// --resume keeps a pair only when its record parses, carries this run's PairInputs and its map
+// holds one id per source vertex; every other pair is computed again, with a warning.
 //
 // The evaluation lives above this library (eval/), so it is reached through RunEvaluation.
 #pragma once
@@ -83,7 +87,7 @@ struct RunOptions {
   std::string cache_dir;  // per-shape cache; empty: none
   std::string variant;    // run only this one (empty: all)
   int jobs = 0;           // worker threads (0: all cores)
-  bool resume = false;    // keep the pairs that already have a record
+  bool resume = false;    // keep the pairs whose record and map match this run's inputs
   int shard_index = 0;    // this run's shard, in [0, shard_count)
   int shard_count = 1;
   bool quiet = false;
@@ -95,7 +99,9 @@ struct RunStats {
   std::map<std::string, int> cache_hits;  // stage -> disk cache hits
   int shapes_computed = 0;
   int pairs_total = 0;            // pairs of the run (shard), all variants
-  int pairs_skipped = 0;          // already had a record (--resume)
+  int pairs_skipped = 0;          // kept from an earlier run (--resume)
+  int pairs_recomputed = 0;       // --resume: had a record that did not prove itself
+  std::vector<std::string> warnings;  // one per pair computed again, naming its record and why
   int pairs_done = 0;             // computed now
   std::vector<Failure> failures;  // this run's, all variants
   bool ok() const { return failures.empty(); }

@@ -81,6 +81,38 @@ class RunCommandTest : public ::testing::Test {
     return log;
   }
 
+  // Starts a run with one job and a cache of its own (cold) into `out`, and kills it with
+  // SIGKILL as soon as a pair record exists.
+  void KillAfterFirstRecord(const std::string& out, const std::string& cache) {
+    const std::string log_file = out + ".killed.log";
+    const pid_t pid =
+        Spawn({"run", config_, "--jobs", "1", "--cache", cache, "--out", out}, log_file);
+    ASSERT_GT(pid, 0);
+    const int before = CountFiles(out + "/base/pairs", ".rec");
+    int status = 0;
+    bool exited = false;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+    // A run without --resume first deletes the earlier run's records, then writes its own.
+    while (before > 0 && CountFiles(out + "/base/pairs", ".rec") >= before) {
+      ASSERT_LT(std::chrono::steady_clock::now(), deadline);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    while (CountFiles(out + "/base/pairs", ".rec") < 1) {
+      if (waitpid(pid, &status, WNOHANG) == pid) {
+        exited = true;
+        break;
+      }
+      ASSERT_LT(std::chrono::steady_clock::now(), deadline);
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    if (!exited) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+    }
+    ASSERT_FALSE(exited) << "the run finished before it could be killed: "
+                         << ReadText(log_file);
+  }
+
   TempDir tmp_;
   std::string config_;
 };
@@ -93,34 +125,77 @@ TEST_F(RunCommandTest, KilledRunResumesToTheOutputsOfAnUninterruptedRun) {
   const int pairs = CountFiles(tmp_.File("full/base/pairs"), ".rec");
   ASSERT_EQ(pairs, 10);
 
-  // One job, a cold cache of its own: kill it as soon as a pair record exists.
   const std::string killed = tmp_.File("killed");
-  const pid_t pid = Spawn({"run", config_, "--jobs", "1", "--cache", tmp_.File("cache2"), "--out",
-                           killed},
-                          tmp_.File("killed.log"));
-  ASSERT_GT(pid, 0);
-  int status = 0;
-  bool exited = false;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
-  while (CountFiles(killed + "/base/pairs", ".rec") < 1) {
-    if (waitpid(pid, &status, WNOHANG) == pid) {
-      exited = true;
-      break;
-    }
-    ASSERT_LT(std::chrono::steady_clock::now(), deadline);
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  if (!exited) {
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
-  }
-  ASSERT_FALSE(exited) << "the run finished before it could be killed: " << ReadText(tmp_.File("killed.log"));
+  ASSERT_NO_FATAL_FAILURE(KillAfterFirstRecord(killed, tmp_.File("cache2")));
   const int done = CountFiles(killed + "/base/pairs", ".rec");
   EXPECT_LT(done, pairs);
   EXPECT_FALSE(fs::exists(killed + "/base/summary.json"));
+  EXPECT_TRUE(fs::exists(killed + "/base/IN_PROGRESS"));
 
   const std::string log = Run(killed, "--resume");
+  EXPECT_FALSE(fs::exists(killed + "/base/IN_PROGRESS"));
   EXPECT_EQ(OutputsWithoutTimings(killed), full);
+}
+
+// A run started without --resume into the folder of a finished run and killed must not leave
+// the old run's summary beside its own config, and readers of results refuse the folder.
+TEST_F(RunCommandTest, KilledRunOverAnEarlierRunLeavesAFolderMarkedIncomplete) {
+  const std::string out = tmp_.File("out");
+  Run(out, "");
+  ASSERT_TRUE(fs::exists(out + "/base/summary.json"));
+  ASSERT_NO_FATAL_FAILURE(KillAfterFirstRecord(out, tmp_.File("cold")));
+  EXPECT_TRUE(fs::exists(out + "/base/IN_PROGRESS"));
+  for (const char* file : {"summary.json", "pairs.csv", "curve.csv", "failures.csv"}) {
+    EXPECT_FALSE(fs::exists(out + "/base/" + file)) << file;
+  }
+  std::string log;
+  EXPECT_EQ(Symembed("merge --out " + tmp_.File("merged") + " " + out, &log), 1) << log;
+  EXPECT_NE(log.find(out + "/base: the folder is incomplete"), std::string::npos) << log;
+  EXPECT_NE(Symembed("eval --dataset " + config_ + " --maps " + out + "/base/maps --base 1 " +
+                         "--name x --out " + tmp_.File("eval"),
+                     &log),
+            0)
+      << log;
+  EXPECT_NE(log.find(out + "/base: the folder is incomplete"), std::string::npos) << log;
+}
+
+// The curve plot helper ends with its parent: a run killed while it plots leaves no process
+// that writes figures later. A stand-in plot script (found through SYMEMBED_ROOT) records its
+// pid, then writes a file after a pause.
+TEST_F(RunCommandTest, KilledWhilePlottingLeavesNoPlotHelperBehind) {
+  const std::string root = tmp_.File("root");
+  WriteText(root + "/scripts/plot-curves",
+            "import os, sys, time\n"
+            "open(sys.argv[1] + '/plot.pid', 'w').write(str(os.getpid()))\n"
+            "time.sleep(3)\n"
+            "open(sys.argv[1] + '/plot.late', 'w').write('late')\n");
+  const std::string out = tmp_.File("out");
+  setenv("SYMEMBED_ROOT", root.c_str(), 1);
+  const pid_t pid = Spawn({"run", config_, "--jobs", "2", "--cache", tmp_.File("cache"), "--out",
+                           out},
+                          tmp_.File("plot.log"));
+  unsetenv("SYMEMBED_ROOT");
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (!fs::exists(out + "/plot.pid") || ReadText(out + "/plot.pid").empty()) {
+    int status = 0;
+    ASSERT_NE(waitpid(pid, &status, WNOHANG), pid) << ReadText(tmp_.File("plot.log"));
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const pid_t helper = std::stoi(ReadText(out + "/plot.pid"));
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  // The helper is not our child: poll until it is gone (or a zombie reaped by init).
+  bool gone = false;
+  for (int i = 0; i < 200 && !gone; ++i) {
+    const std::string stat = "/proc/" + std::to_string(helper) + "/stat";
+    gone = !fs::exists(stat) || ReadText(stat).find(") Z ") != std::string::npos;
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(gone) << "plot helper " << helper << " outlived the run";
+  std::this_thread::sleep_for(std::chrono::milliseconds(3500));
+  EXPECT_FALSE(fs::exists(out + "/plot.late"));
 }
 
 TEST_F(RunCommandTest, ShardsMergedEqualASingleRun) {

@@ -113,5 +113,43 @@ TEST(Check, CommandExitCodesAndUpdate) {
       << out;
 }
 
+// Input check cannot trust gets exit code 3, never the 1 of a regression.
+TEST(Check, MalformedOrUnfinishedInputExits3) {
+  testing::TempDir dir;
+  const std::string baseline = dir.File("baseline.json");
+  WriteSummaryJson(baseline, BaseSummary());
+  const std::string bin = SYMEMBED_BINARY;
+  std::string text = testing::ReadText(baseline);
+  const size_t at = text.find("\"mean_direct\": ") + 15;
+  text.replace(at, text.find(',', at) - at, "\"abc\"");
+  testing::WriteText(dir.File("abc.json"), text);
+  std::string out;
+  EXPECT_EQ(testing::RunShell(bin + " check " + dir.File("abc.json") + " --baseline " + baseline,
+                              &out),
+            3)
+      << out;
+  EXPECT_NE(out.find(dir.File("abc.json") + ": mean_direct: expected a number or null, got \"abc\""),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(testing::RunShell(bin + " check " + baseline + " --baseline " + dir.File("abc.json"),
+                              &out),
+            3)
+      << out;
+  EXPECT_EQ(testing::RunShell(bin + " check " + dir.File("missing.json") + " --baseline " +
+                                  baseline,
+                              &out),
+            3)
+      << out;
+  testing::WriteText(dir.File("run/base/summary.json"), testing::ReadText(baseline));
+  testing::WriteText(dir.File("run/base/IN_PROGRESS"), "symembed run\n");
+  EXPECT_EQ(testing::RunShell(bin + " check " + dir.File("run/base/summary.json") + " --baseline " +
+                                  baseline,
+                              &out),
+            3)
+      << out;
+  EXPECT_NE(out.find(dir.File("run/base") + ": the folder is incomplete"), std::string::npos)
+      << out;
+}
+
 }  // namespace
 }  // namespace symembed

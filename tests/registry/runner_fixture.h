@@ -11,6 +11,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "core/errors.h"
 #include "core/primitives.h"
 #include "registry/registry.h"
 #include "registry/runner.h"
@@ -307,8 +308,9 @@ inline std::string WriteTestDataset(const std::string& root, int count,
          "evaluation: {geodesics: test}\n" + variants;
 }
 
-// Record: "source target chosen oracle mean" with mean the Euclidean error on the target
-// input mesh; WriteVariant writes summary.txt, WriteExperiment comparison.txt.
+// Record: {"r":"source target chosen oracle mean"} (a JSON object, as the runner requires)
+// with mean the Euclidean error on the target input mesh; WriteVariant writes summary.txt,
+// WriteExperiment comparison.txt.
 class TestEvaluation : public RunEvaluation {
  public:
   class Variant : public VariantEvaluation {
@@ -327,8 +329,9 @@ class TestEvaluation : public RunEvaluation {
       for (int s : pair.ground_truth.source_ids) predicted.push_back(outcome.map[s]);
       std::ostringstream out;
       out.precision(17);
-      out << pair.source_info.name << " " << pair.target_info.name << " " << outcome.flip.chosen
-          << " " << outcome.oracle << " " << MeanError(pair, predicted) << "\n";
+      out << "{\"r\":\"" << pair.source_info.name << " " << pair.target_info.name << " "
+          << outcome.flip.chosen << " " << outcome.oracle << " " << MeanError(pair, predicted)
+          << "\"}\n";
       if (pair.source_info.name == fail_source) *failure = "evaluation refused " + fail_source;
       return out.str();
     }
@@ -340,13 +343,21 @@ class TestEvaluation : public RunEvaluation {
     v->fail_source = fail_source;
     return v;
   }
-  DatasetPair PairOfRecord(const std::string& record, const std::string&) const override {
-    std::istringstream in(record);
+  DatasetPair PairOfRecord(const std::string& record, const std::string& where) const override {
+    std::istringstream in(RecordBody(record));
     DatasetPair p;
-    in >> p.source >> p.target;
+    if (!(in >> p.source >> p.target)) throw InvalidInputError(where + ": not a test record");
     return p;
   }
+  // "source target chosen oracle mean" of a record.
+  static std::string RecordBody(const std::string& record) {
+    const size_t start = record.find("\"r\":\"");
+    const size_t end = start == std::string::npos ? start : record.find('"', start + 5);
+    if (end == std::string::npos) return "";
+    return record.substr(start + 5, end - start - 5);
+  }
   void WriteVariant(const VariantResults& results) override {
+    if (throw_in_write) throw IoError(results.dir + "/summary.txt: disk full");
     std::string text;
     for (size_t i = 0; i < results.pairs.size(); ++i) {
       text += results.pairs[i].source + "->" + results.pairs[i].target + ": " +
@@ -364,6 +375,7 @@ class TestEvaluation : public RunEvaluation {
     WriteText(dir + "/comparison.txt", text);
   }
   std::string fail_source;
+  bool throw_in_write = false;  // WriteVariant throws IoError
 };
 
 }  // namespace symembed::testing::runner

@@ -105,7 +105,8 @@ TEST(Runner, WritesMapsRecordsAndSummaries) {
   EXPECT_EQ(map.substr(0, 6), "1\n2\n3\n");
   EXPECT_EQ(std::count(map.begin(), map.end(), '\n'), 20);
   // The oracle of a bent grid is the identity rotation.
-  EXPECT_EQ(ReadText(variant + "/pairs/s0_s1.rec").substr(0, 10), "s0 s1 0 0 ");
+  EXPECT_EQ(TestEvaluation::RecordBody(ReadText(variant + "/pairs/s0_s1.rec")).substr(0, 10),
+            "s0 s1 0 0 ");
   EXPECT_EQ(ReadText(tmp.File("out/comparison.txt")), "base\n");
   EXPECT_EQ(ReadText(tmp.File("out/variants.txt")), "base\n");
 }
@@ -183,7 +184,8 @@ TEST(Runner, VariantChangingALaterStageRecomputesNothingBeforeIt) {
   EXPECT_EQ(Get(run.stats.cache_hits, "geodesics"), 3);  // scaled reads base's D
   EXPECT_EQ(ReadText(tmp.File("out/comparison.txt")), "base\nscaled\nflip1\n");
   // flip1 chose candidate 1 (Rx(pi)); the oracle knows better.
-  EXPECT_EQ(ReadText(tmp.File("out/flip1/pairs/s0_s1.rec")).substr(0, 10), "s0 s1 1 0 ");
+  EXPECT_EQ(TestEvaluation::RecordBody(ReadText(tmp.File("out/flip1/pairs/s0_s1.rec"))).substr(0, 10),
+            "s0 s1 1 0 ");
 }
 
 TEST(Runner, ResumeAfterAnInterruptionGivesTheSameOutputs) {
@@ -209,6 +211,80 @@ TEST(Runner, ResumeAfterAnInterruptionGivesTheSameOutputs) {
   EXPECT_EQ(run.stats.pairs_done, 3);
   EXPECT_EQ(Get(run.calls, "flip"), 3);
   EXPECT_EQ(Snapshot(tmp.File("out")), full);
+}
+
+// Every way a kept pair can fail to prove itself: it is computed again, with a warning naming
+// its record, and the outputs equal a fresh run on the current inputs.
+TEST(Runner, ResumeComputesAgainWhatDoesNotProveItself) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  const std::string out = tmp.File("out/base");
+  // A truncated map, a deleted map, an unreadable record, a record without inputs.
+  const std::string truncated = ReadText(out + "/maps/s0_s1.map");
+  WriteText(out + "/maps/s0_s1.map", truncated.substr(0, truncated.size() / 2));
+  fs::remove(out + "/maps/s0_s2.map");
+  WriteText(out + "/pairs/s1_s0.rec", "{\"r\":\"s1 s0 0 0");
+  const std::string record = ReadText(out + "/pairs/s1_s2.rec");
+  WriteText(out + "/pairs/s1_s2.rec", "{" + record.substr(record.find("},") + 2));
+  RunOptions resume;
+  resume.resume = true;
+  RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"), resume);
+  EXPECT_EQ(run.stats.pairs_skipped, 2);
+  EXPECT_EQ(run.stats.pairs_recomputed, 4);
+  EXPECT_EQ(run.stats.pairs_done, 4);
+  ASSERT_EQ(run.stats.warnings.size(), 4u);
+  const std::string warnings = run.stats.warnings[0] + run.stats.warnings[1] +
+                               run.stats.warnings[2] + run.stats.warnings[3];
+  EXPECT_NE(warnings.find(out + "/pairs/s0_s1.rec: computed again: its map"), std::string::npos)
+      << warnings;
+  EXPECT_NE(warnings.find("s0_s2.map is missing"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find(out + "/pairs/s1_s0.rec: computed again: unreadable record"),
+            std::string::npos)
+      << warnings;
+  EXPECT_NE(warnings.find("carries no inputs"), std::string::npos) << warnings;
+  RunConfig(config, tmp.File("fresh"), tmp.File("cache"));
+  EXPECT_EQ(Snapshot(tmp.File("out")), Snapshot(tmp.File("fresh")));
+
+  // A mesh replaced after the run: every pair of that shape is computed again.
+  WriteText(tmp.File("data/shapes/s1.off"), ReadText(tmp.File("data/shapes/s2.off")));
+  run = RunConfig(config, tmp.File("out"), tmp.File("cache"), resume);
+  EXPECT_EQ(run.stats.pairs_skipped, 2);
+  EXPECT_EQ(run.stats.pairs_recomputed, 4);
+  ASSERT_FALSE(run.stats.warnings.empty());
+  EXPECT_NE(run.stats.warnings[0].find("mesh or a per-shape option changed"), std::string::npos)
+      << run.stats.warnings[0];
+  RunConfig(config, tmp.File("fresh2"), tmp.File("cache2"));
+  EXPECT_EQ(Snapshot(tmp.File("out")), Snapshot(tmp.File("fresh2")));
+}
+
+TEST(Runner, AVariantFolderIsMarkedInProgressUntilItsSummaryIsWritten) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 2);
+  RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  EXPECT_FALSE(fs::exists(tmp.File("out/base/IN_PROGRESS")));
+  EXPECT_NO_THROW(RequireNotInProgress(tmp.File("out/base")));
+  // A run that dies before its summary is written leaves the marker.
+  TestEvaluation throwing;
+  throwing.throw_in_write = true;
+  EXPECT_THROW(RunConfig(config, tmp.File("out"), tmp.File("cache"), {}, &throwing), IoError);
+  EXPECT_TRUE(fs::exists(tmp.File("out/base/IN_PROGRESS")));
+  try {
+    RequireNotInProgress(tmp.File("out/base"));
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find(tmp.File("out/base") + ": the folder is incomplete"),
+              std::string::npos)
+        << e.what();
+  }
+  TestEvaluation evaluation;
+  EXPECT_THROW(MergeRuns({tmp.File("out")}, tmp.File("merged"), evaluation), InvalidInputError);
+  RunOptions resume;
+  resume.resume = true;
+  RunConfig(config, tmp.File("out"), tmp.File("cache"), resume);
+  EXPECT_FALSE(fs::exists(tmp.File("out/base/IN_PROGRESS")));
+  EXPECT_TRUE(MergeRuns({tmp.File("out")}, tmp.File("merged"), evaluation).empty());
+  EXPECT_FALSE(fs::exists(tmp.File("merged/base/IN_PROGRESS")));
 }
 
 TEST(Runner, ResumeRefusesAChangedConfig) {
@@ -257,7 +333,7 @@ TEST(Runner, BadMeshIsRecordedAndTheRunGoesOn) {
   EXPECT_NE(failures.find("truncated OFF mesh"), std::string::npos) << failures;
   EXPECT_EQ(run.stats.failures.size(), 5u);  // the shape and its four pairs
   const std::string summary = ReadText(tmp.File("out/base/summary.txt"));
-  EXPECT_NE(summary.find("s0->s2: s0 s2"), std::string::npos);
+  EXPECT_NE(summary.find("s0->s2: {\"inputs\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("s1->s0: failed"), std::string::npos);
   EXPECT_NE(summary.find("failures 5"), std::string::npos);
   // Shard + merge reproduces the failures too.
