@@ -117,6 +117,8 @@ struct VariantSummary {
   // Refined pairs whose map refinement moved to the symmetric / to the direct ground truth.
   int refine_to_symmetric = 0, refine_to_direct = 0;
   int FlippedTotal() const { return flipped_left_right + flipped_front_back + flipped_up_down; }
+  // Shapes whose preprocessing removed components (some of their area); -1: not known (eval).
+  int shapes_lost_area = -1;
   double time_total_s = 0.0, time_per_shape_s = 0.0, time_per_pair_s = 0.0;
   double peak_rss_mb = 0.0;
   std::vector<double> thresholds, curve_direct, curve_flip_tolerant;

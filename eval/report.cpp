@@ -117,6 +117,7 @@ JsonValue SummaryToJson(const VariantSummary& s) {
   refine.Set("to_symmetric", JsonValue::Number(s.refine_to_symmetric));
   refine.Set("to_direct", JsonValue::Number(s.refine_to_direct));
   j.Set("refine_changed_side", refine);
+  if (s.shapes_lost_area >= 0) j.Set("shapes_lost_area", JsonValue::Number(s.shapes_lost_area));
   j.Set("evaluation_geodesics", JsonValue::String(s.evaluation_geodesics));
   j.Set("evaluation_points",
         s.points_option > 0 ? JsonValue::Number(s.points_option) : JsonValue::String("all"));
@@ -153,6 +154,7 @@ VariantSummary SummaryFromJson(const JsonValue& j, const std::string& where) {
   const JsonValue& refine = j.Get("refine_changed_side");
   s.refine_to_symmetric = static_cast<int>(refine.Get("to_symmetric").NumberOr(0.0));
   s.refine_to_direct = static_cast<int>(refine.Get("to_direct").NumberOr(0.0));
+  s.shapes_lost_area = static_cast<int>(j.Get("shapes_lost_area").NumberOr(-1.0));
   const JsonValue& geodesics = Require(j, "evaluation_geodesics", where);
   if (!geodesics.IsString()) throw InvalidInputError(where + ": evaluation_geodesics");
   s.evaluation_geodesics = geodesics.AsString();

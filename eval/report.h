@@ -23,7 +23,9 @@ namespace symembed {
 // summary.json: pairs, failed_pairs, points, mean_direct, median_direct, mean_flip_tolerant,
 // median_flip_tolerant, mean_of_pair_means_direct, mean_of_pair_means_flip_tolerant,
 // pct_direct / pct_flip_tolerant ({"0.05", "0.10", "0.25"}: percent), auc_direct,
-// auc_flip_tolerant, flipped_pairs {left_right, front_back, up_down, total},
+// auc_flip_tolerant, flipped_pairs {left_right, front_back, up_down, total}, refine_changed_side
+// {to_symmetric, to_direct}, shapes_lost_area (runs only: shapes whose preprocessing removed
+// components),
 // evaluation_geodesics, evaluation_points ("all" or N), max_error, step, variant, then the
 // timing keys time_total_s, time_per_shape_s, time_per_pair_s, peak_rss_mb.
 JsonValue SummaryToJson(const VariantSummary& summary);

@@ -184,7 +184,18 @@ void GroundTruthRunEvaluation::WriteVariant(const VariantResults& results) {
   const std::string config = VariantConfigPath(results.dir);
   const EvaluationOptions options =
       ParseEvaluationOptions(YAML::LoadFile(config)["evaluation"], config, registry_);
-  const VariantSummary summary = Summarize(results.variant, pairs, options, timings);
+  VariantSummary summary = Summarize(results.variant, pairs, options, timings);
+  summary.shapes_lost_area = 0;
+  for (const ShapeRecord& shape : results.shapes) {
+    for (const auto& [key, value] : shape.report) {
+      if (key == "removed_component_area" && value > 0.0) ++summary.shapes_lost_area;
+    }
+  }
+  if (summary.shapes_lost_area > 0) {
+    warnings_.push_back(results.dir + ": preprocessing removed components of " +
+                        std::to_string(summary.shapes_lost_area) +
+                        " shapes (see removed_component_area in shapes.csv)");
+  }
   WriteVariantOutputs(results.dir, summary, pairs, timings);
 }
 

@@ -173,7 +173,12 @@ class VariantRun {
             WriteFileAtomically(ShapeRecordPath(dir_, outcome->name), FormatShapeRecord(record));
             outcomes[i] = std::move(outcome);
           } catch (const std::exception& e) {
-            Fail("shape", order[i], "", e.what());
+            // Stages see a surface, not a file: name the file for the user.
+            std::string message = e.what();
+            if (shape && message.compare(0, shape->mesh_path.size(), shape->mesh_path) != 0) {
+              message = shape->mesh_path + ": " + message;
+            }
+            Fail("shape", order[i], "", message);
           }
           progress.Tick();
         },

@@ -24,13 +24,18 @@ class StandardPreprocessStage : public PreprocessStage {
 
 void RegisterPreprocessStages(Registry& registry) {
   registry.Add("preprocess", "standard",
-               "drop degenerate/duplicate faces, keep the largest component, orient consistently "
+               "weld boundary duplicates, drop degenerate/duplicate faces, keep the largest "
+               "component (failing past max_removed_area), orient consistently "
                "(outward when closed), drop unreferenced vertices, centre and scale to unit area",
                [](OptionReader& reader) -> std::unique_ptr<Stage> {
                  StandardPreprocessOptions options;
                  options.orient = reader.GetBool("orient", options.orient);
+                 options.weld_boundary_duplicates = reader.GetBool(
+                     "weld_boundary_duplicates", options.weld_boundary_duplicates);
                  options.keep_largest_component =
                      reader.GetBool("keep_largest_component", options.keep_largest_component);
+                 options.max_removed_area =
+                     reader.GetDouble("max_removed_area", options.max_removed_area, 0.0, 1.0);
                  options.normalize = reader.GetBool("normalize", options.normalize);
                  options.degenerate_tolerance = reader.GetDouble(
                      "degenerate_tolerance", options.degenerate_tolerance, 0.0, 0.5);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
+#include <sstream>
 #include <tuple>
 #include <vector>
 
@@ -14,6 +16,10 @@ namespace symembed {
 bool StandardPreprocessOptions::IsValid(std::string* error) const {
   if (!(degenerate_tolerance >= 0.0 && degenerate_tolerance < 1.0)) {
     if (error) *error = "degenerate_tolerance must be in [0, 1)";
+    return false;
+  }
+  if (!(max_removed_area >= 0.0 && max_removed_area <= 1.0)) {
+    if (error) *error = "max_removed_area must be in [0, 1]";
     return false;
   }
   return true;
@@ -33,12 +39,60 @@ int Find(std::vector<int>& parent, int x) {
   return x;
 }
 
+// Step 0: the faces with boundary vertices at exactly the same position merged into the first
+// of them. A triangle soup, or a mesh cut along texture seams, has its copies on boundary
+// edges; copies inside the surface are left apart, since merging them would pinch two sheets
+// that only touch.
+std::vector<Face> WeldBoundaryDuplicates(const Surface& in, bool weld, Report* report) {
+  std::vector<Face> faces(in.NumFaces());
+  for (int f = 0; f < in.NumFaces(); ++f) faces[f] = {in.F(f, 0), in.F(f, 1), in.F(f, 2)};
+  int welded = 0;
+  if (weld) {
+    std::vector<std::pair<int, int>> edges;
+    for (const Face& f : faces) {
+      for (int k = 0; k < 3; ++k) {
+        edges.emplace_back(std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3]));
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    std::vector<int> boundary;
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      if (j - i == 1) {
+        boundary.push_back(edges[i].first);
+        boundary.push_back(edges[i].second);
+      }
+      i = j;
+    }
+    std::sort(boundary.begin(), boundary.end());
+    boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
+    auto position = [&](int v) { return std::make_tuple(in.V(v, 0), in.V(v, 1), in.V(v, 2)); };
+    std::sort(boundary.begin(), boundary.end(), [&](int a, int b) {
+      return std::make_tuple(position(a), a) < std::make_tuple(position(b), b);
+    });
+    std::vector<int> representative(in.NumVertices());
+    std::iota(representative.begin(), representative.end(), 0);
+    for (size_t i = 1; i < boundary.size(); ++i) {
+      if (position(boundary[i]) == position(boundary[i - 1])) {
+        representative[boundary[i]] = representative[boundary[i - 1]];
+        ++welded;
+      }
+    }
+    for (Face& f : faces) {
+      for (int& v : f) v = representative[v];
+    }
+  }
+  report->emplace_back("welded_vertices", welded);
+  return faces;
+}
+
 // Step 1: non-degenerate faces, each vertex set once.
-std::vector<Face> CleanFaces(const Surface& in, double tolerance, Report* report) {
+std::vector<Face> CleanFaces(const Surface& in, const std::vector<Face>& input_faces,
+                             double tolerance, Report* report) {
   std::vector<Face> faces;
   int degenerate = 0;
-  for (int f = 0; f < in.NumFaces(); ++f) {
-    const Face face = {in.F(f, 0), in.F(f, 1), in.F(f, 2)};
+  for (const Face& face : input_faces) {
     if (face[0] == face[1] || face[1] == face[2] || face[0] == face[2]) {
       ++degenerate;
       continue;
@@ -74,9 +128,10 @@ std::vector<Face> CleanFaces(const Surface& in, double tolerance, Report* report
   return unique;
 }
 
-// Step 2: the faces of the largest vertex-connected component (by area).
+// Step 2: the faces of the largest vertex-connected component (by area). Throws
+// InvalidInputError when the others hold more than max_removed_area of the area.
 std::vector<Face> LargestComponent(const Eigen::MatrixX3d& V, const std::vector<Face>& faces,
-                                   bool keep_largest, Report* report) {
+                                   bool keep_largest, double max_removed_area, Report* report) {
   std::vector<int> parent(V.rows());
   std::iota(parent.begin(), parent.end(), 0);
   for (const Face& f : faces) {
@@ -92,11 +147,30 @@ std::vector<Face> LargestComponent(const Eigen::MatrixX3d& V, const std::vector<
     if (best < 0 || area[v] > area[best]) best = v;
   }
   std::vector<Face> kept;
+  double total = 0.0, removed = 0.0;
   for (const Face& f : faces) {
-    if (!keep_largest || Find(parent, f[0]) == best) kept.push_back(f);
+    const double a = FaceDoubleArea(V, f);
+    total += a;
+    if (!keep_largest || Find(parent, f[0]) == best) {
+      kept.push_back(f);
+    } else {
+      removed += a;
+    }
+  }
+  const double fraction = total > 0.0 ? removed / total : 0.0;
+  if (fraction > max_removed_area) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "preprocess: the mesh has %d connected components and keeping the largest "
+                  "would remove %.1f%% of its area (%zu of %zu faces; max_removed_area is "
+                  "%.1f%%): is the surface in pieces?",
+                  components, 100.0 * fraction, faces.size() - kept.size(), faces.size(),
+                  100.0 * max_removed_area);
+    throw InvalidInputError(text);
   }
   report->emplace_back("components", components);
   report->emplace_back("removed_component_faces", static_cast<double>(faces.size() - kept.size()));
+  report->emplace_back("removed_component_area", fraction);
   return kept;
 }
 
@@ -200,7 +274,14 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("preprocess/standard: " + error);
   const int nv = in.NumVertices();
-  if (!in.V.allFinite()) throw InvalidInputError("preprocess: non-finite vertex coordinates");
+  for (int v = 0; v < nv; ++v) {
+    if (!in.V.row(v).allFinite()) {
+      std::ostringstream text;
+      text << "preprocess: vertex " << v << " (0-based) has non-finite coordinates ("
+           << in.V(v, 0) << ", " << in.V(v, 1) << ", " << in.V(v, 2) << ")";
+      throw InvalidInputError(text.str());
+    }
+  }
   for (int f = 0; f < in.NumFaces(); ++f) {
     for (int k = 0; k < 3; ++k) {
       if (in.F(f, k) < 0 || in.F(f, k) >= nv) {
@@ -214,9 +295,15 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   Report& report = result.report;
   report.emplace_back("input_vertices", nv);
   report.emplace_back("input_faces", in.NumFaces());
-  std::vector<Face> faces = CleanFaces(in, options.degenerate_tolerance, &report);
-  if (faces.empty()) throw InvalidInputError("preprocess: no non-degenerate face");
-  faces = LargestComponent(in.V, faces, options.keep_largest_component, &report);
+  std::vector<Face> faces = WeldBoundaryDuplicates(in, options.weld_boundary_duplicates, &report);
+  faces = CleanFaces(in, faces, options.degenerate_tolerance, &report);
+  if (faces.empty()) {
+    throw InvalidInputError("preprocess: all " + std::to_string(in.NumFaces()) +
+                            " faces are degenerate (a repeated vertex id, or zero area within "
+                            "degenerate_tolerance), so no surface is left");
+  }
+  faces = LargestComponent(in.V, faces, options.keep_largest_component, options.max_removed_area,
+                           &report);
   Orient(in.V, &faces, options.orient, &report);
 
   // Step 4: keep referenced vertices in input order.

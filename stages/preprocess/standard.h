@@ -2,10 +2,12 @@
 // cannot represent (non-manifold edges, flipped neighbours) are repaired too.
 //
 // Steps, in order, each counted in the report:
+//   0. weld boundary vertices at exactly the same position (a triangle soup, a mesh cut along
+//      texture seams); copies inside the surface stay apart;
 //   1. drop degenerate faces (a repeated vertex id, or area <= degenerate_tolerance * longest
 //      edge^2) and duplicate faces (same vertex set in either orientation; the first is kept);
 //   2. keep the largest connected component (faces connected through shared vertices; largest
-//      by area);
+//      by area); the shape fails when the others hold more than max_removed_area of the area;
 //   3. make face orientation consistent (breadth-first over faces across manifold edges: a
 //      neighbour is flipped when it runs the shared edge in the same direction), then choose
 //      each edge-connected patch's orientation: outward (positive signed volume) when the patch
@@ -15,8 +17,8 @@
 // Output coordinates are (input - centre) * scale; `scale` and the centre are reported so
 // results can be given in input units.
 //
-// Report keys: input_vertices, input_faces, degenerate_faces, duplicate_faces, components,
-// removed_component_faces, flipped_faces, orientation_conflicts (edges still run in the same
+// Report keys: input_vertices, input_faces, welded_vertices, degenerate_faces, duplicate_faces,
+// components, removed_component_faces, removed_component_area (fraction), flipped_faces, orientation_conflicts (edges still run in the same
 // direction by both faces: a non-orientable patch), non_manifold_edges, boundary_edges,
 // unreferenced_vertices, output_vertices, output_faces, input_area, scale, centre_x, centre_y,
 // centre_z.
@@ -31,15 +33,18 @@ namespace symembed {
 
 struct StandardPreprocessOptions {
   bool orient = true;                   // step 3
+  bool weld_boundary_duplicates = true;  // step 0
   bool keep_largest_component = true;   // step 2
+  double max_removed_area = 0.05;       // step 2: fraction of the area other components may hold
   bool normalize = true;                // step 5 (centre and unit area)
   double degenerate_tolerance = 1e-12;  // step 1, relative to the longest edge squared
 
   bool IsValid(std::string* error) const;
 };
 
-// Throws InvalidInputError for face ids out of range, non-finite coordinates, or when no
-// non-degenerate face is left.
+// Throws InvalidInputError (naming the face or vertex) for face ids out of range, non-finite
+// coordinates, when no non-degenerate face is left, or when step 2 would remove more than
+// max_removed_area of the area.
 PreprocessResult StandardPreprocess(const Surface& input,
                                     const StandardPreprocessOptions& options = {});
 

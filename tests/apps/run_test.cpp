@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "core/mesh_io.h"
 #include "tests/eval/run_outputs_fixture.h"
 #include "tests/test_util.h"
 
@@ -224,6 +225,59 @@ TEST_F(RunCommandTest, BadMeshIsRecordedAndTheExitCodeIs1) {
   // The other shapes' pairs were computed: 4 of the 5 poses give 6 pairs.
   EXPECT_EQ(CountFiles(tmp_.File("out/base/pairs"), ".rec"), 6);
   EXPECT_TRUE(fs::exists(tmp_.File("out/base/summary.json")));
+}
+
+// Meshes accepted but wrong: a triangle soup is welded and runs; a body in two pieces fails
+// with its file and the area it would lose; a small loose piece is dropped and counted.
+TEST_F(RunCommandTest, SoupsAreWeldedAndMeshesInPiecesFailOrAreCounted) {
+  std::vector<std::string> shapes;
+  for (const auto& e : fs::directory_iterator(tmp_.File("data/shapes"))) {
+    shapes.push_back(e.path().string());
+  }
+  std::sort(shapes.begin(), shapes.end());
+  ASSERT_GE(shapes.size(), 3u);
+  // Soup: the input vertices first (the ground truth's ids), unreferenced, then three copies
+  // per face.
+  const Surface soup_source = LoadSurface(shapes[0]);
+  Surface soup;
+  const int nv = soup_source.NumVertices(), nf = soup_source.NumFaces();
+  soup.V.resize(nv + 3 * nf, 3);
+  soup.V.topRows(nv) = soup_source.V;
+  soup.F.resize(nf, 3);
+  for (int f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      soup.V.row(nv + 3 * f + k) = soup_source.V.row(soup_source.F(f, k));
+      soup.F(f, k) = nv + 3 * f + k;
+    }
+  }
+  SaveMesh(shapes[0], soup);
+  // Two pieces of equal area; one with a piece of about 1% of its area.
+  auto with_copy = [](const Surface& s, double scale) {
+    Surface out;
+    out.V.resize(2 * s.NumVertices(), 3);
+    out.V << s.V, (s.V * scale).rowwise() + Eigen::RowVector3d(10, 0, 0);
+    out.F.resize(2 * s.NumFaces(), 3);
+    out.F << s.F, (s.F.array() + s.NumVertices()).matrix();
+    return out;
+  };
+  SaveMesh(shapes[1], with_copy(LoadSurface(shapes[1]), 1.0));
+  SaveMesh(shapes[2], with_copy(LoadSurface(shapes[2]), 0.1));
+  Run(tmp_.File("out"), "", 1);
+  const std::string failures = ReadText(tmp_.File("out/base/failures.csv"));
+  const std::string split = fs::path(shapes[1]).stem().string();
+  EXPECT_NE(failures.find("shape," + split + ",," + shapes[1] +
+                          ": preprocess: the mesh has 2 connected components and keeping the "
+                          "largest would remove 50.0% of its area"),
+            std::string::npos)
+      << failures;
+  // The header, the split shape and its four pairs.
+  EXPECT_EQ(std::count(failures.begin(), failures.end(), '\n'), 1 + 1 + 4) << failures;
+  const std::string shapes_csv = ReadText(tmp_.File("out/base/shapes.csv"));
+  EXPECT_NE(shapes_csv.find("welded_vertices"), std::string::npos);
+  const std::string summary = ReadText(tmp_.File("out/base/summary.json"));
+  EXPECT_NE(summary.find("\"shapes_lost_area\": 1"), std::string::npos) << summary;
+  // Every pair without the split shape, the soup's included, was computed.
+  EXPECT_EQ(CountFiles(tmp_.File("out/base/pairs"), ".rec"), 6);
 }
 
 // The flip scorer's orientation term needs 60 eigenpairs, the icp refinement asks for 20: each

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 
+#include "core/errors.h"
 #include "core/primitives.h"
 #include "registry/registry.h"
 
@@ -103,11 +105,13 @@ TEST(StandardPreprocess, DropsDuplicateAndDegenerateFacesAndUnreferencedVertices
 }
 
 TEST(StandardPreprocess, KeepsLargestComponentAndMapsIds) {
-  const Surface small = Icosphere(1, 0.5), big = Icosphere(2, 1.0);
+  const Surface small = Icosphere(1, 0.1), big = Icosphere(2, 1.0);
   const Surface s = Append(small, big, Eigen::RowVector3d(4, 0, 0));
   const PreprocessResult r = StandardPreprocess(s);
   EXPECT_EQ(Get(r.report, "components"), 2);
   EXPECT_EQ(Get(r.report, "removed_component_faces"), small.NumFaces());
+  EXPECT_NEAR(Get(r.report, "removed_component_area"),
+              TotalArea(small) / (TotalArea(small) + TotalArea(big)), 1e-12);
   ASSERT_EQ(r.surface.NumVertices(), big.NumVertices());
   ASSERT_EQ(static_cast<int>(r.input_ids.size()), big.NumVertices());
   // Unit area, centred, and output = (input - centre) * scale through input_ids.
@@ -151,6 +155,87 @@ TEST(StandardPreprocess, RejectsBadInputAndIsRegistered) {
   const PreprocessResult r = stage->Run(sphere);
   EXPECT_EQ(r.scale, 1.0);
   EXPECT_LT((r.surface.V - sphere.V).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+}  // namespace
+}  // namespace symembed
+
+namespace symembed {
+namespace {
+
+// A body split in two: keeping one half would silently drop half the surface.
+TEST(StandardPreprocess, FailsWhenKeepingTheLargestComponentRemovesMuchOfTheArea) {
+  const Surface s = Append(Icosphere(2, 0.9), Icosphere(2, 1.0), Eigen::RowVector3d(4, 0, 0));
+  try {
+    StandardPreprocess(s);
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("2 connected components and keeping the largest would "
+                                         "remove 44."),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("% of its area"), std::string::npos) << e.what();
+  }
+  StandardPreprocessOptions loose;
+  loose.max_removed_area = 0.5;
+  EXPECT_NEAR(Get(StandardPreprocess(s, loose).report, "removed_component_area"), 0.81 / 1.81,
+              0.01);
+}
+
+// Every face with its own three vertices (as some OFF/OBJ/PLY writers store a mesh): the
+// boundary copies are welded back into the original surface.
+TEST(StandardPreprocess, WeldsATriangleSoup) {
+  const Surface sphere = Icosphere(2);
+  Surface soup;
+  soup.V.resize(3 * sphere.NumFaces(), 3);
+  soup.F.resize(sphere.NumFaces(), 3);
+  for (int f = 0; f < sphere.NumFaces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      soup.V.row(3 * f + k) = sphere.V.row(sphere.F(f, k));
+      soup.F(f, k) = 3 * f + k;
+    }
+  }
+  const PreprocessResult r = StandardPreprocess(soup);
+  EXPECT_EQ(Get(r.report, "welded_vertices"), soup.NumVertices() - sphere.NumVertices());
+  EXPECT_EQ(r.surface.NumVertices(), sphere.NumVertices());
+  EXPECT_EQ(r.surface.NumFaces(), sphere.NumFaces());
+  EXPECT_EQ(Get(r.report, "components"), 1);
+  EXPECT_EQ(Get(r.report, "boundary_edges"), 0);
+  StandardPreprocessOptions no_weld;
+  no_weld.weld_boundary_duplicates = false;
+  no_weld.max_removed_area = 1.0;
+  EXPECT_EQ(StandardPreprocess(soup, no_weld).surface.NumFaces(), 1);
+}
+
+// Two closed spheres touching at one point, each with its own vertex there: the copies are
+// inside the surface and stay apart.
+TEST(StandardPreprocess, LeavesCoincidentInteriorVerticesApart) {
+  const Surface a = Icosphere(1, 1.0);
+  int top = 0;
+  a.V.col(0).maxCoeff(&top);
+  const Eigen::RowVector3d offset(2 * a.V(top, 0), 0, 0);
+  Surface mirrored = a;
+  mirrored.V.col(0) *= -1;
+  for (int f = 0; f < mirrored.NumFaces(); ++f) std::swap(mirrored.F(f, 1), mirrored.F(f, 2));
+  const Surface s = Append(a, mirrored, offset);
+  StandardPreprocessOptions options;
+  options.max_removed_area = 1.0;
+  const PreprocessResult r = StandardPreprocess(s, options);
+  EXPECT_EQ(Get(r.report, "welded_vertices"), 0);
+  EXPECT_EQ(Get(r.report, "components"), 2);
+}
+
+TEST(StandardPreprocess, NamesTheVertexWithNonFiniteCoordinates) {
+  Surface s = Icosphere(1);
+  s.V(7, 1) = std::numeric_limits<double>::quiet_NaN();
+  try {
+    StandardPreprocess(s);
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 7 (0-based) has non-finite coordinates"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
