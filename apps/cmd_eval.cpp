@@ -76,6 +76,9 @@ void PrintEvalReport(const std::string& name, const std::string& out, const Scor
     if (!p.ok)
       std::cerr << "symembed eval: " << p.source << " -> " << p.target << ": " << p.message << "\n";
   }
+  for (const std::string& warning : result.warnings) {
+    std::cerr << "symembed eval: warning: " << warning << "\n";
+  }
   std::cout << "eval " << name << ": " << summary.pairs << " pairs, " << summary.failed_pairs
             << " failed; mean error direct " << summary.mean_direct << ", flip-tolerant "
             << summary.mean_flip_tolerant << "; flipped pairs " << summary.FlippedTotal()
@@ -101,7 +104,7 @@ int EvalCommand(const Args& args) {
                 "");
   parser.Option("maps", "folder with the A_B.map files", "");
   parser.Option("base", "0 or 1: the id of the first vertex in the map files", "");
-  parser.Option("name", "name of the evaluation (output folder results/NAME)", "");
+  parser.Option("name", "name of the evaluation (output folder results/NAME)", "--out's folder name");
   parser.Option("geodesics",
                 "geodesics stage of the evaluation (dijkstra, fast_marching, "
                 "heat; default: the config's, else fast_marching)",
@@ -113,8 +116,11 @@ int EvalCommand(const Args& args) {
   parser.Option("jobs", "worker threads (0 = all cores)", "0");
   parser.Option("cache-mb", "memory budget of the geodesic distance cache in MiB", "2048");
   if (!parser.Parse(args)) return 0;
-  for (const char* required : {"dataset", "maps", "base", "name"}) {
+  for (const char* required : {"dataset", "maps", "base"}) {
     if (!parser.Given(required)) throw UsageError{std::string("--") + required + " is required"};
+  }
+  if (!parser.Given("name") && !parser.Given("out")) {
+    throw UsageError{"--name (or --out) is required"};
   }
   ScoreMapsOptions options;
   options.maps_dir = parser.Get("maps");
@@ -130,8 +136,10 @@ int EvalCommand(const Args& args) {
   std::filesystem::path maps_path = std::filesystem::path(options.maps_dir).lexically_normal();
   if (maps_path.filename().empty()) maps_path = maps_path.parent_path();
   if (maps_path.has_parent_path()) RequireNotInProgress(maps_path.parent_path().string());
-  const std::string name = parser.Get("name");
-  const std::string out = parser.Given("out") ? parser.Get("out") : "results/" + name;
+  const std::string out = parser.Given("out") ? parser.Get("out") : "results/" + parser.Get("name");
+  std::filesystem::path out_path = std::filesystem::path(out).lexically_normal();
+  if (out_path.filename().empty()) out_path = out_path.parent_path();
+  const std::string name = parser.Given("name") ? parser.Get("name") : out_path.filename().string();
 
   Registry registry;
   RegisterBuiltinStages(registry);

@@ -38,6 +38,11 @@ std::vector<int> ParseMap(const std::string& text, int base, int expected_length
     throw InvalidInputError(where + ": " + std::to_string(lines.size()) + " entries, expected " +
                             std::to_string(expected_length) + " (one per source vertex)");
   }
+  // With base 0, ids from 1 to #V and none 0 are a 1-based file given the wrong base.
+  bool has_zero = false;
+  for (const std::string& token : lines) {
+    has_zero = has_zero || (!token.empty() && std::strtod(token.c_str(), nullptr) == 0.0);
+  }
   std::vector<int> map(lines.size());
   for (size_t i = 0; i < lines.size(); ++i) {
     const std::string at = where + ":" + std::to_string(i + 1) + ": ";
@@ -59,7 +64,11 @@ std::vector<int> ParseMap(const std::string& text, int base, int expected_length
                               (num_target_vertices >= 0
                                    ? std::to_string(num_target_vertices - 1 + base)
                                    : std::string("inf")) +
-                              "] (" + std::to_string(base) + "-based)");
+                              "] (" + std::to_string(base) + "-based)" +
+                              (base == 0 && !has_zero && id == num_target_vertices
+                                   ? "; no id is 0 and this one is the vertex count: the file "
+                                     "looks 1-based (--base 1)"
+                                   : ""));
     }
     map[i] = id;
   }
@@ -68,6 +77,7 @@ std::vector<int> ParseMap(const std::string& text, int base, int expected_length
 
 std::vector<int> ReadMapFile(const std::string& path, int base, int expected_length,
                              int num_target_vertices) {
+  if (std::filesystem::is_directory(path)) throw IoError(path + ": is a folder, not a map file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot read map file");
   std::ostringstream text;

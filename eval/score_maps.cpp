@@ -1,5 +1,7 @@
 #include "eval/score_maps.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -97,6 +99,7 @@ ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preproc
 
   ScoreMapsResult result;
   result.pairs.resize(jobs.size());
+  std::atomic<int> maps_read{0}, maps_using_zero{0};
   ParallelFor(static_cast<int>(jobs.size()), [&](int i) {
     const Job& job = jobs[i];
     PairEvaluation& out = result.pairs[i];
@@ -121,12 +124,19 @@ ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preproc
     } catch (const std::exception& e) {
       return fail(e.what());
     }
+    if (std::find(map.begin(), map.end(), 0) != map.end()) maps_using_zero.fetch_add(1);
+    maps_read.fetch_add(1);
     const double read_seconds = Seconds(read_start);
     out = evaluator.Evaluate(job.source, job.target, target.eval, map,
                              PairLines(source.truth, target.truth));
     out.stage_seconds["read_map"] = read_seconds;
   }, options.threads);
 
+  if (options.base == 0 && maps_read > 0 && maps_using_zero == 0) {
+    result.warnings.push_back("with --base 0, none of the " + std::to_string(maps_read.load()) +
+                              " maps uses target id 0: if they are 1-based, every id is shifted "
+                              "by one (use --base 1)");
+  }
   SortPairs(result.pairs);
   for (const auto& [name, s] : shapes) result.timings.shape_stage_seconds[name] = s.seconds;
   result.timings.total_seconds = Seconds(start);

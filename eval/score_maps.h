@@ -27,6 +27,7 @@ using DatasetMeshLoader = std::function<Surface(const DatasetShape& shape)>;
 struct ScoreMapsResult {
   std::vector<PairEvaluation> pairs;  // one per dataset pair, sorted by (source, target)
   VariantTimings timings;             // per-shape load/preprocess times, total wall time
+  std::vector<std::string> warnings;  // e.g. base 0 while no map uses id 0
 };
 
 // For every pair of the dataset: reads its map file, checks it (one entry per source input

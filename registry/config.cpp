@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -140,12 +141,54 @@ void ApplyOverride(YAML::Node tree, const std::string& path, const YAML::Node& v
   node[last] = value;
 }
 
-void ValidateVariantName(const std::string& name, const YAML::Node& at, const std::string& file) {
+// `what` names the key in messages ("name" of the experiment, "variants[i].name").
+void ValidateName(const std::string& name, const YAML::Node& at, const std::string& file,
+                  const std::string& what) {
   static const std::regex ok("[A-Za-z0-9_.-]+");
   if (!std::regex_match(name, ok) || name == "." || name == "..") {
-    throw ConfigError(NodeLocation(file, at) + ": variants.name: '" + name +
-                      "' is not a valid variant name (letters, digits, '_', '-', '.')");
+    throw ConfigError(NodeLocation(file, at) + ": " + what + ": '" + name +
+                      "' is not a valid name (letters, digits, '_', '-', '.'; it names a folder)");
   }
+}
+
+// yaml-cpp keeps both entries of a repeated key and reads the first: refuse the file instead.
+void RejectDuplicateKeys(const YAML::Node& node, const std::string& file,
+                         const std::string& path) {
+  if (node.IsSequence()) {
+    for (size_t i = 0; i < node.size(); ++i) {
+      RejectDuplicateKeys(node[i], file, path + "[" + std::to_string(i) + "]");
+    }
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::map<std::string, YAML::Node> seen;
+  for (const auto& kv : node) {
+    const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : "";
+    const std::string key_path = path.empty() ? key : path + "." + key;
+    auto [it, inserted] = seen.emplace(key, kv.first);
+    if (!inserted) {
+      throw ConfigError(NodeLocation(file, kv.first) + ": " + key_path + ": duplicate key '" +
+                        key + "' (first at " + NodeLocation(file, it->second) + ")");
+    }
+    RejectDuplicateKeys(kv.second, file, key_path);
+  }
+}
+
+// An error in a value given with --set has no position in the file: name the --set argument
+// instead of the file. `message` is "LOCATION: dotted.path: what".
+std::string WithSetArgument(const std::string& message, const std::string& file,
+                            const std::vector<std::string>& overrides) {
+  if (message.compare(0, file.size() + 2, file + ": ") != 0) return message;  // has a position
+  const std::string rest = message.substr(file.size() + 2);
+  const std::string error_path = rest.substr(0, rest.find(": "));
+  for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {
+    const std::string set_path = o->substr(0, o->find('='));
+    const bool related = error_path == set_path ||
+                         error_path.compare(0, set_path.size() + 1, set_path + ".") == 0 ||
+                         set_path.compare(0, error_path.size() + 1, error_path + ".") == 0;
+    if (related) return "--set '" + *o + "': " + rest;
+  }
+  return message;
 }
 
 // A copy of node without positions: those of a --set value are in the --set text, and messages
@@ -218,7 +261,7 @@ void ReadTopLevel(const YAML::Node& croot, const std::string& file, ExperimentCo
                       "(the experiment's name; outputs go to results/<name>/)");
   }
   config->name = croot["name"].Scalar();
-  ValidateVariantName(config->name, croot["name"], file);
+  ValidateName(config->name, croot["name"], file, "name");
   if (croot["description"]) {
     if (!croot["description"].IsScalar()) {
       throw ConfigError(NodeLocation(file, croot["description"]) +
@@ -269,7 +312,7 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
     throw ConfigError(NodeLocation(file, v) + ": " + path + ".name: missing required key 'name'");
   }
   const std::string name = v["name"].Scalar();
-  ValidateVariantName(name, v["name"], file);
+  ValidateName(name, v["name"], file, path + ".name");
   if (!names->insert(name).second) {
     throw ConfigError(NodeLocation(file, v["name"]) + ": " + path +
                       ".name: duplicate variant name '" + name + "'");
@@ -314,6 +357,7 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
     }
   };
   YAML::Node root = parse();
+  RejectDuplicateKeys(root, file, "");
   if (!root.IsMap())
     throw ConfigError(file + ": expected a YAML map with keys " + JoinSet(kTopLevelKeys));
   for (const auto& kv : root) {
@@ -346,7 +390,13 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
     }
   }
   // Validate every variant completely before anything runs.
-  for (const auto& v : config.variants) BuildPipeline(config, v, registry);
+  for (const auto& v : config.variants) {
+    try {
+      BuildPipeline(config, v, registry);
+    } catch (const ConfigError& e) {
+      throw ConfigError(WithSetArgument(e.what(), file, overrides));
+    }
+  }
   return config;
 }
 

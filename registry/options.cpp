@@ -55,6 +55,16 @@ std::string OptionReader::KeyPath(const std::string& key) const {
 void OptionReader::Fail(const std::string& key, const std::string& what) const {
   const YAML::Node& n = node_;
   YAML::Node at = (!key.empty() && n.IsMap() && n[key]) ? n[key] : n;
+  // A map made by a dotted override has no position of its own; its first value given in the
+  // file has.
+  if (at.IsMap() && at.Mark().line < 0) {
+    for (const auto& kv : at) {
+      if (kv.second.Mark().line >= 0) {
+        at.reset(kv.second);  // re-point the handle; operator= would overwrite the tree
+        break;
+      }
+    }
+  }
   throw ConfigError(NodeLocation(file_, at) + ": " + KeyPath(key) + ": " + what);
 }
 

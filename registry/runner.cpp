@@ -123,6 +123,10 @@ class VariantRun {
   }
 
   void SelectPairs() {
+    if (index_.pairs.empty()) {
+      throw InvalidInputError("variant " + variant_.name + ": the dataset (" +
+                              OptionsText(*pipeline_.dataset) + ") has no pairs to run");
+    }
     std::vector<DatasetPair> all = index_.pairs;
     std::sort(all.begin(), all.end(), PairLess);
     all.erase(std::unique(all.begin(), all.end(), PairEqual), all.end());
@@ -402,6 +406,14 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
     std::string names;
     for (const auto& v : config.variants) names += (names.empty() ? "" : ", ") + v.name;
     throw ConfigError(config.file + ": no variant '" + options.variant + "'; variants: " + names);
+  }
+  if (!options.cache_dir.empty()) {
+    std::error_code ec;
+    if (fs::exists(options.cache_dir) && !fs::is_directory(options.cache_dir)) {
+      throw ConfigError(options.cache_dir + ": the cache must be a folder, and this is a file");
+    }
+    fs::create_directories(options.cache_dir, ec);
+    if (ec) throw IoError(options.cache_dir + ": cannot create the cache folder: " + ec.message());
   }
   fs::create_directories(options.out_dir);
   WriteFileAtomically(VariantsListPath(options.out_dir), VariantsText(config));

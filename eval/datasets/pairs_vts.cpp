@@ -59,6 +59,9 @@ DatasetIndex PairsVtsDataset::Load() const {
       }
       pairs.push_back({p.source, p.target});
     }
+    if (pairs.empty()) {
+      throw InvalidInputError(pairs_path + ": no pairs (expected lines 'SOURCE TARGET')");
+    }
   }
   DatasetIndex index = Restrict(shapes, pairs, options_.restrictions, "pairs_vts " + root);
 

@@ -72,7 +72,7 @@ std::unique_ptr<SyntheticDataset> CreateSyntheticDataset(OptionReader& options) 
     }
     g.kinds.push_back(FigureKindFromName(name));
   }
-  g.poses = options.GetInt("poses", 8, 1, 10000);
+  g.poses = options.GetInt("poses", 8, 2, 10000);  // pairs are formed between poses
   g.vertices = options.GetInt("vertices", 5000, 100, 10000000);
   g.seed = options.GetInt("seed", 1, 0);
   g.remesh = options.GetInt("remesh", 0, 0);

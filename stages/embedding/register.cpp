@@ -32,9 +32,21 @@ class IsomapStage : public EmbeddingStage {
   IsomapOptions options_;
 };
 
+// The embedding functions take any dimension, but the stages after the embedding (symmetry
+// plane, symmetrization, canonical frame, flip, matching) work in 3D: another value could only
+// fail later, on every shape.
+int ReadDims(OptionReader& reader, int default_dims) {
+  const int dims = reader.GetInt("dims", default_dims, 1, 100);
+  if (dims != 3) {
+    reader.Fail("dims", "the pipeline's symmetry, frame and matching stages need a 3D "
+                        "embedding; only 3 is supported, got " + std::to_string(dims));
+  }
+  return dims;
+}
+
 std::unique_ptr<Stage> MakeLsmds(OptionReader& reader) {
   LsmdsOptions o;
-  o.dims = reader.GetInt("dims", o.dims, 2, 3);
+  o.dims = ReadDims(reader, o.dims);
   o.init = reader.GetEnum<LsmdsInit>("init", o.init,
                                      {{"original", LsmdsInit::kOriginal},
                                       {"isomap", LsmdsInit::kIsomap},
@@ -57,7 +69,7 @@ std::unique_ptr<Stage> MakeLsmds(OptionReader& reader) {
 
 std::unique_ptr<Stage> MakeIsomap(OptionReader& reader) {
   IsomapOptions o;
-  o.dims = reader.GetInt("dims", o.dims, 2, 3);
+  o.dims = ReadDims(reader, o.dims);
   o.fix_orientation = reader.GetBool("fix_orientation", o.fix_orientation);
   std::string why;
   if (!o.IsValid(&why)) reader.Fail("", why);

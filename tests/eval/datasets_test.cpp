@@ -122,6 +122,8 @@ TEST(PairsVts, RejectsMalformedInputNamingFileAndLine) {
                                  {"test_pairs.txt:2: unknown shape 'cat7'", "shapes/cat7.off"});
   WriteText(root + "/test_pairs.txt", "cat0\tcat1\ncat0 cat1 dog0\n");
   ExpectError<InvalidInputError>([&] { dataset.Load(); }, {"test_pairs.txt:2: expected two"});
+  WriteText(root + "/test_pairs.txt", "\n");
+  ExpectError<InvalidInputError>([&] { dataset.Load(); }, {"test_pairs.txt: no pairs"});
   WriteText(root + "/test_pairs.txt", "cat0\tcat1\n");
 
   // Ground truth of a different length than its partner's.
@@ -310,6 +312,16 @@ TEST(Kim2011, RejectsMalformedInputNamingFileAndLine) {
 }
 
 // --- synthetic -------------------------------------------------------------------------------
+
+TEST(SyntheticDataset, OnePoseCannotFormAPair) {
+  try {
+    Create("{type: synthetic, poses: 1}");
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("poses: value 1 is out of range [2,"), std::string::npos)
+        << e.what();
+  }
+}
 
 TEST(SyntheticDataset, GeneratesIntoTheCacheOnceAndReadsIt) {
   TempDir dir;

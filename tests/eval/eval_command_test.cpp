@@ -1,6 +1,7 @@
 // `symembed eval` end to end on a small pairs_vts dataset written by the test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/mesh_io.h"
@@ -73,6 +74,41 @@ TEST(EvalCommand, ScoresMapsRecordsMalformedOnesAndWritesOutputs) {
 
   // Usage errors exit 2.
   EXPECT_EQ(testing::RunShell(std::string(SYMEMBED_BINARY) + " eval --maps x", &out), 2) << out;
+}
+
+// Maps that are plainly 1-based scored with --base 0 are called out; --out alone names the
+// evaluation; a folder where a map file should be is called a folder.
+TEST(EvalCommand, WrongBaseAFolderForAMapAndNameFromOut) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  if (!registry.Has("dataset", "pairs_vts") || !registry.Has("geodesics", "dijkstra")) {
+    GTEST_SKIP() << "needs the pairs_vts loader and the dijkstra stage";
+  }
+  testing::TempDir dir;
+  WriteDataset(dir.File("data"));
+  std::string text;  // the identity, 1-based
+  for (int v = 0; v < kN * kN; ++v) text += std::to_string(v + 1) + "\n";
+  testing::WriteText(dir.File("maps/a_b.map"), text);
+  // 1-based too, but without the last id: it reads under --base 0, shifted.
+  std::string without_last;
+  for (int v = 0; v < kN * kN; ++v) {
+    without_last += std::to_string(std::min(v + 1, kN * kN - 1)) + "\n";
+  }
+  testing::WriteText(dir.File("maps/b_c.map"), without_last);
+  std::filesystem::create_directories(dir.File("maps/a_c.map"));
+  std::string out;
+  const int code = testing::RunShell(std::string(SYMEMBED_BINARY) + " eval --dataset " +
+                                         dir.File("data") + " --maps " + dir.File("maps") +
+                                         " --base 0 --geodesics dijkstra --out " +
+                                         dir.File("out/named"),
+                                     &out);
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("the file looks 1-based (--base 1)"), std::string::npos) << out;
+  EXPECT_NE(out.find("maps/a_c.map: is a folder, not a map file"), std::string::npos) << out;
+  EXPECT_NE(out.find("none of the 1 maps uses target id 0"), std::string::npos) << out;
+  EXPECT_NE(out.find("eval named:"), std::string::npos) << out;
+  const JsonValue summary = ParseJson(testing::ReadText(dir.File("out/named/summary.json")));
+  EXPECT_EQ(summary.Get("variant").AsString(), "named");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "registry/options.h"
+#include "registry/registry.h"
 
 namespace symembed {
 namespace {
@@ -327,14 +328,77 @@ TEST(Config, UnknownKeySetByAnOverrideNamesWhereItWasSet) {
       ErrorOf(Replace(kConfig, "pipeline.sampling.count: 2000", "pipeline.sampling.cuont: 2000"));
   EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("pipeline.sampling.cuont: unknown key 'cuont'"), std::string::npos) << msg;
-  // By --set: no position (one in the --set text is not one in the file).
+  // By --set: the --set argument (a position in its text is not one in the file).
+  auto with_set = [](const std::vector<std::string>& overrides) {
+    try {
+      ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry(), overrides);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  msg = with_set({"pipeline.sampling.count=7", "pipeline.sampling.cuont=[1, 2]"});
+  EXPECT_EQ(msg.find("--set 'pipeline.sampling.cuont=[1, 2]': pipeline.sampling.cuont: unknown "
+                     "key 'cuont'"),
+            0u)
+      << msg;
+  msg = with_set({"pipeline.sampling.count=abc"});
+  EXPECT_EQ(msg.find("--set 'pipeline.sampling.count=abc': pipeline.sampling.count: expected"), 0u)
+      << msg;
+}
+
+TEST(Config, DuplicateKeysAreRefusedWithBothPositions) {
+  std::string msg = ErrorOf(Replace(kConfig, "  embedding:", "  sampling: {count: 3}\n  embedding:"));
+  EXPECT_NE(msg.find("exp.yaml:5:3: pipeline.sampling: duplicate key 'sampling' (first at "
+                     "exp.yaml:4:3)"),
+            std::string::npos)
+      << msg;
+  msg = ErrorOf(Replace(kConfig, "init: original", "init: original, init: isomap"));
+  EXPECT_NE(msg.find("pipeline.embedding.init: duplicate key 'init'"), std::string::npos) << msg;
+  msg = ErrorOf(Replace(kConfig, "{pipeline.sampling.count: 2000}",
+                        "{pipeline.sampling.count: 2000, pipeline.sampling.count: 3}"));
+  EXPECT_NE(msg.find("variants[1].set.pipeline.sampling.count: duplicate key"), std::string::npos)
+      << msg;
+}
+
+TEST(Config, BadExperimentNameIsNamedAsTheName) {
+  const std::string msg = ErrorOf(Replace(kConfig, "name: demo", "name: 'a b'"));
+  EXPECT_NE(msg.find("exp.yaml:1:7: name: 'a b' is not a valid name"), std::string::npos) << msg;
+}
+
+// A check across options of a map a variant's dotted keys made: the line of a value it set.
+TEST(Config, CrossOptionErrorOfAMapMadeByAVariantHasALine) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  const std::string text =
+      "name: x\ndataset: {format: synthetic}\nvariants:\n  - name: v\n    set:\n"
+      "      pipeline.refine.type: zoomout\n      pipeline.refine.k_start: 100\n"
+      "      pipeline.refine.k_end: 20\n";
   try {
-    ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry(), {"pipeline.sampling.cuont=[1, 2]"});
-    msg = "";
+    ParseExperimentConfig(text, "exp.yaml", registry);
+    ADD_FAILURE() << "no error";
   } catch (const ConfigError& e) {
-    msg = e.what();
+    EXPECT_NE(std::string(e.what()).find("exp.yaml:6:29: pipeline.refine: k_end (20) must be"),
+              std::string::npos)
+        << e.what();
   }
-  EXPECT_EQ(msg.find("exp.yaml: pipeline.sampling.cuont: unknown key 'cuont'"), 0u) << msg;
+}
+
+TEST(Config, AnEmbeddingThatCannotRunIsRefused) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  for (const char* type : {"lsmds", "isomap"}) {
+    const std::string text = std::string("name: x\ndataset: {format: synthetic}\npipeline:\n") +
+                             "  embedding: {type: " + type + ", dims: 2}\n";
+    try {
+      ParseExperimentConfig(text, "exp.yaml", registry);
+      ADD_FAILURE() << type << ": no error";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("exp.yaml:4:"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("only 3 is supported, got 2"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -287,6 +287,29 @@ TEST(Runner, AVariantFolderIsMarkedInProgressUntilItsSummaryIsWritten) {
   EXPECT_FALSE(fs::exists(tmp.File("merged/base/IN_PROGRESS")));
 }
 
+TEST(Runner, ACacheThatIsAFileAndADatasetWithoutPairsAreErrors) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 2);
+  WriteText(tmp.File("cache_file"), "not a folder");
+  try {
+    RunConfig(config, tmp.File("out"), tmp.File("cache_file"));
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(tmp.File("cache_file") + ": the cache must be a folder"),
+              std::string::npos)
+        << e.what();
+  }
+  const std::string one_shape = WriteTestDataset(tmp.File("data1"), 1);
+  try {
+    RunConfig(one_shape, tmp.File("out1"), tmp.File("cache"));
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("variant base: the dataset"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("has no pairs to run"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Runner, ResumeRefusesAChangedConfig) {
   TempDir tmp;
   const std::string config = WriteTestDataset(tmp.File("data"), 2);

@@ -7,6 +7,8 @@
 #include "core/primitives.h"
 #include "core/procrustes.h"
 #include "registry/registry.h"
+#include "stages/embedding/isomap.h"
+#include "stages/embedding/lsmds.h"
 #include "tests/stages/embedding_test_util.h"
 
 namespace symembed {
@@ -95,6 +97,7 @@ TEST(IsomapStage, ReportsReflectionAndFixesItOnRequest) {
   EXPECT_EQ(reflections[0], -reflections[1]);
 }
 
+// The embedding functions take any dimension (the stages only 3, which the pipeline needs).
 TEST(EmbeddingStages, TwoDimensionsReportNoReflection) {
   const Surface s = Ellipsoid();
   const std::vector<int> samples = EveryThird(s.NumVertices());
@@ -103,9 +106,15 @@ TEST(EmbeddingStages, TwoDimensionsReportNoReflection) {
     for (const std::string init : {"original", "isomap", "random"}) {
       if (type == "isomap" && init != "original") continue;
       SCOPED_TRACE(type + " " + init);
-      const std::string yaml = type == "lsmds" ? "{type: lsmds, dims: 2, init: " + init + "}"
-                                               : "{type: isomap, dims: 2}";
-      const EmbeddingResult r = Make(yaml)->Run({s, samples, D});
+      LsmdsOptions lsmds;
+      lsmds.dims = 2;
+      lsmds.init = init == "original" ? LsmdsInit::kOriginal
+                   : init == "isomap" ? LsmdsInit::kIsomap
+                                      : LsmdsInit::kRandom;
+      IsomapOptions isomap;
+      isomap.dims = 2;
+      const EmbeddingResult r = type == "lsmds" ? LsmdsEmbedding({s, samples, D}, lsmds)
+                                                : IsomapEmbedding({s, samples, D}, isomap);
       EXPECT_EQ(r.Y.cols(), 2);
       EXPECT_EQ(r.reflection, 1);
       // A 3D ellipsoid squeezed into 2D keeps a visible stress (the 0.35 axis is lost).

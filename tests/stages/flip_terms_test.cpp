@@ -177,7 +177,9 @@ TEST(FlipTermOptions, VariantAndCommandLineOverridesOfNestedPaths) {
   } catch (const ConfigError& e) {
     message = e.what();
   }
-  EXPECT_EQ(message.find("t.yaml: pipeline.flip.decide.zoomout.stpe: unknown key 'stpe'"), 0u)
+  EXPECT_EQ(message.find("--set 'pipeline.flip.decide.zoomout.stpe=2': "
+                         "pipeline.flip.decide.zoomout.stpe: unknown key 'stpe'"),
+            0u)
       << message;
 }
 
