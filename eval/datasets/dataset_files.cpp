@@ -126,7 +126,13 @@ int CountMeshVertices(const std::string& path) {
 }
 
 std::vector<long long> ReadIntegerLines(const std::string& path) {
-  std::ifstream in = Open(path);
+  std::ostringstream text;
+  text << Open(path).rdbuf();
+  return ParseIntegerLines(text.str(), path);
+}
+
+std::vector<long long> ParseIntegerLines(const std::string& text, const std::string& path) {
+  std::istringstream in(text);
   std::vector<long long> values;
   std::string line;
   int line_no = 0, first_blank = 0;
@@ -169,7 +175,13 @@ std::vector<int> OneBasedIds(const std::vector<long long>& values, const std::st
 }
 
 std::vector<PairLine> ReadPairsFile(const std::string& path) {
-  std::ifstream in = Open(path);
+  std::ostringstream text;
+  text << Open(path).rdbuf();
+  return ParsePairsText(text.str(), path);
+}
+
+std::vector<PairLine> ParsePairsText(const std::string& text, const std::string& path) {
+  std::istringstream in(text);
   std::vector<PairLine> pairs;
   std::string line;
   int line_no = 0;

@@ -37,6 +37,8 @@ int CountMeshVertices(const std::string& path);
 // One integer per line; trailing blank lines are allowed, other blank lines are not.
 // Returns the values in line order (value k is on line k + 1).
 std::vector<long long> ReadIntegerLines(const std::string& path);
+// The same for text already read; `path` names it in messages.
+std::vector<long long> ParseIntegerLines(const std::string& text, const std::string& path);
 
 // 1-based vertex ids (line k + 1 of path) to 0-based ids; with allow_zero, 0 means "missing"
 // and becomes -1. Throws "path:line: vertex id V out of range [1, num_vertices]".
@@ -51,6 +53,8 @@ struct PairLine {
 // Two whitespace-separated shape names per line (TOSCA uses a tab); blank lines and lines
 // starting with '#' are skipped.
 std::vector<PairLine> ReadPairsFile(const std::string& path);
+// The same for text already read; `path` names it in messages.
+std::vector<PairLine> ParsePairsText(const std::string& text, const std::string& path);
 
 // All unordered pairs (i < j) of shapes within each class, in index order.
 std::vector<DatasetPair> AllPairsWithinClasses(const std::vector<DatasetShape>& shapes);
