@@ -125,6 +125,34 @@ int CountMeshVertices(const std::string& path) {
   }
 }
 
+ClassTemplate FindClassTemplate(const std::vector<std::string>& mesh_paths) {
+  std::map<int, int> votes;
+  std::vector<int> counts;
+  for (const std::string& path : mesh_paths) {
+    counts.push_back(CountMeshVertices(path));
+    ++votes[counts.back()];
+  }
+  ClassTemplate best;
+  best.total = static_cast<int>(mesh_paths.size());
+  // Walking the meshes in order makes the earliest of tied counts win.
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (votes[counts[i]] <= best.meshes) continue;
+    best = {counts[i], votes[counts[i]], best.total, mesh_paths[i]};
+  }
+  return best;
+}
+
+void CheckClassTemplate(const std::string& mesh_path, int num_vertices,
+                        const ClassTemplate& class_template, const std::string& class_name) {
+  if (num_vertices == class_template.vertices) return;
+  throw InvalidInputError(
+      mesh_path + ": " + std::to_string(num_vertices) + " vertices, but the template of class " +
+      class_name + " has " + std::to_string(class_template.vertices) + " (" +
+      std::to_string(class_template.meshes) + " of its " + std::to_string(class_template.total) +
+      " meshes, e.g. " + class_template.example +
+      "): the class's shared vertex ids do not apply to this mesh");
+}
+
 std::vector<long long> ReadIntegerLines(const std::string& path) {
   std::ifstream in = Open(path);
   std::vector<long long> values;

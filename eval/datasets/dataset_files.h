@@ -34,6 +34,24 @@ std::vector<std::pair<std::string, std::string>> ListMeshes(const std::string& d
 // Vertex count from a mesh file's header (OFF, PLY) or its `v` lines (OBJ).
 int CountMeshVertices(const std::string& path);
 
+// The vertex count shared by the meshes of a class whose vertex ids are common (the class's
+// template): the count most of the meshes have; on a tie, the count of the earliest mesh in
+// `mesh_paths` among the tied counts. `meshes` of the `total` meshes have it, `example` is the
+// first of them. Reads only the files' headers (CountMeshVertices).
+struct ClassTemplate {
+  int vertices = 0;
+  int meshes = 0;
+  int total = 0;
+  std::string example;
+};
+ClassTemplate FindClassTemplate(const std::vector<std::string>& mesh_paths);
+
+// Throws InvalidInputError "MESH: N vertices, but the template of CLASS has M (...)" when a
+// mesh's vertex count differs from its class's template: the class's vertex ids do not apply to
+// it, so it has no ground truth.
+void CheckClassTemplate(const std::string& mesh_path, int num_vertices,
+                        const ClassTemplate& class_template, const std::string& class_name);
+
 // One integer per line; trailing blank lines are allowed, other blank lines are not.
 // Returns the values in line order (value k is on line k + 1).
 std::vector<long long> ReadIntegerLines(const std::string& path);

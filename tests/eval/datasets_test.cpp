@@ -203,18 +203,15 @@ TEST(SameConnectivity, RejectsMalformedInputNamingFileAndLine) {
   WriteText(root + "/scape/sym.txt", "2\n1\n3\n5\n");
   ExpectError<InvalidInputError>([&] { dataset.Load(); },
                                  {"scape/sym.txt:4: vertex id 5 out of range [1, 4]"});
-  WriteText(root + "/scape/sym.txt", "2\n1\n3\n4\n");
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n");  // changed after Load
   ExpectError<InvalidInputError>(
-      [&] { dataset.GroundTruth({"mesh000", "scape", root + "/scape/mesh000.off"}, 5); },
-      {"sym.txt: 4 lines", "mesh000.off has 5 vertices"});
+      [&] { dataset.GroundTruth({"mesh000", "scape", root + "/scape/mesh000.off"}, 4); },
+      {"sym.txt: 3 lines", "mesh000.off has 4 vertices"});
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n4\n");
   WriteText(root + "/scape/pairs.txt", "mesh000 mesh001\nmesh000 mesh009\n");
   ExpectError<InvalidInputError>([&] { dataset.Load(); },
                                  {"scape/pairs.txt:2: unknown shape 'mesh009'"});
   fs::remove(root + "/scape/pairs.txt");
-  WriteText(root + "/scape/mesh002.off", Tetrahedron(2));
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"mesh002.off: 6 vertices", "mesh000.off has 4"});
-  fs::remove(root + "/scape/mesh002.off");
   WriteText(root + "/other/mesh001.off", Tetrahedron());
   ExpectError<InvalidInputError>([&] { dataset.Load(); }, {"shape name 'mesh001' is used twice"});
   fs::remove_all(root + "/other");
@@ -222,6 +219,31 @@ TEST(SameConnectivity, RejectsMalformedInputNamingFileAndLine) {
   SameConnectivityDataset listed(SameConnectivityOptions{root, {{}, 0, "all_pairs.txt"}});
   ExpectError<InvalidInputError>([&] { listed.Load(); },
                                  {"all_pairs.txt:2: unknown shape 'meshX'"});
+}
+
+TEST(SameConnectivity, AMeshThatBreaksItsClassTemplateFailsAloneNotTheDataset) {
+  TempDir dir;
+  const std::string root = dir.path();
+  // The first mesh in name order is the odd one: the template is what most meshes have.
+  WriteText(root + "/scape/mesh000.off", Tetrahedron(2));
+  WriteText(root + "/scape/mesh001.off", Tetrahedron());
+  WriteText(root + "/scape/mesh002.off", Tetrahedron());
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n4\n");
+  SameConnectivityDataset dataset(SameConnectivityOptions{root, {}});
+  const DatasetIndex index = dataset.Load();
+  EXPECT_EQ(index.pairs.size(), 3u);
+  EXPECT_EQ(dataset.GroundTruth(*index.Find("mesh001"), 4).sym_ids,
+            (std::vector<int>{1, 0, 2, 3}));
+  ExpectError<InvalidInputError>(
+      [&] { dataset.GroundTruth(*index.Find("mesh000"), 6); },
+      {root + "/scape/mesh000.off: 6 vertices", "template of class scape", "has 4",
+       "2 of its 3 meshes", "mesh001.off"});
+  // A tie keeps the count of the first mesh in name order.
+  fs::remove(root + "/scape/mesh002.off");
+  fs::remove(root + "/scape/sym.txt");
+  EXPECT_NO_THROW(dataset.GroundTruth(*index.Find("mesh000"), 6));
+  ExpectError<InvalidInputError>([&] { dataset.GroundTruth(*index.Find("mesh001"), 4); },
+                                 {"mesh001.off: 4 vertices", "has 6"});
 }
 
 // --- kim2011 ---------------------------------------------------------------------------------
