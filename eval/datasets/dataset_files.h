@@ -11,6 +11,12 @@
 
 namespace symembed {
 
+// Throws InvalidInputError "path:line: what".
+[[noreturn]] void ThrowAtLine(const std::string& path, int line, const std::string& what);
+
+// The lines of a text file, without their line ends; IoError when it cannot be opened.
+std::vector<std::string> ReadTextLines(const std::string& path);
+
 // The restrictions every loader accepts in the config.
 struct DatasetRestrictions {
   std::vector<std::string> classes;  // empty: all classes
