@@ -16,10 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void Fail(const std::string& path, int line, const std::string& what) {
-  throw InvalidInputError(path + ":" + std::to_string(line) + ": " + what);
-}
-
 std::ifstream Open(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open " + path);
@@ -39,6 +35,18 @@ std::string Lower(std::string s) {
 }
 
 }  // namespace
+
+void ThrowAtLine(const std::string& path, int line, const std::string& what) {
+  throw InvalidInputError(path + ":" + std::to_string(line) + ": " + what);
+}
+
+std::vector<std::string> ReadTextLines(const std::string& path) {
+  std::ifstream in = Open(path);
+  std::vector<std::string> lines;
+  std::string line;
+  while (std::getline(in, line)) lines.push_back(line);
+  return lines;
+}
 
 DatasetRestrictions ReadRestrictions(OptionReader& options) {
   DatasetRestrictions r;
@@ -100,7 +108,7 @@ int CountMeshVertices(const std::string& path) {
       if (a == "element" && b == "vertex" && n >= 0) return static_cast<int>(n);
       if (Trim(line) == "end_header") break;
     }
-    Fail(path, line_no, "PLY header has no 'element vertex N' line");
+    ThrowAtLine(path, line_no, "PLY header has no 'element vertex N' line");
   }
   // OFF: "OFF" (possibly followed by the counts on the same line), comments '#'.
   std::vector<std::string> tokens;
@@ -113,7 +121,7 @@ int CountMeshVertices(const std::string& path) {
     while (words >> w) tokens.push_back(w);
   }
   if (tokens.empty() || tokens[0].size() < 3 || tokens[0].compare(tokens[0].size() - 3, 3, "OFF") != 0) {
-    Fail(path, std::max(line_no, 1), "not an OFF file (no OFF header)");
+    ThrowAtLine(path, std::max(line_no, 1), "not an OFF file (no OFF header)");
   }
   try {
     size_t used = 0;
@@ -121,8 +129,36 @@ int CountMeshVertices(const std::string& path) {
     if (used != tokens[1].size() || n < 0) throw std::invalid_argument(tokens[1]);
     return static_cast<int>(n);
   } catch (const std::exception&) {
-    Fail(path, line_no, "bad OFF vertex count");
+    ThrowAtLine(path, line_no, "bad OFF vertex count");
   }
+}
+
+ClassTemplate FindClassTemplate(const std::vector<std::string>& mesh_paths) {
+  std::map<int, int> votes;
+  std::vector<int> counts;
+  for (const std::string& path : mesh_paths) {
+    counts.push_back(CountMeshVertices(path));
+    ++votes[counts.back()];
+  }
+  ClassTemplate best;
+  best.total = static_cast<int>(mesh_paths.size());
+  // Walking the meshes in order makes the earliest of tied counts win.
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (votes[counts[i]] <= best.meshes) continue;
+    best = {counts[i], votes[counts[i]], best.total, mesh_paths[i]};
+  }
+  return best;
+}
+
+void CheckClassTemplate(const std::string& mesh_path, int num_vertices,
+                        const ClassTemplate& class_template, const std::string& class_name) {
+  if (num_vertices == class_template.vertices) return;
+  throw InvalidInputError(
+      mesh_path + ": " + std::to_string(num_vertices) + " vertices, but the template of class " +
+      class_name + " has " + std::to_string(class_template.vertices) + " (" +
+      std::to_string(class_template.meshes) + " of its " + std::to_string(class_template.total) +
+      " meshes, e.g. " + class_template.example +
+      "): the class's shared vertex ids do not apply to this mesh");
 }
 
 std::vector<long long> ReadIntegerLines(const std::string& path) {
@@ -143,14 +179,14 @@ std::vector<long long> ParseIntegerLines(const std::string& text, const std::str
       if (!first_blank) first_blank = line_no;
       continue;
     }
-    if (first_blank) Fail(path, first_blank, "blank line before the end of the file");
+    if (first_blank) ThrowAtLine(path, first_blank, "blank line before the end of the file");
     try {
       size_t used = 0;
       const long long v = std::stoll(t, &used);
       if (used != t.size()) throw std::invalid_argument(t);
       values.push_back(v);
     } catch (const std::exception&) {
-      Fail(path, line_no, "expected one integer vertex id, got '" + t + "'");
+      ThrowAtLine(path, line_no, "expected one integer vertex id, got '" + t + "'");
     }
   }
   return values;
@@ -164,9 +200,9 @@ std::vector<int> OneBasedIds(const std::vector<long long>& values, const std::st
     if (v == 0 && allow_zero) {
       ids[k] = -1;
     } else if (v < 1 || v > num_vertices) {
-      Fail(path, static_cast<int>(k) + 1,
-           "vertex id " + std::to_string(v) + " out of range [1, " + std::to_string(num_vertices) +
-               "]" + (allow_zero ? " (0 = missing)" : ""));
+      ThrowAtLine(path, static_cast<int>(k) + 1,
+                  "vertex id " + std::to_string(v) + " out of range [1, " +
+                      std::to_string(num_vertices) + "]" + (allow_zero ? " (0 = missing)" : ""));
     } else {
       ids[k] = static_cast<int>(v - 1);
     }
@@ -194,7 +230,8 @@ std::vector<PairLine> ParsePairsText(const std::string& text, const std::string&
     std::string extra;
     words >> p.source >> p.target;
     if (p.target.empty() || (words >> extra)) {
-      Fail(path, line_no, "expected two shape names separated by a tab or spaces, got '" + t + "'");
+      ThrowAtLine(path, line_no,
+                  "expected two shape names separated by a tab or spaces, got '" + t + "'");
     }
     p.line = line_no;
     pairs.push_back(p);

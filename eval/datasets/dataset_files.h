@@ -11,6 +11,12 @@
 
 namespace symembed {
 
+// Throws InvalidInputError "path:line: what".
+[[noreturn]] void ThrowAtLine(const std::string& path, int line, const std::string& what);
+
+// The lines of a text file, without their line ends; IoError when it cannot be opened.
+std::vector<std::string> ReadTextLines(const std::string& path);
+
 // The restrictions every loader accepts in the config.
 struct DatasetRestrictions {
   std::vector<std::string> classes;  // empty: all classes
@@ -33,6 +39,24 @@ std::vector<std::pair<std::string, std::string>> ListMeshes(const std::string& d
 
 // Vertex count from a mesh file's header (OFF, PLY) or its `v` lines (OBJ).
 int CountMeshVertices(const std::string& path);
+
+// The vertex count shared by the meshes of a class whose vertex ids are common (the class's
+// template): the count most of the meshes have; on a tie, the count of the earliest mesh in
+// `mesh_paths` among the tied counts. `meshes` of the `total` meshes have it, `example` is the
+// first of them. Reads only the files' headers (CountMeshVertices).
+struct ClassTemplate {
+  int vertices = 0;
+  int meshes = 0;
+  int total = 0;
+  std::string example;
+};
+ClassTemplate FindClassTemplate(const std::vector<std::string>& mesh_paths);
+
+// Throws InvalidInputError "MESH: N vertices, but the template of CLASS has M (...)" when a
+// mesh's vertex count differs from its class's template: the class's vertex ids do not apply to
+// it, so it has no ground truth.
+void CheckClassTemplate(const std::string& mesh_path, int num_vertices,
+                        const ClassTemplate& class_template, const std::string& class_name);
 
 // One integer per line; trailing blank lines are allowed, other blank lines are not.
 // Returns the values in line order (value k is on line k + 1).

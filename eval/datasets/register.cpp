@@ -21,8 +21,8 @@ void RegisterDatasetLoaders(Registry& registry) {
                  return std::make_unique<SameConnectivityDataset>(ReadSameConnectivityOptions(o));
                });
   registry.Add("dataset", "kim2011",
-               "Kim et al. 2011 layout: Data/<SET>/Meshes, named landmarks, symmetric landmark "
-               "pairs",
+               "the Kim et al. 2011 benchmark as distributed: Data/<SET>/Meshes, Corrs/*.pid|"
+               "*.vts landmarks and *.sym.info mirrors, Results/Corr_*.query",
                [](OptionReader& o) { return std::make_unique<Kim2011Dataset>(ReadKim2011Options(o)); });
   registry.Add("dataset", "synthetic",
                "generated symmetric articulated figures with exact ground truth (cached, read "

@@ -10,6 +10,16 @@ namespace symembed {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+std::vector<std::string> MeshPaths(const std::vector<std::pair<std::string, std::string>>& meshes) {
+  std::vector<std::string> paths;
+  for (const auto& [stem, path] : meshes) paths.push_back(path);
+  return paths;
+}
+
+}  // namespace
+
 SameConnectivityOptions ReadSameConnectivityOptions(OptionReader& options) {
   SameConnectivityOptions o;
   o.root = options.GetRequiredString("root");
@@ -31,28 +41,15 @@ DatasetIndex SameConnectivityDataset::Load() const {
   std::vector<DatasetShape> shapes;
   std::map<std::string, size_t> by_name;
   std::vector<DatasetPair> pairs;
-  std::map<std::string, std::string> class_dir;
   for (const std::string& c : classes) {
     const std::string dir = (fs::path(root) / c).string();
     const auto meshes = ListMeshes(dir);
     if (meshes.empty()) continue;
-    class_dir[c] = dir;
-    int count = -1;
-    std::string first;
     std::vector<DatasetShape> members;
     for (const auto& [stem, path] : meshes) {
       if (by_name.count(stem)) {
         throw InvalidInputError("same_connectivity: shape name '" + stem + "' is used twice: " +
                                 shapes[by_name[stem]].mesh_path + " and " + path);
-      }
-      const int n = CountMeshVertices(path);
-      if (count < 0) {
-        count = n;
-        first = path;
-      } else if (n != count) {
-        throw InvalidInputError(path + ": " + std::to_string(n) + " vertices, but " + first +
-                                " has " + std::to_string(count) +
-                                " (meshes of a class must share vertex ids)");
       }
       by_name[stem] = shapes.size();
       shapes.push_back({stem, c, path});
@@ -60,13 +57,16 @@ DatasetIndex SameConnectivityDataset::Load() const {
     }
     const std::string sym = (fs::path(dir) / "sym.txt").string();
     if (fs::exists(sym)) {
+      // Checked against the class's template; a mesh that breaks the template fails on its own
+      // (GroundTruth), together with its pairs, not the dataset.
+      const ClassTemplate shared = FindClassTemplate(MeshPaths(meshes));
       const auto values = ReadIntegerLines(sym);
-      if (static_cast<int>(values.size()) != count) {
-        throw InvalidInputError(sym + ": " + std::to_string(values.size()) + " lines, but the " +
-                                "meshes of class " + c + " have " + std::to_string(count) +
-                                " vertices (" + first + ")");
+      if (static_cast<int>(values.size()) != shared.vertices) {
+        throw InvalidInputError(
+            sym + ": " + std::to_string(values.size()) + " lines, but the meshes of class " + c +
+            " have " + std::to_string(shared.vertices) + " vertices (" + shared.example + ")");
       }
-      OneBasedIds(values, sym, count, false);
+      OneBasedIds(values, sym, shared.vertices, false);
     }
     if (options_.restrictions.pairs_file.empty()) {
       const std::string class_pairs = (fs::path(dir) / "pairs.txt").string();
@@ -108,11 +108,13 @@ DatasetIndex SameConnectivityDataset::Load() const {
 
 ShapeGroundTruth SameConnectivityDataset::GroundTruth(const DatasetShape& shape,
                                                       int num_vertices) const {
+  const std::string dir = (fs::path(options_.root) / shape.class_name).string();
+  CheckClassTemplate(shape.mesh_path, num_vertices, FindClassTemplate(MeshPaths(ListMeshes(dir))),
+                     shape.class_name + " (" + dir + ")");
   ShapeGroundTruth gt;
   gt.ids.resize(num_vertices);
   for (int v = 0; v < num_vertices; ++v) gt.ids[v] = v;
-  const std::string sym =
-      (fs::path(options_.root) / shape.class_name / "sym.txt").string();
+  const std::string sym = (fs::path(dir) / "sym.txt").string();
   if (fs::exists(sym)) {
     const auto values = ReadIntegerLines(sym);
     if (static_cast<int>(values.size()) != num_vertices) {

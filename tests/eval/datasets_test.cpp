@@ -203,18 +203,15 @@ TEST(SameConnectivity, RejectsMalformedInputNamingFileAndLine) {
   WriteText(root + "/scape/sym.txt", "2\n1\n3\n5\n");
   ExpectError<InvalidInputError>([&] { dataset.Load(); },
                                  {"scape/sym.txt:4: vertex id 5 out of range [1, 4]"});
-  WriteText(root + "/scape/sym.txt", "2\n1\n3\n4\n");
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n");  // changed after Load
   ExpectError<InvalidInputError>(
-      [&] { dataset.GroundTruth({"mesh000", "scape", root + "/scape/mesh000.off"}, 5); },
-      {"sym.txt: 4 lines", "mesh000.off has 5 vertices"});
+      [&] { dataset.GroundTruth({"mesh000", "scape", root + "/scape/mesh000.off"}, 4); },
+      {"sym.txt: 3 lines", "mesh000.off has 4 vertices"});
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n4\n");
   WriteText(root + "/scape/pairs.txt", "mesh000 mesh001\nmesh000 mesh009\n");
   ExpectError<InvalidInputError>([&] { dataset.Load(); },
                                  {"scape/pairs.txt:2: unknown shape 'mesh009'"});
   fs::remove(root + "/scape/pairs.txt");
-  WriteText(root + "/scape/mesh002.off", Tetrahedron(2));
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"mesh002.off: 6 vertices", "mesh000.off has 4"});
-  fs::remove(root + "/scape/mesh002.off");
   WriteText(root + "/other/mesh001.off", Tetrahedron());
   ExpectError<InvalidInputError>([&] { dataset.Load(); }, {"shape name 'mesh001' is used twice"});
   fs::remove_all(root + "/other");
@@ -224,91 +221,202 @@ TEST(SameConnectivity, RejectsMalformedInputNamingFileAndLine) {
                                  {"all_pairs.txt:2: unknown shape 'meshX'"});
 }
 
-// --- kim2011 ---------------------------------------------------------------------------------
-
-// Data/SCAPE with three meshes; mesh002 lacks the nose; left/right hands are mirror pairs.
-void WriteKimTree(const std::string& root) {
-  const std::string set = root + "/Data/SCAPE";
-  for (const char* name : {"mesh000", "mesh001", "mesh002"}) {
-    WriteText(set + "/Meshes/" + name + ".off", Tetrahedron(2));
-  }
-  WriteText(set + "/Landmarks/mesh000.vts", "# id name\n0 left_hand\n1 right_hand\n2 nose\n");
-  WriteText(set + "/Landmarks/mesh001.vts", "3 nose\n4 right_hand\n5 left_hand\n");
-  WriteText(set + "/Landmarks/mesh002.vts", "1 left_hand\n\n0 right_hand\n");
-  WriteText(set + "/symmetric_landmarks.txt", "left_hand right_hand\n");
-  WriteText(set + "/pairs.txt", "mesh000 mesh001\nmesh001 mesh002\n");
-  WriteText(root + "/Data/TOSCA/Meshes/cat0.off", Tetrahedron());
-  WriteText(root + "/Data/TOSCA/Meshes/cat1.off", Tetrahedron());
-  WriteText(root + "/Data/TOSCA/Landmarks/cat0.vts", "0 tail\n");
-  WriteText(root + "/Data/TOSCA/Landmarks/cat1.vts", "3 tail\n");
+TEST(SameConnectivity, AMeshThatBreaksItsClassTemplateFailsAloneNotTheDataset) {
+  TempDir dir;
+  const std::string root = dir.path();
+  // The first mesh in name order is the odd one: the template is what most meshes have.
+  WriteText(root + "/scape/mesh000.off", Tetrahedron(2));
+  WriteText(root + "/scape/mesh001.off", Tetrahedron());
+  WriteText(root + "/scape/mesh002.off", Tetrahedron());
+  WriteText(root + "/scape/sym.txt", "2\n1\n3\n4\n");
+  SameConnectivityDataset dataset(SameConnectivityOptions{root, {}});
+  const DatasetIndex index = dataset.Load();
+  EXPECT_EQ(index.pairs.size(), 3u);
+  EXPECT_EQ(dataset.GroundTruth(*index.Find("mesh001"), 4).sym_ids,
+            (std::vector<int>{1, 0, 2, 3}));
+  ExpectError<InvalidInputError>(
+      [&] { dataset.GroundTruth(*index.Find("mesh000"), 6); },
+      {root + "/scape/mesh000.off: 6 vertices", "template of class scape", "has 4",
+       "2 of its 3 meshes", "mesh001.off"});
+  // A tie keeps the count of the first mesh in name order.
+  fs::remove(root + "/scape/mesh002.off");
+  fs::remove(root + "/scape/sym.txt");
+  EXPECT_NO_THROW(dataset.GroundTruth(*index.Find("mesh000"), 6));
+  ExpectError<InvalidInputError>([&] { dataset.GroundTruth(*index.Find("mesh001"), 4); },
+                                 {"mesh001.off: 4 vertices", "has 6"});
 }
 
-TEST(Kim2011, ReadsNamedLandmarksAndMirrorPairs) {
+// --- kim2011 ---------------------------------------------------------------------------------
+
+// The benchmark's layout in small: SCAPE (one class file for all meshes; mesh003 breaks the
+// 6-vertex template), TOSCA (a class file per class; gorilla0 has none), Watertight (a landmark
+// file per numbered mesh, classes of 20), and query files for SCAPE and TOSCA.
+void WriteKimTree(const std::string& root) {
+  const std::string scape = root + "/Data/SCAPE/";
+  for (const char* name : {"mesh000", "mesh001", "mesh002"}) {
+    WriteText(scape + "Meshes/" + name + ".off", Tetrahedron(2));
+  }
+  WriteText(scape + "Meshes/mesh003.off", Tetrahedron(1));
+  WriteText(scape + "Meshes/mesh000.hks.off", "not a mesh\n");
+  WriteText(scape + "Meshes/camera0.txt", "not a mesh\n");
+  WriteText(scape + "Corrs/1.pid", "0 0.5 1 2\n5 0.5 1 2\n2 0 0 0\n3 0 0 0\n\n");
+  WriteText(scape + "Corrs/1.info", "0: left hand\n1: right hand\n2: nose\n3: navel\n");
+  WriteText(scape + "Corrs/1.sym.info", "0 1\n2\n");  // 2 on the plane, 3 not listed
+  const std::string tosca = root + "/Data/TOSCA/";
+  for (const char* name : {"cat0", "cat1", "cat2", "cat10", "gorilla0"}) {
+    WriteText(tosca + "Meshes/" + name + ".off", Tetrahedron());
+  }
+  WriteText(tosca + "Meshes/david0.off", Tetrahedron(1));
+  WriteText(tosca + "Meshes/david1.off", Tetrahedron(1));
+  WriteText(tosca + "Corrs/cat.pid", "0 1 1 1\n1 1 1 1\n");
+  WriteText(tosca + "Corrs/cat.sym.info", "1 0\n");
+  WriteText(tosca + "Corrs/david.pid", "4 0 0 0\n");
+  const std::string watertight = root + "/Data/Watertight/";
+  for (const char* name : {"1", "2", "21", "22"}) {
+    WriteText(watertight + "Meshes/" + name + ".off", Tetrahedron());
+  }
+  WriteText(watertight + "Corrs/1.vts", "0 0 0 0\n1 0 0 0\n2 0 0 0\n");
+  WriteText(watertight + "Corrs/2.vts", "3\n2\n1\n");
+  WriteText(watertight + "Corrs/1.sym.info", "0 1\n2\n");
+  WriteText(watertight + "Corrs/21.vts", "0\n");
+  WriteText(watertight + "Corrs/22.vts", "1\n");
+  // Indices in natural name order: SCAPE mesh000..mesh003 = 0..3 (not the .hks.off); TOSCA
+  // cat0 cat1 cat2 cat10 david0 david1 gorilla0 = 0..6.
+  WriteText(root + "/Results/Corr_SCAPE.query", "SCAPE\n1\n2\nSCAPE\n1\n0\nSCAPE\n1\n3\n");
+  WriteText(root + "/Results/Corr_Tosca.query",
+            "tosca\n1\n3\n\ntosca\n1\n2\ntosca\n1\n4\ntosca\n1\n5\ntosca\n1\n6\n");
+}
+
+std::vector<std::string> PairNames(const DatasetIndex& index) {
+  std::vector<std::string> out;
+  for (const auto& p : index.pairs) out.push_back(p.source + ">" + p.target);
+  return out;
+}
+
+TEST(Kim2011, ReadsTheBenchmarkLayoutQueriesAndMirrors) {
   TempDir dir;
   WriteKimTree(dir.path());
   auto dataset = Create("{type: kim2011, root: " + dir.path() + "}");
-  const DatasetIndex index = dataset->Load();
-  ASSERT_EQ(index.shapes.size(), 5u);
-  ASSERT_EQ(index.pairs.size(), 3u);  // SCAPE: listed 2; TOSCA: all pairs (1)
-  EXPECT_EQ(index.Find("mesh001")->class_name, "SCAPE");
-  EXPECT_EQ(index.Find("cat0")->mesh_path, dir.path() + "/Data/TOSCA/Meshes/cat0.off");
-  // Lines: left_hand, nose, right_hand (sorted names of the set).
-  const ShapeGroundTruth m1 = dataset->GroundTruth(*index.Find("mesh001"), 6);
-  EXPECT_EQ(m1.ids, (std::vector<int>{5, 3, 4}));
-  EXPECT_EQ(m1.sym_ids, (std::vector<int>{4, 3, 5}));
-  const ShapeGroundTruth m2 = dataset->GroundTruth(*index.Find("mesh002"), 6);
-  EXPECT_EQ(m2.ids, (std::vector<int>{1, -1, 0}));
-  EXPECT_EQ(m2.sym_ids, (std::vector<int>{0, -1, 1}));
-  const ShapeGroundTruth cat = dataset->GroundTruth(*index.Find("cat1"), 4);
-  EXPECT_EQ(cat.ids, (std::vector<int>{3}));
-  EXPECT_TRUE(cat.sym_ids.empty());  // TOSCA set has no symmetric_landmarks.txt
-  // 1-based ids and set restriction.
-  auto one_based =
-      Create("{type: kim2011, root: " + dir.path() + ", id_base: 1, classes: [TOSCA]}");
-  const DatasetIndex tosca = one_based->Load();
-  ASSERT_EQ(tosca.shapes.size(), 2u);
-  ExpectError<InvalidInputError>([&] { one_based->GroundTruth(*tosca.Find("cat0"), 4); },
-                                 {"cat0.vts:1: vertex id 0 out of range [1, 4]"});
+  const DatasetIndex index = dataset->Load();  // mesh003 breaks its template: not the dataset
+  // SCAPE and TOSCA: queried meshes of one class, first queried is the source; Watertight (no
+  // query file): all pairs within each class of 20.
+  EXPECT_EQ(PairNames(index),
+            (std::vector<std::string>{"mesh002>mesh000", "mesh002>mesh003", "mesh000>mesh003",
+                                      "cat10>cat2", "david0>david1", "1>2", "21>22"}));
+  EXPECT_EQ(index.Find("mesh003")->class_name, "SCAPE/1");
+  EXPECT_EQ(index.Find("cat10")->class_name, "TOSCA/cat");
+  EXPECT_EQ(index.Find("21")->class_name, "Watertight/21-40");
+  EXPECT_EQ(index.Find("cat2")->mesh_path, dir.path() + "/Data/TOSCA/Meshes/cat2.off");
+  EXPECT_EQ(index.Find("mesh001"), nullptr);  // in no pair
+
+  const ShapeGroundTruth m0 = dataset->GroundTruth(*index.Find("mesh000"), 6);
+  EXPECT_EQ(m0.ids, (std::vector<int>{0, 5, 2, 3}));
+  EXPECT_EQ(m0.sym_ids, (std::vector<int>{5, 0, 2, -1}));
+  ExpectError<InvalidInputError>(
+      [&] { dataset->GroundTruth(*index.Find("mesh003"), 5); },
+      {"SCAPE/Meshes/mesh003.off: 5 vertices", "template of class SCAPE/1", "Corrs/1.pid",
+       "has 6 (3 of its 4 meshes"});
+  const ShapeGroundTruth cat = dataset->GroundTruth(*index.Find("cat10"), 4);
+  EXPECT_EQ(cat.ids, (std::vector<int>{0, 1}));
+  EXPECT_EQ(cat.sym_ids, (std::vector<int>{1, 0}));
+  const ShapeGroundTruth david = dataset->GroundTruth(*index.Find("david1"), 5);
+  EXPECT_EQ(david.ids, (std::vector<int>{4}));
+  EXPECT_TRUE(david.sym_ids.empty());  // no david.sym.info
+  const ShapeGroundTruth w1 = dataset->GroundTruth(*index.Find("1"), 4);
+  EXPECT_EQ(w1.ids, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(w1.sym_ids, (std::vector<int>{1, 0, 2}));
+  EXPECT_EQ(dataset->GroundTruth(*index.Find("2"), 4).ids, (std::vector<int>{3, 2, 1}));
+  ExpectError<InvalidInputError>(
+      [&] { dataset->GroundTruth({"gorilla0", "TOSCA/gorilla", dir.path() + "/g.off"}, 4); },
+      {"g.off: no landmarks", "Corrs/gorilla0.vts", "Corrs/gorilla.pid"});
+}
+
+TEST(Kim2011, RestrictionsSelectSetsClassesAndPairs) {
+  TempDir dir;
+  WriteKimTree(dir.path());
+  const std::string base = "{type: kim2011, root: " + dir.path();
+  EXPECT_EQ(PairNames(Create(base + ", classes: [TOSCA]}")->Load()),
+            (std::vector<std::string>{"cat10>cat2", "david0>david1"}));
+  EXPECT_EQ(PairNames(Create(base + ", classes: [TOSCA/david, Watertight]}")->Load()),
+            (std::vector<std::string>{"david0>david1", "1>2", "21>22"}));
+  EXPECT_EQ(Create(base + ", max_pairs: 2}")->Load().pairs.size(), 2u);
+  WriteText(dir.File("mine.txt"), "cat1 cat0\n");
+  EXPECT_EQ(PairNames(Create(base + ", pairs_file: mine.txt}")->Load()),
+            (std::vector<std::string>{"cat1>cat0"}));
+  ExpectError<InvalidInputError>([&] { Create(base + ", classes: [FAUST]}")->Load(); },
+                                 {"classes: 'FAUST' names no set", "SCAPE, TOSCA, Watertight"});
+  ExpectError<InvalidInputError>([&] { Create(base + ", classes: [TOSCA/horse]}")->Load(); },
+                                 {"no shape of class 'TOSCA/horse'", "TOSCA/cat"});
+  ExpectError<ConfigError>([&] { Create(base + ", id_base: 1}"); }, {"unknown key 'id_base'"});
 }
 
 TEST(Kim2011, RejectsMalformedInputNamingFileAndLine) {
   TempDir dir;
   const std::string root = dir.path();
   WriteKimTree(root);
-  Kim2011Dataset dataset(Kim2011Options{root, 0, {}});
-  const std::string set = root + "/Data/SCAPE";
-  const DatasetShape mesh001{"mesh001", "SCAPE", set + "/Meshes/mesh001.off"};
-  ExpectError<InvalidInputError>([&] { dataset.GroundTruth(mesh001, 5); },
-                                 {"Landmarks/mesh001.vts:3: vertex id 5 out of range [0, 4]"});
-  WriteText(set + "/Landmarks/mesh001.vts", "3 nose\n4 right_hand\n5 nose\n");
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"mesh001.vts:3: landmark 'nose' already given on line 1"});
-  WriteText(set + "/Landmarks/mesh001.vts", "3 nose\nright_hand 4\n");
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"mesh001.vts:2: expected '<vertex id> <landmark name>'"});
-  WriteText(set + "/Landmarks/mesh001.vts", "3 nose\n4 right_hand\n5 left_hand\n");
-  WriteText(set + "/symmetric_landmarks.txt", "left_hand right_hand\nleft_eye right_eye\n");
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"symmetric_landmarks.txt:2: unknown landmark 'left_eye'"});
-  WriteText(set + "/symmetric_landmarks.txt", "left_hand right_hand\nnose left_hand\n");
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"symmetric_landmarks.txt:2: landmark 'left_hand' already paired"});
-  WriteText(set + "/symmetric_landmarks.txt", "left_hand right_hand\n");
-  WriteText(set + "/pairs.txt", "mesh000 mesh001\nmesh001 mesh003\n");
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"SCAPE/pairs.txt:2: unknown shape 'mesh003'"});
-  WriteText(set + "/pairs.txt", "mesh000 mesh001\n");
-  fs::remove(set + "/Landmarks/mesh002.vts");
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"missing landmark file", "Landmarks/mesh002.vts"});
-  WriteText(set + "/Landmarks/mesh002.vts", "1 left_hand\n");
-  WriteText(set + "/Landmarks/mesh009.vts", "1 left_hand\n");
-  ExpectError<InvalidInputError>([&] { dataset.Load(); },
-                                 {"landmark file", "mesh009.vts has no mesh"});
-  fs::remove(set + "/Landmarks/mesh009.vts");
-  EXPECT_NO_THROW(dataset.Load());
-  ExpectError<IoError>([&] { Kim2011Dataset(Kim2011Options{root + "/x", 0, {}}).Load(); },
-                       {"not a directory"});
+  Kim2011Dataset dataset(Kim2011Options{root, {}});
+  auto load = [&] { dataset.Load(); };
+  const std::string query = root + "/Results/Corr_SCAPE.query";
+  const std::vector<std::pair<std::string, std::string>> bad_queries = {
+      {"FAUST\n1\n0\n", "Corr_SCAPE.query:1: unknown set 'FAUST'"},
+      {"SCAPE\n2\n0\n", "Corr_SCAPE.query:2: expected 1"},
+      {"SCAPE\n1\nx\n", "Corr_SCAPE.query:3: expected a mesh index"},
+      {"SCAPE\n1\n0\nSCAPE\n1\n", "Corr_SCAPE.query:4: the file ends inside this group"},
+      {"SCAPE\n1\n4\n", "Corr_SCAPE.query:3: mesh index 4 of set SCAPE has no mesh"},
+      {"SCAPE\n1\n0\n\nSCAPE\n1\n0\n", "Corr_SCAPE.query:7: mesh mesh000 (index 0) is already "
+                                       "queried at " + query + ":3"}};
+  for (const auto& [text, message] : bad_queries) {
+    WriteText(query, text);
+    ExpectError<InvalidInputError>(load, {message});
+  }
+  WriteText(query, "SCAPE\n1\n0\nSCAPE\n1\n1\n");
+  EXPECT_NO_THROW(load());
+
+  const std::string pid = root + "/Data/SCAPE/Corrs/1.pid";
+  const std::vector<std::pair<std::string, std::string>> bad_pids = {
+      {"0\n\n5\n", "1.pid:2: blank line before the last landmark"},
+      {"0\nnose 1 2 3\n", "1.pid:2: expected a line starting with a vertex id, got 'nose'"},
+      {"0\n-1 0 0 0\n", "1.pid:2: vertex id -1 is negative"},
+      {"\n", "1.pid:1: no landmark lines"}};
+  for (const auto& [text, message] : bad_pids) {
+    WriteText(pid, text);
+    ExpectError<InvalidInputError>(load, {message});
+  }
+  WriteText(pid, "0\n9\n2\n3\n");
+  EXPECT_NO_THROW(load());
+  const DatasetShape mesh000{"mesh000", "SCAPE/1", root + "/Data/SCAPE/Meshes/mesh000.off"};
+  ExpectError<InvalidInputError>([&] { dataset.GroundTruth(mesh000, 6); },
+                                 {"1.pid:2: vertex id 9 out of range [0, 5]", "mesh000.off"});
+
+  const std::string sym = root + "/Data/SCAPE/Corrs/1.sym.info";
+  const std::vector<std::pair<std::string, std::string>> bad_mirrors = {
+      {"0 1 2\n", "1.sym.info:1: expected one or two landmark lines"},
+      {"0 1\n3 7\n", "1.sym.info:2: '7' is not a landmark line of " + pid + " (0 to 3)"},
+      {"0 1\n1 2\n", "1.sym.info:2: landmark line 1 already listed on line 1"}};
+  for (const auto& [text, message] : bad_mirrors) {
+    WriteText(sym, text);
+    ExpectError<InvalidInputError>(load, {message});
+  }
+  WriteText(sym, "0 1\n");
+
+  WriteText(root + "/Data/Watertight/Corrs/2.vts", "3\n2\n");
+  ExpectError<InvalidInputError>(load, {"pair 1 -> 2 has landmark files of different lengths",
+                                        "Corrs/1.vts has 3 lines", "Corrs/2.vts has 2"});
+  WriteText(root + "/Data/Watertight/Corrs/2.vts", "3\n2\n1\n");
+
+  WriteText(root + "/pairs.txt", "cat0 cat1\ncat0 horse0\n");
+  Kim2011Dataset listed(Kim2011Options{root, {{}, 0, "pairs.txt"}});
+  ExpectError<InvalidInputError>([&] { listed.Load(); },
+                                 {"pairs.txt:2: unknown shape 'horse0'"});
+  WriteText(root + "/pairs.txt", "cat0 david0\n");
+  ExpectError<InvalidInputError>([&] { listed.Load(); },
+                                 {"pairs.txt:1: shapes 'cat0' (TOSCA/cat) and 'david0' "
+                                  "(TOSCA/david) are in different classes"});
+
+  WriteText(root + "/Data/Other/Meshes/cat0.off", Tetrahedron());
+  ExpectError<InvalidInputError>(load, {"shape name 'cat0' is used twice"});
+  ExpectError<IoError>([&] { Kim2011Dataset(Kim2011Options{root + "/x", {}}).Load(); },
+                       {"not a directory", "/x/Data"});
 }
 
 // --- synthetic -------------------------------------------------------------------------------
