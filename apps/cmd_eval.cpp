@@ -62,8 +62,8 @@ int EvalCommand(const Args& args) {
       "of the input meshes) for the pairs of a dataset, with the evaluator of `symembed run`: "
       "geodesic errors d_B(T(a_i), b_i) / sqrt(area(B)) on the preprocessed target, curves, "
       "flip-tolerant errors and left-right flips. Writes summary.json, pairs.csv, curve.csv, "
-      "timings.csv (and curves.png/svg when matplotlib is available) and eval.json (the "
-      "inputs, to find the meshes and maps again) into the output folder. "
+      "timings.csv (and curves.png/svg when matplotlib is available), eval.json (the inputs) and "
+      "the HTML report report/index.html into the output folder. "
       "A missing or malformed map (wrong length, NaN, non-integral or out-of-range ids) fails "
       "only its pair, with the file and line in pairs.csv and on stderr. Exit code 0 when "
       "every pair was scored, 1 when some failed.");
@@ -84,6 +84,7 @@ int EvalCommand(const Args& args) {
   parser.Option("out", "output folder", "results/NAME");
   parser.Option("jobs", "worker threads (0 = all cores)", "0");
   parser.Option("cache-mb", "memory budget of the geodesic distance cache in MiB", "2048");
+  parser.Switch("no-report", "do not write the HTML report (OUT/report; see symembed report)");
   if (!parser.Parse(args)) return 0;
   for (const char* required : {"dataset", "maps", "base", "name"}) {
     if (!parser.Given(required)) throw UsageError{std::string("--") + required + " is required"};
@@ -122,6 +123,7 @@ int EvalCommand(const Args& args) {
   if (!PlotCurves(out, &warning)) std::cerr << "symembed eval: warning: " << warning << "\n";
 
   PrintEvalReport(name, out, result, summary);
+  if (!parser.Flag("no-report")) ReportAfterCommand("eval", out, registry);
   return summary.failed_pairs > 0 ? 1 : 0;
 }
 
