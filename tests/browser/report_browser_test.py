@@ -349,7 +349,7 @@ def main():
         results = os.path.join(work, "results", "quickstart")
         start = time.time()
         # cwd = work: the synthetic dataset's default cache is relative to the working directory.
-        run = subprocess.run([args.symembed, "run", os.path.abspath(args.config), "--quiet", "--jobs", "2",
+        run = subprocess.run([os.path.abspath(args.symembed), "run", os.path.abspath(args.config), "--quiet", "--jobs", "2",
                               "--cache", os.path.join(work, "cache"), "--out", results],
                              cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         print("run: %.1f s" % (time.time() - start))
