@@ -1,7 +1,7 @@
 // `symembed report`: an HTML report of a results folder, opened straight from the file system
 // (file://) in a current browser, without network. Layout of the report folder:
 //
-//   index.html, report.css, report.js, plot.js, viewer.js   the page (eval/html/assets/)
+//   index.html, report.css, *.js   the page (eval/html/assets/)
 //   data.js              window.SYMEMBED_REPORT: every variant's summary.json, curve, pairs.csv
 //                        rows with stage times, class and side file (as {columns, rows}),
 //                        config.yaml text and its differences from the first variant's, the

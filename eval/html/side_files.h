@@ -5,8 +5,8 @@
 //   symembedData("shape", "cat0", {"vertices": 5000, "positions": {...}, ...});
 //
 // A page opened from file:// may not read local files with fetch() or XMLHttpRequest (Chromium
-// blocks it), but it may load <script src>; report.js defines symembedData and decodes the
-// arrays with the browser's DecompressionStream("deflate").
+// blocks it), but it may load <script src>; the page (eval/html/assets/sidefiles.js) defines
+// symembedData and decodes the arrays with the browser's DecompressionStream("deflate").
 //
 // An encoded array is a JSON object:
 //   {"type": "u8" | "u16" | "u32", "count": n, "shift": s, "zlib": "<base64 of zlib stream>"}
@@ -55,7 +55,7 @@ JsonValue EncodeUnitValues(const std::vector<double>& x, double max_value);
 // vertex with a parent p in that search is coded by the rank r of map[v] in the breadth-first
 // enumeration of the target from map[p] (r in [0, 254]); otherwise, or when r would be > 254,
 // by 255 and its id, next in "ids". JSON: {"coding": "ranks", "ranks": u8 array (#source
-// vertices, in visiting order), "ids": EncodeIds}. report.js decodes it the same way.
+// vertices, in visiting order), "ids": EncodeIds}. transfer.js decodes it the same way.
 // faces: #F x 3 vertex ids, row-major. Throws InvalidInputError for an id out of range.
 JsonValue EncodeVertexMap(const std::vector<int>& map, int source_vertices,
                           const std::vector<int>& source_faces, int target_vertices,
@@ -72,7 +72,7 @@ struct VertexAdjacency {
 };
 VertexAdjacency BuildVertexAdjacency(int vertices, const std::vector<int>& faces);
 
-// The decoded integers of any encoded array above (the quantized ones undecoded), as report.js
+// The decoded integers of any encoded array above (the quantized ones undecoded), as sidefiles.js
 // reads them; for tests and tools. Throws InvalidInputError for a malformed array.
 std::vector<int64_t> DecodeArray(const JsonValue& encoded);
 

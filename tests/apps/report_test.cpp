@@ -116,8 +116,9 @@ TEST_F(ReportTest, RunWritesItsReportAndSaysWhere) {
   EXPECT_NE(run_log_.find("report: " + tmp_->File("run") + "/report/index.html"),
             std::string::npos)
       << run_log_;
-  for (const char* file : {"index.html", "data.js", "report.js", "viewer.js", "plot.js",
-                           "transfer.js", "report.css"}) {
+  for (const char* file : {"index.html", "data.js", "report.css", "page.js", "plot.js", "viewer.js",
+                           "transfer.js", "sidefiles.js", "experiment.js", "pairs.js",
+                           "report.js"}) {
     EXPECT_TRUE(fs::exists(tmp_->File("run/report/") + file)) << file;
   }
 }

@@ -220,7 +220,7 @@ def check(condition, message):
         raise Failure(message)
 
 
-SUMMARY_KEYS = {  # summary table column (report.js) -> path in summary.json
+SUMMARY_KEYS = {  # summary table column (experiment.js) -> path in summary.json
     "pairs": ["pairs"], "failed_pairs": ["failed_pairs"], "mean_direct": ["mean_direct"],
     "median_direct": ["median_direct"], "mean_flip_tolerant": ["mean_flip_tolerant"],
     "auc_direct": ["auc_direct"], "auc_flip_tolerant": ["auc_flip_tolerant"],
@@ -287,7 +287,7 @@ def check_pair_table(browser, url, results):
 
 
 def map_checksum(path):
-    """report.js's checksum of a decoded map: sum of (i + 1) * (1-based target id), mod 1e9+7."""
+    """pairs.js's checksum of a decoded map: sum of (i + 1) * (1-based target id), mod 1e9+7."""
     with open(path) as f:
         ids = [int(line) for line in f if line.strip()]
     return sum((i + 1) * t for i, t in enumerate(ids)) % 1000000007

@@ -1,4 +1,5 @@
-// The side-file encoding of the HTML report (eval/html/side_files.h): what report.js decodes.
+// The side-file encoding of the HTML report (eval/html/side_files.h): what the page decodes
+// (eval/html/assets/sidefiles.js, transfer.js).
 #include "eval/html/side_files.h"
 
 #include <gtest/gtest.h>
