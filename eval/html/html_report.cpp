@@ -138,12 +138,15 @@ JsonValue StringArray(const std::vector<std::string>& items) {
 }
 
 // Title and description from the first variant's config.yaml (name, description), else the
-// folder's name.
+// name of a single variant (a `symembed eval` folder) or the folder's.
 void SetTitle(const std::string& results_dir, const std::vector<VariantInputs>& variants,
               JsonValue* report) {
   std::string title = fs::absolute(results_dir).lexically_normal().filename().string();
   if (title.empty()) {
     title = fs::absolute(results_dir).lexically_normal().parent_path().filename().string();
+  }
+  if (variants.size() == 1 && fs::exists(EvalSourcePath(variants.front().variant.dir))) {
+    title = variants.front().variant.name;
   }
   std::string description;
   const JsonValue& config = variants.front().data.Get("config");

@@ -194,9 +194,13 @@ std::vector<ReportVariant> FindReportVariants(const std::string& results_dir,
     }
     return variants;
   }
-  if (fs::exists(results_dir + "/summary.json")) {
-    std::string name = fs::path(results_dir).lexically_normal().filename().string();
-    if (name.empty() || name == ".") {
+  const std::string summary = results_dir + "/summary.json";
+  if (fs::exists(summary)) {
+    // The variant's own name (symembed eval's --name), else the folder's.
+    const JsonValue variant = ParseJson(ReadFileOrThrow(summary), summary).Get("variant");
+    std::string name = variant.IsString() ? variant.AsString() : "";
+    if (name.empty()) name = fs::absolute(results_dir).lexically_normal().filename().string();
+    if (name.empty()) {
       name = fs::absolute(results_dir).lexically_normal().parent_path().filename().string();
     }
     return {{name, results_dir}};

@@ -11,7 +11,7 @@
 namespace symembed {
 
 struct ReportVariant {
-  std::string name;  // the variant ("base", ...), or the folder name of a `symembed eval` output
+  std::string name;  // the variant ("base", ...; summary.json's "variant" for a single folder)
   std::string dir;   // its folder (summary.json, pairs.csv, ...)
 };
 

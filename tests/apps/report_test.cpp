@@ -261,6 +261,35 @@ TEST_F(ReportTest, AMissingDatasetLeavesTheTablesAndSaysWhy) {
   EXPECT_EQ(base.Get("pairs").items().size(), 6u);
 }
 
+// symembed eval keeps its inputs (eval.json), so its report finds the meshes and maps; it keeps
+// no per-pair records, so the views have no heat map and say why.
+TEST_F(ReportTest, AnEvalFolderHasItsMapsButNoPerPointErrors) {
+  const std::string out = tmp_->File("eval_out");
+  std::string log;
+  ASSERT_EQ(Symembed("eval --dataset " + tmp_->File("config.yaml") + " --maps " +
+                         tmp_->File("run/oracle/maps") + " --base 1 --name scored --jobs 2 --out " +
+                         out,
+                     &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("report: " + out + "/report/index.html"), std::string::npos) << log;
+  const JsonValue report = ReportJson(out + "/report");
+  EXPECT_EQ(report.Get("title").AsString(), "scored");
+  const auto& variants = report.Get("variants").items();
+  ASSERT_EQ(variants.size(), 1u);
+  EXPECT_EQ(variants[0].Get("name").AsString(), "scored");
+  EXPECT_FALSE(variants[0].Get("has_records").AsBool());
+  ASSERT_EQ(variants[0].Get("pairs").items().size(), 6u);
+  const JsonValue& pair = variants[0].Get("pairs").items()[0];
+  ASSERT_TRUE(pair.Get("view").IsString());
+  const std::string side = ReadText(out + "/report/pairs/" + pair.Get("view").AsString() + ".js");
+  const JsonValue payload =
+      ParseJson(side.substr(side.find('{'), side.rfind('}') - side.find('{') + 1), "side file");
+  EXPECT_TRUE(payload.Get("map").IsObject());
+  EXPECT_FALSE(payload.Has("errors"));
+  EXPECT_NE(payload.Get("errors_note").AsString().find("symembed eval"), std::string::npos);
+}
+
 TEST_F(ReportTest, RefusesToReplaceAFolderThatIsNotAReport) {
   const std::string out = tmp_->File("not_a_report");
   WriteText(out + "/notes.txt", "mine\n");

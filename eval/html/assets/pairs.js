@@ -110,7 +110,9 @@
 
   function candidateTable(pair) {
     const errors = Array.isArray(pair.candidate_errors) ? pair.candidate_errors : [];
-    if (errors.length === 0) return h('p', { class: 'note' }, 'The candidates\' errors were not measured (no ground truth for this pair).');
+    if (errors.length === 0) {
+      return h('p', { class: 'note' }, 'Not recorded for this pair: a run records the oracle\'s error of each candidate when the dataset has ground truth; symembed eval scores maps only.');
+    }
     return h('table', { class: 'data compact', id: 'candidate-table' },
       h('thead', {}, h('tr', {}, h('th', {}, 'rotation of the target'), h('th', { class: 'num' }, 'mean error (oracle)'), h('th', {}, ''))),
       h('tbody', {}, errors.map((e, i) => h('tr', { class: i === pair.chosen ? 'chosen' : '' },
