@@ -117,8 +117,8 @@ int EvalCommand(const Args& args) {
   const ScoreMapsResult result = ScoreMaps(*setup.dataset, *setup.preprocess, evaluator, options);
   const VariantSummary summary = Summarize(name, result.pairs, evaluation, result.timings);
   WriteVariantOutputs(out, summary, result.pairs, result.timings);
-  WriteEvalSource(out, EvalSource{parser.Get("dataset"), options.maps_dir, options.base,
-                                  options.reverse});
+  WriteEvalSource(
+      out, EvalSource{parser.Get("dataset"), options.maps_dir, options.base, options.reverse});
   std::string warning;
   if (!PlotCurves(out, &warning)) std::cerr << "symembed eval: warning: " << warning << "\n";
 

@@ -54,8 +54,10 @@ EvalSource ReadEvalSource(const std::string& path) {
     source.base = static_cast<int>(j.Get("base").AsNumber());
     source.reverse = j.Get("reverse").AsBool();
   } catch (const InvalidInputError& e) {
-    throw InvalidInputError(path + ": expected dataset, maps (strings), base (number) and "
-                            "reverse (boolean): " + e.what());
+    throw InvalidInputError(path +
+                            ": expected dataset, maps (strings), base (number) and "
+                            "reverse (boolean): " +
+                            e.what());
   }
   return source;
 }

@@ -13,10 +13,10 @@
 
 #include "core/errors.h"
 #include "core/parallel.h"
+#include "eval/eval_setup.h"
 #include "eval/html/assets.h"
 #include "eval/html/pair_views.h"
 #include "eval/html/report_data.h"
-#include "eval/eval_setup.h"
 #include "registry/files.h"
 #include "registry/hash.h"
 #include "registry/run_outputs.h"
@@ -102,8 +102,9 @@ int64_t FolderBytes(const fs::path& dir) {
 void CheckReplaceable(const fs::path& out) {
   if (!fs::exists(out)) return;
   if (!fs::is_directory(out) || (!fs::is_empty(out) && !fs::exists(out / "index.html"))) {
-    throw IoError(out.string() + ": exists and is not a report folder (no index.html); "
-                                 "choose another --out");
+    throw IoError(out.string() +
+                  ": exists and is not a report folder (no index.html); "
+                  "choose another --out");
   }
 }
 
@@ -188,13 +189,16 @@ class ReportWriter {
     for (const auto& [name, job] : wanted) jobs.push_back(job);
     std::vector<ShapeView> views(jobs.size());
     fs::create_directories(dir_ / "shapes");
-    ParallelFor(static_cast<int>(jobs.size()), [&](int i) {
-      views[i] = BuildShapeView(*jobs[i].first, *jobs[i].second);
-      if (views[i].error.empty()) {
-        WriteFile(dir_ / "shapes" / (SafeFileStem(views[i].name) + ".js"), views[i].script);
-        views[i].script.clear();  // written; only the ground truth and size are needed now
-      }
-    }, threads_);
+    ParallelFor(
+        static_cast<int>(jobs.size()),
+        [&](int i) {
+          views[i] = BuildShapeView(*jobs[i].first, *jobs[i].second);
+          if (views[i].error.empty()) {
+            WriteFile(dir_ / "shapes" / (SafeFileStem(views[i].name) + ".js"), views[i].script);
+            views[i].script.clear();  // written; only the ground truth and size are needed now
+          }
+        },
+        threads_);
     JsonValue table = JsonValue::Object();
     for (ShapeView& view : views) {
       JsonValue entry = JsonValue::Object();
@@ -233,33 +237,36 @@ class ReportWriter {
     fs::create_directories(dir_ / "pairs");
     std::mutex mutex;
     std::set<std::string> written;
-    ParallelFor(static_cast<int>(jobs.size()), [&](int i) {
-      Job& job = jobs[i];
-      const VariantInputs& v = variants[job.variant];
-      if (!v.dataset) {
-        job.view.error = v.reason;
-        return;
-      }
-      for (const std::string* name : {&job.source, &job.target}) {
-        if (!shapes_.count(*name)) {
-          job.view.error = "shape " + *name + " is not in the dataset of " +
-                           VariantConfigPath(v.variant.dir);
-          return;
-        }
-      }
-      const double max_error = v.data.Get("summary").Get("max_error").NumberOr(0.25);
-      job.view = BuildPairView(shapes_.at(job.source), shapes_.at(job.target), v.maps,
-                               max_error > 0 ? max_error : 0.25);
-      if (!job.view.error.empty()) return;
-      job.view.key = SafeFileStem(job.view.key);
-      bool fresh = false;
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        fresh = written.insert(job.view.key).second;
-      }
-      if (fresh) WriteFile(dir_ / "pairs" / (job.view.key + ".js"), job.view.script);
-      job.view.script.clear();
-    }, threads_);
+    ParallelFor(
+        static_cast<int>(jobs.size()),
+        [&](int i) {
+          Job& job = jobs[i];
+          const VariantInputs& v = variants[job.variant];
+          if (!v.dataset) {
+            job.view.error = v.reason;
+            return;
+          }
+          for (const std::string* name : {&job.source, &job.target}) {
+            if (!shapes_.count(*name)) {
+              job.view.error = "shape " + *name + " is not in the dataset of " +
+                               VariantConfigPath(v.variant.dir);
+              return;
+            }
+          }
+          const double max_error = v.data.Get("summary").Get("max_error").NumberOr(0.25);
+          job.view = BuildPairView(shapes_.at(job.source), shapes_.at(job.target), v.maps,
+                                   max_error > 0 ? max_error : 0.25);
+          if (!job.view.error.empty()) return;
+          job.view.key = SafeFileStem(job.view.key);
+          bool fresh = false;
+          {
+            std::lock_guard<std::mutex> lock(mutex);
+            fresh = written.insert(job.view.key).second;
+          }
+          if (fresh) WriteFile(dir_ / "pairs" / (job.view.key + ".js"), job.view.script);
+          job.view.script.clear();
+        },
+        threads_);
     result->pair_files = static_cast<int>(written.size());
 
     std::map<std::pair<size_t, size_t>, const Job*> by_row;
@@ -273,9 +280,10 @@ class ReportWriter {
         JsonValue row = old_rows[r];
         const std::string source = row.Get("source").AsString();
         const auto shape = shapes_.find(source);
-        row.Set("class", JsonValue::String(shape != shapes_.end() && !shape->second.class_name.empty()
-                                               ? shape->second.class_name
-                                               : ClassFromName(source)));
+        row.Set("class",
+                JsonValue::String(shape != shapes_.end() && !shape->second.class_name.empty()
+                                      ? shape->second.class_name
+                                      : ClassFromName(source)));
         const auto it = by_row.find({vi, r});
         if (it != by_row.end()) {
           const PairView& view = it->second->view;
@@ -342,8 +350,8 @@ JsonValue ReportData(const std::string& results_dir, std::vector<VariantInputs>&
 HtmlReportResult WriteHtmlReport(const std::string& results_dir, const HtmlReportOptions& options,
                                  const Registry& registry) {
   HtmlReportResult result;
-  const fs::path out = options.out_dir.empty() ? fs::path(results_dir) / "report"
-                                               : fs::path(options.out_dir);
+  const fs::path out =
+      options.out_dir.empty() ? fs::path(results_dir) / "report" : fs::path(options.out_dir);
   std::vector<std::string> found_warnings;
   const std::vector<ReportVariant> found = FindReportVariants(results_dir, &found_warnings);
   result.warnings = found_warnings;

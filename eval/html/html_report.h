@@ -30,11 +30,11 @@ struct HtmlReportOptions {
 struct HtmlReportResult {
   std::string index_path;  // OUT/index.html
   int variants = 0;
-  int shapes = 0;              // shape side files written
-  int pair_files = 0;          // pair side files written (distinct maps)
-  int pairs_viewable = 0;      // pair rows (all variants) whose 3D view has its data
-  int pairs_unavailable = 0;   // successful pairs whose view could not be built
-  int64_t bytes = 0;           // size of the report folder
+  int shapes = 0;             // shape side files written
+  int pair_files = 0;         // pair side files written (distinct maps)
+  int pairs_viewable = 0;     // pair rows (all variants) whose 3D view has its data
+  int pairs_unavailable = 0;  // successful pairs whose view could not be built
+  int64_t bytes = 0;          // size of the report folder
   // Variants left out, datasets that could not be opened, shapes and pairs whose view could
   // not be built: each names the file and the reason (also shown on the page).
   std::vector<std::string> warnings;

@@ -66,8 +66,7 @@ std::vector<double> RecordErrors(const ShapeView& source, const ShapeView& targe
     *note = "no per-point errors: this folder has no per-pair records (symembed eval keeps none)";
     return {};
   }
-  const std::string path =
-      maps.records_dir + "/" + PairStem(source.name, target.name) + ".rec";
+  const std::string path = maps.records_dir + "/" + PairStem(source.name, target.name) + ".rec";
   PairEvaluation record;
   try {
     record = ParsePairRecord(ReadFileOrThrow(path), path);
@@ -77,9 +76,8 @@ std::vector<double> RecordErrors(const ShapeView& source, const ShapeView& targe
   }
   const size_t lines = PairLines(source.truth, target.truth).source_ids.size();
   if (record.errors_direct.size() != lines) {
-    *note = "no per-point errors: " + path + " has " +
-            std::to_string(record.errors_direct.size()) + " errors, the ground truth " +
-            std::to_string(lines) +
+    *note = "no per-point errors: " + path + " has " + std::to_string(record.errors_direct.size()) +
+            " errors, the ground truth " + std::to_string(lines) +
             " lines (evaluation.points selects a subset; the heat map needs all)";
     return {};
   }
@@ -101,17 +99,16 @@ PairView BuildPairView(const ShapeView& source, const ShapeView& target, const M
   try {
     const std::vector<int> map = ReadMapFile(maps.MapPath(source.name, target.name), maps.base,
                                              source.vertices, target.vertices);
-    payload.Set("map", EncodeVertexMap(map, source.vertices, source.faces, target.vertices,
-                                       target.faces));
+    payload.Set("map",
+                EncodeVertexMap(map, source.vertices, source.faces, target.vertices, target.faces));
   } catch (const std::exception& e) {
     view.error = e.what();
     return view;
   }
   std::string note;
-  const std::vector<double> errors =
-      source.truth.ids.empty() || target.truth.ids.empty()
-          ? std::vector<double>()
-          : RecordErrors(source, target, maps, &note);
+  const std::vector<double> errors = source.truth.ids.empty() || target.truth.ids.empty()
+                                         ? std::vector<double>()
+                                         : RecordErrors(source, target, maps, &note);
   if (source.truth.ids.empty() || target.truth.ids.empty()) {
     note = "no per-point errors: the dataset has no ground truth for this pair";
   }

@@ -20,9 +20,9 @@ namespace {
 
 // Columns of pairs.csv that hold text even when they look like numbers (shape names may).
 const std::set<std::string>& TextColumns() {
-  static const std::set<std::string> columns = {
-      "source", "target", "status", "flip", "refine_side", "flip_message", "refine_message",
-      "message"};
+  static const std::set<std::string> columns = {"source",         "target",      "status",
+                                                "flip",           "refine_side", "flip_message",
+                                                "refine_message", "message"};
   return columns;
 }
 
@@ -135,8 +135,8 @@ JsonValue PairRows(const std::string& path, const Timings& timings) {
         pair.Set(column, FieldValue(text));
       }
     }
-    const auto it = timings.pair_seconds.find(PairStem(Field(row, "source", path),
-                                                       Field(row, "target", path)));
+    const auto it =
+        timings.pair_seconds.find(PairStem(Field(row, "source", path), Field(row, "target", path)));
     pair.Set("seconds", it == timings.pair_seconds.end() ? JsonValue::Object() : it->second);
     pairs.Push(pair);
   }
@@ -183,8 +183,9 @@ std::vector<ReportVariant> FindReportVariants(const std::string& results_dir,
       if (fs::exists(dir + "/summary.json")) {
         variants.push_back({name, dir});
       } else if (warnings) {
-        warnings->push_back(dir + "/summary.json: missing (variant not run, still running or "
-                                  "interrupted); left out of the report");
+        warnings->push_back(dir +
+                            "/summary.json: missing (variant not run, still running or "
+                            "interrupted); left out of the report");
       }
     }
     if (variants.empty()) {
@@ -205,8 +206,9 @@ std::vector<ReportVariant> FindReportVariants(const std::string& results_dir,
     }
     return {{name, results_dir}};
   }
-  throw IoError(results_dir + ": not a results folder (no variants.txt and no summary.json; "
-                              "a run that has just started writes them at its end)");
+  throw IoError(results_dir +
+                ": not a results folder (no variants.txt and no summary.json; "
+                "a run that has just started writes them at its end)");
 }
 
 JsonValue VariantReportData(const ReportVariant& variant) {

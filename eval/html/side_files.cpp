@@ -58,7 +58,8 @@ std::string Base64Encode(const std::string& bytes) {
   size_t i = 0;
   for (; i + 2 < bytes.size(); i += 3) {
     const uint32_t v = (static_cast<uint8_t>(bytes[i]) << 16) |
-                       (static_cast<uint8_t>(bytes[i + 1]) << 8) | static_cast<uint8_t>(bytes[i + 2]);
+                       (static_cast<uint8_t>(bytes[i + 1]) << 8) |
+                       static_cast<uint8_t>(bytes[i + 2]);
     out += kAlphabet[(v >> 18) & 63];
     out += kAlphabet[(v >> 12) & 63];
     out += kAlphabet[(v >> 6) & 63];
@@ -312,8 +313,8 @@ JsonValue EncodeVertexMap(const std::vector<int>& map, int source_vertices,
                           const std::vector<int>& source_faces, int target_vertices,
                           const std::vector<int>& target_faces) {
   if (static_cast<int>(map.size()) != source_vertices) {
-    throw InvalidInputError("EncodeVertexMap: " + std::to_string(map.size()) +
-                            " entries for " + std::to_string(source_vertices) + " vertices");
+    throw InvalidInputError("EncodeVertexMap: " + std::to_string(map.size()) + " entries for " +
+                            std::to_string(source_vertices) + " vertices");
   }
   for (int t : map) {
     if (t < 0 || t >= target_vertices) {
@@ -397,7 +398,8 @@ std::vector<int64_t> DecodeArray(const JsonValue& encoded) {
   std::vector<int64_t> values(count);
   for (size_t i = 0; i < count; ++i) {
     uint64_t v = 0;
-    for (int b = 0; b < width; ++b) v |= static_cast<uint64_t>(static_cast<uint8_t>(bytes[i * width + b])) << (8 * b);
+    for (int b = 0; b < width; ++b)
+      v |= static_cast<uint64_t>(static_cast<uint8_t>(bytes[i * width + b])) << (8 * b);
     values[i] = static_cast<int64_t>(v) - shift;
   }
   return values;

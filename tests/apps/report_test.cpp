@@ -72,13 +72,15 @@ class ReportTest : public ::testing::Test {
     WriteText(tmp_->File("config.yaml"),
               "name: small\n"
               "description: a small report test\n"
-              "dataset: {format: pairs_vts, root: " + tmp_->File("data") + "}\n"
-              "pipeline:\n"
-              "  sampling: {type: farthest_point, count: 80}\n"
-              "  symmetry: {type: plane3d}\n"
-              "evaluation: {geodesics: dijkstra}\n"
-              "variants:\n"
-              "  - {name: oracle, set: {pipeline.flip.type: oracle}}\n");
+              "dataset: {format: pairs_vts, root: " +
+                  tmp_->File("data") +
+                  "}\n"
+                  "pipeline:\n"
+                  "  sampling: {type: farthest_point, count: 80}\n"
+                  "  symmetry: {type: plane3d}\n"
+                  "evaluation: {geodesics: dijkstra}\n"
+                  "variants:\n"
+                  "  - {name: oracle, set: {pipeline.flip.type: oracle}}\n");
     ASSERT_EQ(Symembed("run " + tmp_->File("config.yaml") + " --quiet --jobs 2 --cache " +
                            tmp_->File("cache") + " --out " + tmp_->File("run"),
                        &log),
@@ -113,12 +115,11 @@ std::unique_ptr<TempDir> ReportTest::tmp_;
 std::string ReportTest::run_log_;
 
 TEST_F(ReportTest, RunWritesItsReportAndSaysWhere) {
-  EXPECT_NE(run_log_.find("report: " + tmp_->File("run") + "/report/index.html"),
-            std::string::npos)
+  EXPECT_NE(run_log_.find("report: " + tmp_->File("run") + "/report/index.html"), std::string::npos)
       << run_log_;
-  for (const char* file : {"index.html", "data.js", "report.css", "page.js", "plot.js", "viewer.js",
-                           "transfer.js", "sidefiles.js", "experiment.js", "pairs.js",
-                           "report.js"}) {
+  for (const char* file :
+       {"index.html", "data.js", "report.css", "page.js", "plot.js", "viewer.js", "transfer.js",
+        "sidefiles.js", "experiment.js", "pairs.js", "report.js"}) {
     EXPECT_TRUE(fs::exists(tmp_->File("run/report/") + file)) << file;
   }
 }
@@ -266,11 +267,11 @@ TEST_F(ReportTest, AMissingDatasetLeavesTheTablesAndSaysWhy) {
 TEST_F(ReportTest, AnEvalFolderHasItsMapsButNoPerPointErrors) {
   const std::string out = tmp_->File("eval_out");
   std::string log;
-  ASSERT_EQ(Symembed("eval --dataset " + tmp_->File("config.yaml") + " --maps " +
-                         tmp_->File("run/oracle/maps") + " --base 1 --name scored --jobs 2 --out " +
-                         out,
-                     &log),
-            0)
+  ASSERT_EQ(
+      Symembed("eval --dataset " + tmp_->File("config.yaml") + " --maps " +
+                   tmp_->File("run/oracle/maps") + " --base 1 --name scored --jobs 2 --out " + out,
+               &log),
+      0)
       << log;
   EXPECT_NE(log.find("report: " + out + "/report/index.html"), std::string::npos) << log;
   const JsonValue report = ReportJson(out + "/report");

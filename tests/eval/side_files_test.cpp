@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <limits>
-
 #include <random>
 
 #include "core/errors.h"
@@ -16,9 +15,13 @@ namespace symembed {
 namespace {
 
 TEST(SideFiles, Base64MatchesTheRfc4648Vectors) {
-  const std::pair<std::string, std::string> vectors[] = {
-      {"", ""},         {"f", "Zg=="},        {"fo", "Zm8="},        {"foo", "Zm9v"},
-      {"foob", "Zm9vYg=="}, {"fooba", "Zm9vYmE="}, {"foobar", "Zm9vYmFy"}};
+  const std::pair<std::string, std::string> vectors[] = {{"", ""},
+                                                         {"f", "Zg=="},
+                                                         {"fo", "Zm8="},
+                                                         {"foo", "Zm9v"},
+                                                         {"foob", "Zm9vYg=="},
+                                                         {"fooba", "Zm9vYmE="},
+                                                         {"foobar", "Zm9vYmFy"}};
   for (const auto& [plain, encoded] : vectors) {
     EXPECT_EQ(Base64Encode(plain), encoded);
     EXPECT_EQ(Base64Decode(encoded), plain);
@@ -43,12 +46,11 @@ TEST(SideFiles, ZlibRoundTripsAndChecksTheSize) {
 
 // The narrowest type that holds max id + 1 (the shift that lets -1 mean none).
 TEST(SideFiles, IdsUseTheNarrowestTypeAndRoundTrip) {
-  const std::vector<std::pair<std::vector<int>, std::string>> cases = {
-      {{-1, 0, 254}, "u8"},
-      {{-1, 0, 255}, "u16"},
-      {{3, 65534}, "u16"},
-      {{65535, -1}, "u32"},
-      {{}, "u8"}};
+  const std::vector<std::pair<std::vector<int>, std::string>> cases = {{{-1, 0, 254}, "u8"},
+                                                                       {{-1, 0, 255}, "u16"},
+                                                                       {{3, 65534}, "u16"},
+                                                                       {{65535, -1}, "u32"},
+                                                                       {{}, "u8"}};
   for (const auto& [ids, type] : cases) {
     const JsonValue encoded = EncodeIds(ids);
     EXPECT_EQ(encoded.Get("type").AsString(), type);
@@ -62,10 +64,10 @@ TEST(SideFiles, IdsUseTheNarrowestTypeAndRoundTrip) {
 
 TEST(SideFiles, PositionsAreQuantizedWithinHalfAStepOfTheBox) {
   Eigen::MatrixX3d V(4, 3);
-  V << -1.0, 0.0, 5.0,  //
-      2.0, 0.25, 5.0,   //
-      0.123456, 0.1, 5.0, //
-      1.5, 0.2, 5.0;      // z is constant: a flat box side
+  V << -1.0, 0.0, 5.0,     //
+      2.0, 0.25, 5.0,      //
+      0.123456, 0.1, 5.0,  //
+      1.5, 0.2, 5.0;       // z is constant: a flat box side
   const JsonValue encoded = EncodePositions(V);
   EXPECT_EQ(encoded.Get("type").AsString(), "u16");
   const std::vector<int64_t> q = DecodeArray(encoded);
