@@ -182,9 +182,10 @@ std::vector<ReportVariant> FindReportVariants(const std::string& results_dir,
       const std::string dir = (fs::path(results_dir) / name).string();
       if (fs::exists(dir + "/summary.json")) {
         variants.push_back({name, dir});
-      } else if (warnings) {
+      } else if (warnings && fs::exists(dir)) {
+        // A variant without a folder was not run (--variant), which is no news.
         warnings->push_back(dir +
-                            "/summary.json: missing (variant not run, still running or "
+                            "/summary.json: missing (the variant is still running or was "
                             "interrupted); left out of the report");
       }
     }

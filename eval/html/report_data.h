@@ -16,8 +16,8 @@ struct ReportVariant {
 };
 
 // The variants of results_dir, in order: an experiment folder (variants.txt; a listed variant
-// without summary.json is left out with a warning: not run, still running or interrupted) or a
-// single variant or `symembed eval` folder (summary.json). Throws IoError naming the path when
+// without summary.json is left out, with a warning when its folder exists: still running or
+// interrupted) or a single variant or `symembed eval` folder (summary.json). Throws IoError naming the path when
 // results_dir does not exist, holds neither, or none of its variants has a summary.json yet.
 std::vector<ReportVariant> FindReportVariants(const std::string& results_dir,
                                               std::vector<std::string>* warnings);

@@ -191,6 +191,22 @@ TEST_F(ReportTest, MissingOrUnfinishedResultsAreErrorsNamingThePath) {
   EXPECT_EQ(Symembed("report", &out), 2) << out;
 }
 
+// `symembed run --variant base` lists every variant in variants.txt but writes one folder: the
+// others are left out without a warning; a folder without summary.json is still running.
+TEST_F(ReportTest, VariantsNotRunAreLeftOutAndUnfinishedOnesWarned) {
+  const std::string run = CopyOfRun("one_variant");
+  fs::remove_all(run + "/oracle");
+  HtmlReportResult result = Report(run, run + "/report");
+  EXPECT_EQ(result.variants, 1);
+  EXPECT_TRUE(result.warnings.empty()) << result.warnings.front();
+  fs::copy(tmp_->File("run/oracle"), run + "/oracle", fs::copy_options::recursive);
+  fs::remove(run + "/oracle/summary.json");
+  result = Report(run, run + "/report");
+  EXPECT_EQ(result.variants, 1);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_NE(result.warnings[0].find(run + "/oracle/summary.json"), std::string::npos);
+}
+
 TEST_F(ReportTest, AMapOfTheWrongLengthMakesOnlyItsPairUnavailable) {
   const std::string run = CopyOfRun("bad_map");
   const JsonValue good = ReportJson(tmp_->File("run/report"));
