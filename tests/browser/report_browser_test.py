@@ -61,9 +61,10 @@ class Browser:
         self.log = open(os.path.join(profile, "chromium.log"), "wb")
         # Software WebGL (SwiftShader) so that no GPU is needed; no --allow-file-access-from-files:
         # the page must work under the file:// rules a user's browser applies. --no-sandbox:
-        # CI runs as root, where Chromium's sandbox cannot start.
+        # CI runs as root, where Chromium's sandbox cannot start; --disable-dev-shm-usage:
+        # containers often have a small /dev/shm.
         args = [binary, "--headless", "--remote-debugging-pipe", "--no-sandbox",
-                "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+                "--disable-dev-shm-usage", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
                 "--user-data-dir=" + profile, "--no-first-run", "--no-default-browser-check",
                 "--disable-extensions", "--disable-background-networking", "--hide-scrollbars",
                 "about:blank"]
