@@ -5,6 +5,7 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "core/errors.h"
+#include "eval/eval_setup.h"
 #include "eval/evaluator.h"
 #include "eval/report.h"
 #include "eval/score_maps.h"
@@ -26,38 +27,9 @@ int ParsePoints(const std::string& text) {
   throw UsageError{"--points expects 'all' or a positive integer, got '" + text + "'"};
 }
 
-// What scoring maps needs besides the maps: the dataset, its preprocess stage, and the
-// evaluation's geodesics and options, from --dataset (an experiment config: its dataset,
-// preprocess and evaluation; or a pairs_vts folder: the default preprocess), --geodesics and
-// --points.
-struct EvalSetup {
-  std::unique_ptr<Dataset> dataset;
-  std::unique_ptr<PreprocessStage> preprocess;
-  std::unique_ptr<GeodesicsStage> geodesics;
-  EvaluationOptions evaluation;
-};
-
+// The eval's setup from --dataset (MakeEvalSetup), with --geodesics and --points applied.
 EvalSetup ReadEvalSetup(const ArgParser& parser, const Registry& registry) {
-  const std::string dataset_arg = parser.Get("dataset");
-  EvalSetup s;
-  if (std::filesystem::is_regular_file(dataset_arg)) {
-    const ExperimentConfig config = LoadExperimentConfig(dataset_arg, registry);
-    Pipeline pipeline = BuildPipeline(config, config.variants.front(), registry);
-    s.dataset = std::move(pipeline.dataset);
-    s.preprocess = std::move(pipeline.preprocess);
-    s.geodesics = std::move(pipeline.evaluation_geodesics);
-    s.evaluation = pipeline.evaluation;
-  } else if (std::filesystem::is_directory(dataset_arg)) {
-    YAML::Node node;
-    node["format"] = "pairs_vts";
-    node["root"] = dataset_arg;
-    s.dataset = registry.CreateAs<Dataset>("dataset", node, "--dataset", "dataset", "", "format");
-    s.preprocess =
-        registry.CreateAs<PreprocessStage>("preprocess", YAML::Node(), "--dataset",
-                                           "pipeline.preprocess", DefaultStageType("preprocess"));
-  } else {
-    throw IoError(dataset_arg + ": no such config file or dataset folder");
-  }
+  EvalSetup s = MakeEvalSetup(parser.Get("dataset"), registry);
   if (parser.Given("geodesics") || !s.geodesics) {
     if (parser.Given("geodesics")) s.evaluation.geodesics = parser.Get("geodesics");
     YAML::Node node;
@@ -94,7 +66,8 @@ int EvalCommand(const Args& args) {
       "of the input meshes) for the pairs of a dataset, with the evaluator of `symembed run`: "
       "geodesic errors d_B(T(a_i), b_i) / sqrt(area(B)) on the preprocessed target, curves, "
       "flip-tolerant errors and left-right flips. Writes summary.json, pairs.csv, curve.csv, "
-      "timings.csv (and curves.png/svg when matplotlib is available) into the output folder. "
+      "timings.csv (and curves.png/svg when matplotlib is available), eval.json (the inputs) and "
+      "the HTML report report/index.html into the output folder. "
       "A missing or malformed map (wrong length, NaN, non-integral or out-of-range ids) fails "
       "only its pair, with the file and line in pairs.csv and on stderr. Exit code 0 when "
       "every pair was scored, 1 when some failed.");
@@ -115,6 +88,7 @@ int EvalCommand(const Args& args) {
   parser.Option("out", "output folder", "results/NAME");
   parser.Option("jobs", "worker threads (0 = all cores)", "0");
   parser.Option("cache-mb", "memory budget of the geodesic distance cache in MiB", "2048");
+  parser.Switch("no-report", "do not write the HTML report (OUT/report; see symembed report)");
   if (!parser.Parse(args)) return 0;
   for (const char* required : {"dataset", "maps", "base"}) {
     if (!parser.Given(required)) throw UsageError{std::string("--") + required + " is required"};
@@ -157,11 +131,14 @@ int EvalCommand(const Args& args) {
   const VariantSummary summary = Summarize(name, result.pairs, evaluation, result.timings);
   MarkInProgress(out, "symembed eval");
   WriteVariantOutputs(out, summary, result.pairs, result.timings);
+  WriteEvalSource(
+      out, EvalSource{parser.Get("dataset"), options.maps_dir, options.base, options.reverse});
   ClearInProgress(out);
   std::string warning;
   if (!PlotCurves(out, &warning)) std::cerr << "symembed eval: warning: " << warning << "\n";
 
   PrintEvalReport(name, out, result, summary);
+  if (!parser.Flag("no-report")) ReportAfterCommand("eval", out, registry);
   return summary.failed_pairs > 0 ? 1 : 0;
 }
 

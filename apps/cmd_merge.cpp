@@ -13,9 +13,11 @@ int MergeCommand(const Args& args) {
       "merge",
       "Join the output folders of sharded runs (symembed run --shard i/N --out SHARD_DIR) into "
       "the outputs a single run writes: maps, per-pair records, failures.csv, then summaries "
-      "and comparison recomputed from the records. Exit status: 1 when the merged run has "
+      "and comparison recomputed from the records, and the HTML report OUT/report/index.html. "
+      "Exit status: 1 when the merged run has "
       "failures, else 0.");
   parser.Option("out", "output folder (required)", "");
+  parser.Switch("no-report", "do not write the HTML report (see symembed report)");
   parser.Positionals("SHARD_DIR...", "output folders of the shards", 1, -1);
   if (!parser.Parse(args)) return 0;
   if (!parser.Given("out") || parser.Get("out").empty()) throw UsageError{"--out is required"};
@@ -27,6 +29,11 @@ int MergeCommand(const Args& args) {
   }
   if (!failures.empty()) {
     std::cerr << "symembed merge: " << failures.size() << " failures; see failures.csv\n";
+  }
+  if (!parser.Flag("no-report")) {
+    Registry registry;
+    RegisterBuiltinStages(registry);
+    ReportAfterCommand("merge", parser.Get("out"), registry);
   }
   return failures.empty() ? 0 : 1;
 }

@@ -37,7 +37,8 @@ int RunCommand(const Args& args) {
       "run",
       "Run an experiment: every variant of CONFIG (or one), per-shape stages cached on disk, "
       "pairs in parallel. Writes OUT/<variant>/ (config.yaml, maps/, pairs/, summary.json, "
-      "pairs.csv, curve.csv, timings.csv, failures.csv) and OUT/comparison.csv. A failed "
+      "pairs.csv, curve.csv, timings.csv, failures.csv), OUT/comparison.csv and the HTML report "
+      "OUT/report/index.html (not for a shard: merge the shards). A failed "
       "shape or pair is recorded in failures.csv and the run goes on. Exit status: 0 when "
       "everything succeeded, 1 when something failed, 2 for usage errors.");
   parser.Option("variant", "run only this variant ('base' is the base pipeline)", "");
@@ -47,6 +48,7 @@ int RunCommand(const Args& args) {
   parser.Option("out", "output folder", "results/<config name>");
   parser.Option("cache", "per-shape cache folder ('' disables it)", "results/.cache");
   parser.Switch("quiet", "no progress on stderr");
+  parser.Switch("no-report", "do not write the HTML report (OUT/report; see symembed report)");
   parser.Repeated("set",
                   "override dotted.path=value in the base and every variant "
                   "(e.g. --set evaluation.geodesics=fast_marching)");
@@ -93,6 +95,9 @@ int RunCommand(const Args& args) {
               << (stats.failures.front().target.empty() ? ""
                                                         : " -> " + stats.failures.front().target)
               << ": " << stats.failures.front().message << "); see failures.csv\n";
+  }
+  if (!parser.Flag("no-report") && options.shard_count == 1) {
+    ReportAfterCommand("run", options.out_dir, registry);
   }
   return stats.ok() ? 0 : 1;
 }

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "registry/registry.h"
+
 namespace symembed {
 
 using Args = std::vector<std::string>;
@@ -17,5 +19,11 @@ int MergeCommand(const Args& args);     // merge DIR...: join shard outputs
 int StagesCommand(const Args& args);    // stages: list registered stages
 int SynthCommand(const Args& args);     // synth: write a synthetic dataset
 int ValidateCommand(const Args& args);  // validate MESH...: mesh validation report
+int ReportCommand(const Args& args);    // report RESULTS_DIR: the HTML report
+
+// The end of run, merge and eval (unless --no-report): writes RESULTS_DIR/report and prints its
+// path, or a warning when it could not be written (never an error: the CSVs are the results).
+void ReportAfterCommand(const std::string& command, const std::string& results_dir,
+                        const Registry& registry);
 
 }  // namespace symembed

@@ -24,6 +24,7 @@ const std::map<std::string, Command>& Commands() {
       {"stages", {symembed::StagesCommand, "list the registered stages (kind, name, description)"}},
       {"synth", {symembed::SynthCommand, "generate a synthetic ground-truth dataset"}},
       {"validate", {symembed::ValidateCommand, "print the validation report of meshes"}},
+      {"report", {symembed::ReportCommand, "write the HTML report of a results folder"}},
   };
   return commands;
 }

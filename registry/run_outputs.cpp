@@ -23,7 +23,8 @@ std::string CsvField(const std::string& text) {
   return out + "\"";
 }
 
-// Splits CSV text into records of fields (quoted fields may hold commas, quotes, newlines).
+}  // namespace
+
 std::vector<std::vector<std::string>> ParseCsv(const std::string& text, const std::string& where) {
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> row;
@@ -72,8 +73,6 @@ std::vector<std::vector<std::string>> ParseCsv(const std::string& text, const st
   }
   return rows;
 }
-
-}  // namespace
 
 bool Failure::operator<(const Failure& o) const {
   return std::tie(kind, source, target, message) < std::tie(o.kind, o.source, o.target, o.message);

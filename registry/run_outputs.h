@@ -27,6 +27,10 @@ struct Failure {
   bool operator==(const Failure& other) const;
 };
 
+// Splits CSV text (RFC 4180: quoted fields may hold commas, quotes and newlines) into records of
+// fields, the header included. Throws InvalidInputError naming `where` and the line.
+std::vector<std::vector<std::string>> ParseCsv(const std::string& text, const std::string& where);
+
 // Sorted and de-duplicated CSV (RFC 4180 quoting) with a header line.
 std::string FailuresCsv(std::vector<Failure> failures);
 // Throws InvalidInputError naming `where` and the line.

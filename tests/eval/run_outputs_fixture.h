@@ -1,5 +1,5 @@
 // The outputs of a run folder without timings, for comparing runs byte for byte: skips
-// timings.csv, the shape records and plots; drops the time_* and peak_rss_mb keys of
+// timings.csv, the shape records, plots and the HTML report (report/: built from the rest); drops the time_* and peak_rss_mb keys of
 // summary.json, the time and memory columns of comparison.csv and the stage times of the
 // per-pair records. Header-only (tests/ compiles only *_test.cpp and test_util.cpp).
 #pragma once
@@ -23,6 +23,7 @@ inline std::map<std::string, std::string> OutputsWithoutTimings(const std::strin
     const std::string name = e.path().filename().string();
     const std::string ext = e.path().extension().string();
     if (name == "timings.csv" || rel.find("shapes/") != std::string::npos ||
+        rel.rfind("report/", 0) == 0 ||
         name.find(".tmp.") != std::string::npos || ext == ".png" || ext == ".svg") {
       continue;
     }
