@@ -1,7 +1,8 @@
 // symembed_fuzz_seeds OUT SOURCE_DIR: writes the seed inputs of every fuzz target into
 // OUT/<target>/, all made by the project itself (nothing downloaded): meshes of the synthetic
 // generator and small primitives in OFF, OBJ, ASCII and binary PLY, ASCII and binary STL; the
-// generator's ground truth and pairs files; maps; the configs under SOURCE_DIR/configs.
+// generator's ground truth and pairs files; maps; Kim 2011 benchmark files; the configs under
+// SOURCE_DIR/configs.
 // Exit code 0, or 1 with a message when something cannot be written.
 #include <cstdint>
 #include <cstring>
@@ -144,6 +145,12 @@ void WriteSeeds(const fs::path& out, const fs::path& source) {
   WriteMapSeed(out / "map" / "small0.map", 0, {0, 1, 2, 1});
   WriteMapSeed(out / "map" / "small1.map", 1, {0, 1, 2, 1});
   Write(out / "map" / "floats.map", std::string(1, '\x03') + "1.0\n2e0\n3\n");
+  // Kim 2011 benchmark files, behind the reader-selecting byte of fuzz_kim2011.cpp.
+  Write(out / "kim2011" / "cat.pid", std::string(1, '\x00') +
+                                         "12 0.1 0.2 0.3\n7 1 2 3\n3 -1 0 1\n40 0 0 0\n");
+  Write(out / "kim2011" / "cat.sym.info", std::string(1, '\x0a') + "0 1\n2\n\n");
+  Write(out / "kim2011" / "Corr_TOSCA.query",
+        std::string(1, '\x02') + "TOSCA\n1\n0\nTOSCA\n1\n3\nSCAPE\n1\n12\n");
   for (const fs::path& dir : {source / "configs", source / "configs" / "bench"}) {
     for (const auto& e : fs::directory_iterator(dir)) {
       if (e.path().extension() == ".yaml") {
