@@ -71,6 +71,8 @@ int MergeCommand(const Args& args) {
   for (const std::string& warning : evaluation.warnings()) {
     std::cerr << "symembed merge: warning: " << warning << "\n";
   }
+  std::cerr << "symembed merge: " << parser.positionals().size() << " folders merged into "
+            << parser.Get("out") << "\n";
   if (!failures.empty()) {
     std::cerr << "symembed merge: " << failures.size() << " failures; see failures.csv\n";
   }

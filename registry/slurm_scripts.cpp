@@ -39,7 +39,11 @@ std::string Header(const SlurmOptions& o, const std::string& job, const std::str
     << "#SBATCH --output=" << SbatchQuote(PatternFolder(SlurmLogDir(o.out_dir)) + "/" + log) << "\n"
     << "#SBATCH --open-mode=append\n";
   for (const std::string& arg : o.sbatch_args) s << "#SBATCH " << arg << "\n";
-  s << "set -euo pipefail\n";
+  // Logs are appended to when a task runs again: a line says which run follows.
+  s << "set -euo pipefail\n"
+    << "echo \"symembed slurm: job ${SLURM_JOB_ID:-?}"
+    << (array_tasks > 0 ? " task ${SLURM_ARRAY_TASK_ID:-?}" : "")
+    << " on $(hostname) at $(date)\"\n";
   return s.str();
 }
 

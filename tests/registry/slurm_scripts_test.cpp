@@ -53,6 +53,8 @@ TEST(SlurmScripts, PairsScriptIsTheExpectedText) {
             "#SBATCH --open-mode=append\n"
             "#SBATCH --account=lab\n"
             "set -euo pipefail\n"
+            "echo \"symembed slurm: job ${SLURM_JOB_ID:-?} task ${SLURM_ARRAY_TASK_ID:-?} on "
+            "$(hostname) at $(date)\"\n"
             "exec /opt/symembed/bin/symembed run '/home/me/my study/tosca.yaml' "
             "--shard \"${SLURM_ARRAY_TASK_ID}/4\" --shard-by target --resume "
             "--out '/home/me/my study/results/100% tosca/shards/'\"${SLURM_ARRAY_TASK_ID}\" "
@@ -170,6 +172,8 @@ TEST_F(SlurmScriptsRunTest, TaskScriptsPassPathsWithSpacesAsSingleArguments) {
             0)
       << out;
   // The working folder is sbatch's (--chdir), not the script's, here.
+  ASSERT_EQ(out.rfind("symembed slurm: job ? task 2 on ", 0), 0u) << out;
+  out = out.substr(out.find('\n') + 1);
   EXPECT_EQ(out, "/\nrun\n" + options_.config +
                      "\n--shard\n2/4\n--shard-by\ntarget\n--resume\n--out\n" + options_.out_dir +
                      "/shards/2\n--jobs\n2\n--cache\n" + options_.cache_dir +
