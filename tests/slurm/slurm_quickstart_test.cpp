@@ -44,7 +44,13 @@ std::string SlurmUnavailable() {
     const std::string conf = std::string(dir ? dir : "/tmp/symembed-slurm") + "/slurm.conf";
     if (fs::exists(conf)) setenv("SLURM_CONF", conf.c_str(), 1);
   }
-  if (RunShell("scontrol ping", &out) != 0 || out.find("is UP") == std::string::npos) {
+  // The Slurm commands wait a minute for a missing slurm.conf to appear.
+  const char* conf = std::getenv("SLURM_CONF");
+  const std::string conf_path = conf ? conf : "/etc/slurm/slurm.conf";
+  if (!fs::exists(conf_path)) {
+    return "no " + conf_path + " (SLURM_CONF); start the local Slurm with scripts/slurm-local start";
+  }
+  if (RunShell("timeout 30 scontrol ping", &out) != 0 || out.find("is UP") == std::string::npos) {
     return "no Slurm controller answers (scontrol ping: " + out.substr(0, out.find('\n')) +
            "); start the local one with scripts/slurm-local start";
   }
