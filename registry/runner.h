@@ -97,8 +97,7 @@ struct RunOptions {
   ShardSplit shard_split = ShardSplit::kPair;  // how pairs are split into shards
   bool shapes_only = false;  // compute and cache the shard's shapes only (needs cache_dir)
   // Called after each shape of a shapes-only run with the shape, the variant and the stages
-  // computed (not found in the cache), in pipeline order. Thread-safe calls are not needed:
-  // the runner serialises them.
+  // it computed (not found in the cache), sorted by name. The runner serialises the calls.
   std::function<void(const std::string& shape, const std::string& variant,
                      const std::vector<std::string>& computed)>
       on_shape;

@@ -108,10 +108,13 @@ std::string SubmitScript(const SlurmOptions& o) {
     << "# Each later job waits with afterany, so it runs even when a task before it failed: the\n"
     << "# merge job then names the shards that did not finish instead of pending forever.\n"
     << "set -euo pipefail\n"
-    << "dir=" << ShellQuote(SlurmScriptDir(o.out_dir)) << "\n"
+    << "dir=" << ShellQuote(SlurmScriptDir(o.out_dir))
+    << "\n"
+    // A command substitution does not inherit set -e: a failed sbatch must stop the script
+    // here, before a later job is submitted without its dependency.
     << "submit() {\n"
     << "  local id\n"
-    << "  id=$(sbatch --parsable \"$@\")\n"
+    << "  id=$(sbatch --parsable \"$@\") && [ -n \"$id\" ] || exit 1\n"
     << "  echo \"${id%%;*}\"  # --parsable prints ID or ID;CLUSTER\n"
     << "}\n"
     << "if [ \"${1:-}\" = --rerun ]; then\n"

@@ -164,6 +164,17 @@ TEST_F(SlurmScriptsRunTest, SubmitChainsTheJobsWithAfteranyAndPrintsTheirIds) {
             std::string::npos);
 }
 
+TEST_F(SlurmScriptsRunTest, ARefusedSubmissionStopsTheChain) {
+  WriteText(
+      bin_ + "/sbatch",
+      "#!/bin/bash\n"
+      "case \"$*\" in *pairs.sbatch) echo 'sbatch: error: invalid partition' >&2; exit 1;; esac\n"
+      "echo 11\n");
+  std::string out;
+  EXPECT_NE(Bash(ShellQuote(dir_ + "/submit.sh"), &out), 0) << out;
+  EXPECT_EQ(out, "shapes job 11\nsbatch: error: invalid partition\n");
+}
+
 TEST_F(SlurmScriptsRunTest, TaskScriptsPassPathsWithSpacesAsSingleArguments) {
   std::string out;
   ASSERT_EQ(Bash("-c " + ShellQuote("cd / && SLURM_ARRAY_TASK_ID=2 SLURM_CPUS_PER_TASK=2 bash " +
