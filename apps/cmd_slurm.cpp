@@ -188,6 +188,11 @@ int SlurmCommand(const Args& args) {
               << ShellQuote(dir + "/merge.sbatch") << "\n";
     return 0;
   }
+  // Markers left by an earlier submission into OUT would let the merge take a task that never
+  // ran this time for finished; the tasks write them again (and resume what is done).
+  for (int i = 0; i < options.pair_tasks; ++i) {
+    fs::remove(ShardMarkerPath(SlurmShardDir(options.out_dir, i)), ec);
+  }
   std::cout << Submit(dir + "/submit.sh") << "logs in " << SlurmLogDir(options.out_dir)
             << "; the results are in " << options.out_dir
             << " when the merge job has ended (see merge.log)\n";
