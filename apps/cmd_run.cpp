@@ -169,7 +169,9 @@ int RunCommand(const Args& args) {
               << stats.failures.front().source
               << (stats.failures.front().target.empty() ? ""
                                                         : " -> " + stats.failures.front().target)
-              << ": " << stats.failures.front().message << "); see failures.csv\n";
+              << ": " << stats.failures.front().message << ")"
+              << (options.shapes_only ? "; the pair runs record them in failures.csv\n"
+                                      : "; see failures.csv\n");
   }
   return stats.ok() ? 0 : 1;
 }
