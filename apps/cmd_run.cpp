@@ -1,12 +1,16 @@
+#include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "core/mesh_io.h"
 #include "eval/run_evaluation.h"
 #include "registry/config.h"
+#include "registry/files.h"
 #include "registry/registry.h"
 #include "registry/runner.h"
+#include "registry/shards.h"
 
 namespace symembed {
 namespace {
@@ -30,6 +34,30 @@ void ParseShard(const std::string& text, int* index, int* count) {
   }
 }
 
+// "stage=n stage=n" of a counter map.
+std::string CountsText(const std::map<std::string, int>& counts) {
+  std::string text;
+  for (const auto& [stage, n] : counts)
+    text += (text.empty() ? "" : " ") + stage + "=" + std::to_string(n);
+  return text.empty() ? "none" : text;
+}
+
+// The marker's command: this run again, resumed, for any shard ({shard}, {out}) of the set.
+std::string RerunTemplate(const ArgParser& parser, const std::string& config) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  std::ostringstream c;
+  c << "cd " << ShellQuote(fs::current_path().string()) << " && "
+    << ShellQuote(ec ? std::string("symembed") : exe.string()) << " run " << ShellQuote(config)
+    << " --shard {shard} --shard-by " << parser.Get("shard-by") << " --resume --out {out}";
+  for (const char* name : {"variant", "cache", "jobs"}) {
+    if (parser.Given(name)) c << " --" << name << " " << ShellQuote(parser.Get(name));
+  }
+  for (const std::string& set : parser.GetAll("set")) c << " --set " << ShellQuote(set);
+  return c.str();
+}
+
 }  // namespace
 
 int RunCommand(const Args& args) {
@@ -44,7 +72,18 @@ int RunCommand(const Args& args) {
   parser.Option("variant", "run only this variant ('base' is the base pipeline)", "");
   parser.Option("jobs", "worker threads (0: all cores)", "0");
   parser.Switch("resume", "keep the pairs that already have a record in OUT");
-  parser.Option("shard", "run shard i of N of the pairs (i/N); join shards with merge", "0/1");
+  parser.Option("shard",
+                "run shard i of N of the pairs (i/N); join shards with merge. The shard folder "
+                "gets a shard.txt saying whether it finished",
+                "0/1");
+  parser.Option(
+      "shard-by",
+      "how pairs are split into shards: pair (pair index modulo N) or target (all pairs "
+      "of a target in one shard, so each target's evaluation distances are computed once)",
+      "pair");
+  parser.Switch("shapes-only",
+                "compute the per-shape stages of shard i of N of the shapes (--shard), for every "
+                "variant, into the cache, and write nothing else (symembed slurm runs this first)");
   parser.Option("out", "output folder", "results/<config name>");
   parser.Option("cache", "per-shape cache folder ('' disables it)", "results/.cache");
   parser.Switch("quiet", "no progress on stderr");
@@ -63,6 +102,31 @@ int RunCommand(const Args& args) {
   options.resume = parser.Flag("resume");
   options.quiet = parser.Flag("quiet");
   options.cache_dir = parser.Get("cache");
+  try {
+    options.shard_split = ParseShardSplit(parser.Get("shard-by"));
+  } catch (const ConfigError& e) {
+    throw UsageError{std::string("--shard-by: ") + e.what()};
+  }
+  options.shapes_only = parser.Flag("shapes-only");
+  if (options.shapes_only) {
+    for (const char* name : {"out", "resume"}) {
+      if (parser.Given(name))
+        throw UsageError{std::string("--shapes-only writes no outputs: --") + name +
+                         " does not apply"};
+    }
+    if (options.cache_dir.empty())
+      throw UsageError{"--shapes-only needs a --cache folder: the cache is all it writes"};
+    if (!options.quiet) {
+      options.on_shape = [](const std::string& shape, const std::string& variant,
+                            const std::vector<std::string>& computed) {
+        std::string list;
+        for (const std::string& stage : computed) list += (list.empty() ? "" : " ") + stage;
+        std::cerr << "symembed run: shape " << shape << " [" << variant
+                  << "]: " << (list.empty() ? "all stages from the cache" : "computed " + list)
+                  << "\n";
+      };
+    }
+  }
   options.load_mesh = [](const std::string& path) { return LoadSurface(path); };
 
   Registry registry;
@@ -71,14 +135,34 @@ int RunCommand(const Args& args) {
       LoadExperimentConfig(parser.positionals()[0], registry, parser.GetAll("set"));
   options.out_dir = parser.Given("out") ? parser.Get("out") : "results/" + config.name;
 
+  // A sharded run says in its folder whether it finished, so that merge can refuse a partial set.
+  ShardMarker marker;
+  const bool marked = parser.Given("shard") && !options.shapes_only;
+  if (marked) {
+    marker = {options.shard_index, options.shard_count, options.shard_split, false,
+              RerunTemplate(parser, parser.positionals()[0])};
+    WriteFileAtomically(ShardMarkerPath(options.out_dir), FormatShardMarker(marker));
+  }
   GroundTruthRunEvaluation evaluation(&registry);
   const RunStats stats = RunExperiment(config, registry, options, evaluation);
+  if (marked) {
+    marker.complete = true;
+    WriteFileAtomically(ShardMarkerPath(options.out_dir), FormatShardMarker(marker));
+  }
   std::vector<std::string> warnings = stats.warnings;
   warnings.insert(warnings.end(), evaluation.warnings().begin(), evaluation.warnings().end());
   for (const std::string& warning : warnings) {
     std::cerr << "symembed run: warning: " << warning << "\n";
   }
   if (!options.quiet) {
+    std::cerr << "symembed run: stages computed: " << CountsText(stats.executed)
+              << "; from the cache: " << CountsText(stats.cache_hits) << "\n";
+  }
+  if (!options.quiet && options.shapes_only) {
+    std::cerr << "symembed run: shard " << options.shard_index << "/" << options.shard_count
+              << " of the shapes: " << stats.shapes_computed << " shapes (all variants), "
+              << stats.failures.size() << " failures; cache in " << options.cache_dir << "\n";
+  } else if (!options.quiet) {
     std::cerr << "symembed run: " << stats.pairs_done << " pairs computed, " << stats.pairs_skipped
               << " kept from an earlier run";
     if (stats.pairs_recomputed > 0) {
@@ -94,9 +178,11 @@ int RunCommand(const Args& args) {
               << stats.failures.front().source
               << (stats.failures.front().target.empty() ? ""
                                                         : " -> " + stats.failures.front().target)
-              << ": " << stats.failures.front().message << "); see failures.csv\n";
+              << ": " << stats.failures.front().message << ")"
+              << (options.shapes_only ? "; the pair runs record them in failures.csv\n"
+                                      : "; see failures.csv\n");
   }
-  if (!parser.Flag("no-report") && options.shard_count == 1) {
+  if (!parser.Flag("no-report") && options.shard_count == 1 && !options.shapes_only) {
     ReportAfterCommand("run", options.out_dir, registry);
   }
   return stats.ok() ? 0 : 1;

@@ -16,6 +16,7 @@ int RunCommand(const Args& args);       // run CONFIG: run an experiment
 int EvalCommand(const Args& args);      // eval: score a folder of maps
 int CheckCommand(const Args& args);     // check SUMMARY --baseline FILE
 int MergeCommand(const Args& args);     // merge DIR...: join shard outputs
+int SlurmCommand(const Args& args);     // slurm CONFIG --shards N: sbatch jobs of a study
 int StagesCommand(const Args& args);    // stages: list registered stages
 int SynthCommand(const Args& args);     // synth: write a synthetic dataset
 int ValidateCommand(const Args& args);  // validate MESH...: mesh validation report

@@ -21,6 +21,7 @@ const std::map<std::string, Command>& Commands() {
       {"eval", {symembed::EvalCommand, "score a folder of A_B.map files against ground truth"}},
       {"check", {symembed::CheckCommand, "compare a summary.json with a committed baseline"}},
       {"merge", {symembed::MergeCommand, "join the outputs of sharded runs"}},
+      {"slurm", {symembed::SlurmCommand, "write (and submit) the sbatch jobs of a study on Slurm"}},
       {"stages", {symembed::StagesCommand, "list the registered stages (kind, name, description)"}},
       {"synth", {symembed::SynthCommand, "generate a synthetic ground-truth dataset"}},
       {"validate", {symembed::ValidateCommand, "print the validation report of meshes"}},

@@ -36,14 +36,6 @@ void Read(ArchiveReader& in, PairEntry* entry) {
   entry->record = in.String();
 }
 
-bool PairLess(const DatasetPair& a, const DatasetPair& b) {
-  return std::tie(a.source, a.target) < std::tie(b.source, b.target);
-}
-
-bool PairEqual(const DatasetPair& a, const DatasetPair& b) {
-  return a.source == b.source && a.target == b.target;
-}
-
 std::string MapText(const std::vector<int>& map) {
   std::string text;
   text.reserve(map.size() * 6);
@@ -74,6 +66,13 @@ class VariantRun {
         cache_(options.cache_dir) {}
 
   void Run() {
+    if (options_.shapes_only) {
+      index_ = pipeline_.dataset->Load();
+      ComputeShapes(ShapesOfShard(ShapesOfPairs(SortedPairs(index_.pairs)), options_.shard_index,
+                                  options_.shard_count));
+      stats_->failures.insert(stats_->failures.end(), failures_.begin(), failures_.end());
+      return;
+    }
     const auto start = std::chrono::steady_clock::now();
     const std::string resolved = ResolvedConfigYaml(config_, variant_, pipeline_);
     if (options_.resume) {
@@ -90,7 +89,7 @@ class VariantRun {
     WriteFileAtomically(VariantConfigPath(dir_), resolved);
     index_ = pipeline_.dataset->Load();
     SelectPairs();
-    ComputeShapes();
+    ComputeShapes(ShapesOfPending());
     VerifyKeptPairs();
     ComputePairs();
     shapes_.clear();
@@ -127,13 +126,10 @@ class VariantRun {
       throw InvalidInputError("variant " + variant_.name + ": the dataset (" +
                               OptionsText(*pipeline_.dataset) + ") has no pairs to run");
     }
-    std::vector<DatasetPair> all = index_.pairs;
-    std::sort(all.begin(), all.end(), PairLess);
-    all.erase(std::unique(all.begin(), all.end(), PairEqual), all.end());
+    const std::vector<DatasetPair> all = SortedPairs(index_.pairs);
+    const std::vector<int> shard = PairShards(all, options_.shard_split, options_.shard_count);
     for (size_t i = 0; i < all.size(); ++i) {
-      if (static_cast<int>(i % options_.shard_count) == options_.shard_index) {
-        pairs_.push_back(all[i]);
-      }
+      if (shard[i] == options_.shard_index) pairs_.push_back(all[i]);
     }
     records_.assign(pairs_.size(), "");
     for (size_t i = 0; i < pairs_.size(); ++i) {
@@ -153,7 +149,7 @@ class VariantRun {
     stats_->pairs_total += static_cast<int>(pairs_.size());
   }
 
-  void ComputeShapes() {
+  std::vector<std::string> ShapesOfPending() const {
     std::set<std::string> names;
     for (const std::vector<int>* list : {&pending_, &kept_}) {
       for (int i : *list) {
@@ -161,9 +157,13 @@ class VariantRun {
         names.insert(pairs_[i].target);
       }
     }
-    std::vector<std::string> order(names.begin(), names.end());
+    return {names.begin(), names.end()};
+  }
+
+  // Computes (or loads) the shapes `order`. A full run keeps them for its pairs and writes
+  // their records; a shapes-only run only leaves them in the cache and reports each.
+  void ComputeShapes(const std::vector<std::string>& order) {
     std::vector<std::unique_ptr<ShapeOutcome>> outcomes(order.size());
-    ShapeContext context{&cache_, counters_, options_.load_mesh};
     Progress progress(variant_.name + ": shapes", static_cast<int>(order.size()),
                       DefaultProgressMode(options_.quiet), std::cerr);
     ParallelFor(
@@ -172,10 +172,20 @@ class VariantRun {
           const DatasetShape* shape = index_.Find(order[i]);
           try {
             if (!shape) throw InvalidInputError("no shape '" + order[i] + "' in the dataset");
+            // Counted per shape first, so a shapes-only run can say what this shape computed.
+            StageCounters shape_counters;
+            ShapeContext context{&cache_, &shape_counters, options_.load_mesh};
             auto outcome = std::make_unique<ShapeOutcome>(ComputeShape(*shape, pipeline_, context));
-            ShapeRecord record{outcome->name, outcome->times, outcome->report};
-            WriteFileAtomically(ShapeRecordPath(dir_, outcome->name), FormatShapeRecord(record));
-            outcomes[i] = std::move(outcome);
+            counters_->Add(shape_counters);
+            if (options_.shapes_only) {
+              ReportShape(order[i], shape_counters);
+            } else {
+              ShapeRecord record{outcome->name, outcome->times, outcome->report};
+              WriteFileAtomically(ShapeRecordPath(dir_, outcome->name), FormatShapeRecord(record));
+              outcomes[i] = std::move(outcome);
+            }
+            std::lock_guard<std::mutex> lock(mutex_);
+            ++stats_->shapes_computed;
           } catch (const std::exception& e) {
             // Stages see a surface, not a file: name the file for the user.
             std::string message = e.what();
@@ -189,10 +199,7 @@ class VariantRun {
         options_.jobs, 1);
     progress.Finish();
     for (size_t i = 0; i < order.size(); ++i) {
-      if (outcomes[i]) {
-        shapes_[order[i]] = std::move(outcomes[i]);
-        ++stats_->shapes_computed;
-      }
+      if (outcomes[i]) shapes_[order[i]] = std::move(outcomes[i]);
     }
   }
 
@@ -270,6 +277,14 @@ class VariantRun {
     setup.inputs = {setup.source->key, setup.target->key,
                     PairKey(*setup.source, *setup.target, pipeline_, setup.truth)};
     return setup;
+  }
+
+  void ReportShape(const std::string& name, const StageCounters& counters) {
+    if (!options_.on_shape) return;
+    std::vector<std::string> computed;
+    for (const auto& [stage, n] : counters.executed()) computed.push_back(stage);
+    std::lock_guard<std::mutex> lock(mutex_);
+    options_.on_shape(name, variant_.name, computed);
   }
 
   void ComputePairs() {
@@ -398,6 +413,9 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
                       std::to_string(options.shard_count) + " is not in [0, N)");
   }
   if (!options.load_mesh) throw ConfigError("the runner needs a mesh loader");
+  if (options.shapes_only && options.cache_dir.empty()) {
+    throw ConfigError("a shapes-only run needs a cache folder: the cache is all it writes");
+  }
   std::vector<const VariantConfig*> variants;
   for (const auto& v : config.variants) {
     if (options.variant.empty() || v.name == options.variant) variants.push_back(&v);
@@ -415,16 +433,20 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
     fs::create_directories(options.cache_dir, ec);
     if (ec) throw IoError(options.cache_dir + ": cannot create the cache folder: " + ec.message());
   }
-  fs::create_directories(options.out_dir);
-  WriteFileAtomically(VariantsListPath(options.out_dir), VariantsText(config));
+  if (!options.shapes_only) {
+    fs::create_directories(options.out_dir);
+    WriteFileAtomically(VariantsListPath(options.out_dir), VariantsText(config));
+  }
   RunStats stats;
   StageCounters counters;
   for (const VariantConfig* v : variants) {
     VariantRun(config, *v, registry, options, evaluation, &counters, &stats).Run();
   }
-  std::vector<std::string> names;
-  for (const auto& v : config.variants) names.push_back(v.name);
-  evaluation.WriteExperiment(options.out_dir, names);
+  if (!options.shapes_only) {
+    std::vector<std::string> names;
+    for (const auto& v : config.variants) names.push_back(v.name);
+    evaluation.WriteExperiment(options.out_dir, names);
+  }
   stats.executed = counters.executed();
   stats.cache_hits = counters.hits();
   return stats;

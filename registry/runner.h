@@ -15,15 +15,22 @@
 // A pair that succeeded is cached too (its map and record, under PairKey: both shapes' keys,
 // the per-pair stages' and the evaluation's options, the ground truth), so a second identical
 // run recomputes nothing at all.
-// Pairs are processed in (source, target) order; shard i of N takes the pairs whose index in
-// that order is i modulo N. Whatever is in the variant folder depends only on the set of pair
-// records and failures, so shards merged (MergeRuns) and resumed runs equal a single run.
+// Pairs are processed in (source, target) order; shard i of N takes the pairs PairShards
+// (registry/shards.h) assigns to it: by pair index modulo N, or all pairs of a target together.
+// Whatever is in the variant folder depends only on the set of pair records and failures, so
+// shards merged (MergeRuns) and resumed runs equal a single run.
 // --resume keeps a pair only when its record parses, carries this run's PairInputs and its map
 // holds one id per source vertex; every other pair is computed again, with a warning.
+//
+// A shapes-only run computes the per-shape stages (and the per-pair stages' PrepareShape) of
+// the shapes of shard i of N (ShapesOfShard over the shapes of all the variant's pairs) for
+// every variant, into the cache, and writes nothing else: run with N shards before the pair
+// shards, no shape is computed by two processes and the pair shards find every shape cached.
 //
 // The evaluation lives above this library (eval/), so it is reached through RunEvaluation.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +38,7 @@
 #include "registry/config.h"
 #include "registry/pair_pipeline.h"
 #include "registry/run_outputs.h"
+#include "registry/shards.h"
 #include "registry/shape_pipeline.h"
 
 namespace symembed {
@@ -90,6 +98,13 @@ struct RunOptions {
   bool resume = false;    // keep the pairs whose record and map match this run's inputs
   int shard_index = 0;    // this run's shard, in [0, shard_count)
   int shard_count = 1;
+  ShardSplit shard_split = ShardSplit::kPair;  // how pairs are split into shards
+  bool shapes_only = false;  // compute and cache the shard's shapes only (needs cache_dir)
+  // Called after each shape of a shapes-only run with the shape, the variant and the stages
+  // it computed (not found in the cache), sorted by name. The runner serialises the calls.
+  std::function<void(const std::string& shape, const std::string& variant,
+                     const std::vector<std::string>& computed)>
+      on_shape;
   bool quiet = false;
   MeshLoader load_mesh;  // reads a mesh file (core/mesh_io.h LoadSurface)
 };
@@ -97,7 +112,7 @@ struct RunOptions {
 struct RunStats {
   std::map<std::string, int> executed;    // stage -> computations (cache misses included)
   std::map<std::string, int> cache_hits;  // stage -> disk cache hits
-  int shapes_computed = 0;
+  int shapes_computed = 0;         // shapes done (computed or loaded), all variants
   int pairs_total = 0;            // pairs of the run (shard), all variants
   int pairs_skipped = 0;          // kept from an earlier run (--resume)
   int pairs_recomputed = 0;       // --resume: had a record that did not prove itself
@@ -107,9 +122,10 @@ struct RunStats {
   bool ok() const { return failures.empty(); }
 };
 
-// Runs the experiment. Per-shape and per-pair failures are recorded and the run goes on; a
-// config, dataset index or output folder problem throws (ConfigError, InvalidInputError,
-// IoError).
+// Runs the experiment (or, with options.shapes_only, fills the cache with a shard's shapes).
+// Per-shape and per-pair failures are recorded and the run goes on; a config, dataset index or
+// output folder problem throws (ConfigError, InvalidInputError, IoError), and so does a
+// shapes-only run without a cache folder.
 RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
                        const RunOptions& options, RunEvaluation& evaluation);
 

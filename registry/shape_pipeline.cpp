@@ -89,6 +89,13 @@ void StageCounters::Hit(const std::string& stage) {
   ++hits_[stage];
 }
 
+void StageCounters::Add(const StageCounters& other) {
+  const std::map<std::string, int> executed = other.executed(), hits = other.hits();
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& [stage, n] : executed) executed_[stage] += n;
+  for (const auto& [stage, n] : hits) hits_[stage] += n;
+}
+
 std::map<std::string, int> StageCounters::executed() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return executed_;

@@ -36,6 +36,8 @@ class StageCounters {
  public:
   void Executed(const std::string& stage);
   void Hit(const std::string& stage);
+  // Adds other's counts to these.
+  void Add(const StageCounters& other);
   std::map<std::string, int> executed() const;
   std::map<std::string, int> hits() const;
 

@@ -2,15 +2,15 @@
 // synthetic dataset: a run killed while it writes pair records and resumed gives the outputs
 // of an uninterrupted run; shards merged give them too; a bad mesh is recorded, exit code 1.
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <sstream>
 #include <thread>
 
 #include "core/mesh_io.h"
@@ -212,6 +212,84 @@ TEST_F(RunCommandTest, ShardsMergedEqualASingleRun) {
   EXPECT_EQ(OutputsWithoutTimings(tmp_.File("merged")), OutputsWithoutTimings(tmp_.File("full")));
 }
 
+// What `symembed slurm` runs: shapes-only shards (each shape computed in one), pair shards
+// split by target; a shard that was killed and one that never started make merge refuse and
+// print the commands that finish them, which it then merges into the single run's outputs.
+TEST_F(RunCommandTest, ShapesOnlyAndTargetShardsMergeAndUnfinishedShardsAreNamedAndResumed) {
+  Run(tmp_.File("full"), "");
+  std::string shape_logs;
+  for (int i = 0; i < 2; ++i) {
+    std::string log;
+    ASSERT_EQ(Symembed("run " + config_ + " --shapes-only --shard " + std::to_string(i) +
+                           "/2 --jobs 2 --cache " + tmp_.File("cache2"),
+                       &log),
+              0)
+        << log;
+    shape_logs += log;
+  }
+  // 5 shapes, each computed by one of the two shards.
+  int computed = 0;
+  for (size_t at = shape_logs.find("[base]: computed"); at != std::string::npos;
+       at = shape_logs.find("[base]: computed", at + 1)) {
+    ++computed;
+  }
+  EXPECT_EQ(computed, 5) << shape_logs;
+  EXPECT_FALSE(fs::exists(tmp_.File("shards"))) << "a shapes-only run writes no outputs";
+
+  std::string merge_args;
+  for (int i = 0; i < 3; ++i) {
+    const std::string dir = tmp_.File("shards/" + std::to_string(i));
+    std::string log;
+    ASSERT_EQ(Symembed("run " + config_ + " --shard " + std::to_string(i) +
+                           "/3 --shard-by target"
+                           " --jobs 2 --cache " +
+                           tmp_.File("cache2") + " --out " + dir,
+                       &log),
+              0)
+        << log;
+    const size_t at = log.find("stages computed: ");
+    ASSERT_NE(at, std::string::npos) << log;
+    const std::string stages = log.substr(at, log.find(';', at) - at);
+    for (const char* kind :
+         {"preprocess=", "geodesics=", "embedding=", "symmetrize=", "prepare_"}) {
+      EXPECT_EQ(stages.find(kind), std::string::npos) << "a shape was computed again: " << stages;
+    }
+    EXPECT_NE(ReadText(dir + "/shard.txt").find("status: complete"), std::string::npos);
+    merge_args += " " + dir;
+  }
+  // Shard 1 killed (its marker still says running), shard 2 never started.
+  const std::string marker = tmp_.File("shards/1/shard.txt");
+  std::string text = ReadText(marker);
+  text.replace(text.find("complete"), 8, "running");
+  WriteText(marker, text);
+  fs::remove_all(tmp_.File("shards/2"));
+  std::string log;
+  ASSERT_EQ(Symembed("merge --out " + tmp_.File("merged") + merge_args +
+                         " --rerun-hint 'resubmit {shards}'",
+                     &log),
+            3)
+      << log;
+  EXPECT_NE(log.find("shard 1/3 (" + tmp_.File("shards/1") + "): started but did not finish"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("shard 2/3 (" + tmp_.File("shards/2") + "): never started"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("resubmit 1,2"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(tmp_.File("merged")));
+  // The printed commands finish the set.
+  std::istringstream lines(log);
+  int reruns = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  cd ", 0) != 0) continue;
+    std::string rerun_log;
+    EXPECT_EQ(testing::RunShell(line.substr(2), &rerun_log), 0) << line << "\n" << rerun_log;
+    ++reruns;
+  }
+  EXPECT_EQ(reruns, 2) << log;
+  ASSERT_EQ(Symembed("merge --out " + tmp_.File("merged") + merge_args, &log), 0) << log;
+  EXPECT_EQ(OutputsWithoutTimings(tmp_.File("merged")), OutputsWithoutTimings(tmp_.File("full")));
+}
+
 TEST_F(RunCommandTest, BadMeshIsRecordedAndTheExitCodeIs1) {
   std::string name;
   for (const auto& e : fs::directory_iterator(tmp_.File("data/shapes"))) {
@@ -322,6 +400,9 @@ TEST(RunCommand, UsageErrorsExit2) {
   EXPECT_EQ(Symembed("run c.yaml --shard 3/2", &out), 2) << out;
   EXPECT_NE(out.find("--shard"), std::string::npos) << out;
   EXPECT_EQ(Symembed("run c.yaml --jobs -1", &out), 2) << out;
+  EXPECT_EQ(Symembed("run c.yaml --shard-by shape", &out), 2) << out;
+  EXPECT_NE(out.find("pair, target"), std::string::npos) << out;
+  EXPECT_EQ(Symembed("run c.yaml --shapes-only --out x", &out), 2) << out;
   EXPECT_EQ(Symembed("merge a b", &out), 2) << out;
   EXPECT_NE(out.find("--out"), std::string::npos) << out;
 }

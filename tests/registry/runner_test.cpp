@@ -343,6 +343,63 @@ TEST(Runner, ShardsMergedEqualASingleRun) {
   EXPECT_EQ(Snapshot(tmp.File("merged")), Snapshot(tmp.File("single")));
 }
 
+// The cluster split of `symembed slurm`: shapes-only shards fill the cache, each shape in one
+// of them and nothing else written; then pair shards split by target find every shape cached
+// and merge to the single run.
+TEST(Runner, ShapesOnlyShardsThenTargetShardsComputeEachShapeOnceAndEqualASingleRun) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(
+      tmp.File("data"), 5, "variants:\n  - {name: scaled, set: {pipeline.embedding.scale: 2.0}}\n");
+  RunConfig(config, tmp.File("single"), tmp.File("single_cache"));
+  std::map<std::string, int> computed;  // shape -> shapes-only shards that computed it
+  for (int i = 0; i < 2; ++i) {
+    RunOptions shapes;
+    shapes.shapes_only = true;
+    shapes.shard_index = i;
+    shapes.shard_count = 2;
+    shapes.on_shape = [&](const std::string& shape, const std::string& variant,
+                          const std::vector<std::string>& stages) {
+      if (variant == "base") {
+        EXPECT_EQ(stages.size(), 9u) << shape;  // preprocess ... symmetrize, 3 prepare_ stages
+        ++computed[shape];
+      }
+    };
+    const RunResult run = RunConfig(config, tmp.File("none"), tmp.File("cache"), shapes);
+    EXPECT_TRUE(run.stats.ok());
+    EXPECT_EQ(run.stats.pairs_total, 0);
+    EXPECT_EQ(Get(run.calls, "flip"), 0);
+    EXPECT_EQ(Get(run.stats.executed, "pair"), 0);
+  }
+  EXPECT_FALSE(fs::exists(tmp.File("none")));  // no pair outputs, no folder at all
+  EXPECT_EQ(computed,
+            (std::map<std::string, int>{{"s0", 1}, {"s1", 1}, {"s2", 1}, {"s3", 1}, {"s4", 1}}));
+
+  std::vector<std::string> shards;
+  for (int i = 0; i < 3; ++i) {
+    RunOptions shard;
+    shard.shard_index = i;
+    shard.shard_count = 3;
+    shard.shard_split = ShardSplit::kTarget;
+    shards.push_back(tmp.File("shard" + std::to_string(i)));
+    const RunResult run = RunConfig(config, shards.back(), tmp.File("cache"), shard);
+    for (const char* kind : {"preprocess", "sampling", "geodesics", "embedding", "symmetry",
+                             "symmetrize", "prepare_flip", "prepare_matching", "prepare_refine"}) {
+      EXPECT_EQ(Get(run.stats.executed, kind), 0) << kind << " in shard " << i;
+    }
+  }
+  TestEvaluation evaluation;
+  EXPECT_TRUE(MergeRuns(shards, tmp.File("merged"), evaluation).empty());
+  EXPECT_EQ(Snapshot(tmp.File("merged")), Snapshot(tmp.File("single")));
+}
+
+TEST(Runner, ShapesOnlyNeedsACache) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 2);
+  RunOptions shapes;
+  shapes.shapes_only = true;
+  EXPECT_THROW(RunConfig(config, tmp.File("out"), "", shapes), ConfigError);
+}
+
 TEST(Runner, BadMeshIsRecordedAndTheRunGoesOn) {
   TempDir tmp;
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
