@@ -10,7 +10,7 @@
 #include "core/errors.h"
 #include "core/mesh_io.h"
 #include "core/parallel.h"
-#include "eval/map_io.h"
+#include "core/map_io.h"
 
 namespace symembed {
 

@@ -1,10 +1,10 @@
-// Fuzz target of the map file reader (eval/map_io.h ParseMap) as `symembed eval` calls it on
+// Fuzz target of the map file reader (core/map_io.h ParseMap) as `symembed eval` calls it on
 // other methods' maps: the first byte chooses the base (bit 0) and the target's vertex count
 // (1 + 128 * the other bits).
 #include <cstdlib>
 
 #include "core/errors.h"
-#include "eval/map_io.h"
+#include "core/map_io.h"
 #include "fuzz/fuzz_target.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

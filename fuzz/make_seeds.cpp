@@ -13,7 +13,7 @@
 
 #include "core/mesh_io.h"
 #include "core/primitives.h"
-#include "eval/map_io.h"
+#include "core/map_io.h"
 #include "eval/synthetic/synthetic.h"
 
 namespace {

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "registry/files.h"
+#include "registry/hash.h"
 
 namespace symembed {
 namespace {
@@ -228,27 +229,18 @@ namespace {
 
 constexpr char kInputsPrefix[] = "{\"inputs\":{";
 
-std::string Hex(uint64_t value) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-  return text;
-}
-
 // Reads `"name":"<16 hex>"` at *pos and moves past it.
 bool ReadHexMember(const std::string& text, const std::string& name, size_t* pos, uint64_t* out) {
   const std::string head = "\"" + name + "\":\"";
   if (text.compare(*pos, head.size(), head) != 0) return false;
   *pos += head.size();
-  if (*pos + 17 > text.size() || text[*pos + 16] != '"') return false;
-  uint64_t value = 0;
-  for (size_t i = 0; i < 16; ++i) {
-    const char c = text[*pos + i];
-    const int digit = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
-    if (digit < 0) return false;
-    value = value << 4 | static_cast<uint64_t>(digit);
+  const std::string digits = text.substr(*pos, 16);
+  if (digits.size() != 16 || digits.find_first_not_of("0123456789abcdef") != std::string::npos ||
+      *pos + 16 >= text.size() || text[*pos + 16] != '"') {
+    return false;
   }
+  *out = std::strtoull(digits.c_str(), nullptr, 16);
   *pos += 17;
-  *out = value;
   return true;
 }
 
@@ -260,8 +252,9 @@ std::string StampPairInputs(const std::string& record, const PairInputs& inputs)
                             "'");
   }
   const bool empty_object = record.find_first_not_of(" \t\r\n", 1) == record.find('}');
-  return std::string(kInputsPrefix) + "\"source\":\"" + Hex(inputs.source) + "\",\"target\":\"" +
-         Hex(inputs.target) + "\",\"pair\":\"" + Hex(inputs.pair) + "\"}" +
+  return std::string(kInputsPrefix) + "\"source\":\"" + HexDigest(inputs.source) +
+         "\",\"target\":\"" + HexDigest(inputs.target) + "\",\"pair\":\"" +
+         HexDigest(inputs.pair) + "\"}" +
          (empty_object ? "" : ",") + record.substr(1);
 }
 
@@ -277,30 +270,6 @@ std::optional<PairInputs> PairInputsOfRecord(const std::string& record) {
     return std::nullopt;
   }
   return inputs;
-}
-
-std::string MapTextProblem(const std::string& text, int source_vertices, int target_vertices) {
-  int lines = 0;
-  size_t start = 0;
-  while (start < text.size()) {
-    size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    ++lines;
-    const std::string line = text.substr(start, end - start);
-    char* stop = nullptr;
-    const long id = std::strtol(line.c_str(), &stop, 10);
-    const bool blank_tail = std::string(stop).find_first_not_of(" \t\r") == std::string::npos;
-    if (line.empty() || stop == line.c_str() || !blank_tail || id < 1 || id > target_vertices) {
-      return "line " + std::to_string(lines) + ": expected a target vertex id in [1, " +
-             std::to_string(target_vertices) + "], got '" + line.substr(0, 20) + "'";
-    }
-    start = end + 1;
-  }
-  if (lines != source_vertices) {
-    return std::to_string(lines) + " ids for a source of " + std::to_string(source_vertices) +
-           " vertices";
-  }
-  return "";
 }
 
 std::string InProgressPath(const std::string& dir) { return dir + "/IN_PROGRESS"; }

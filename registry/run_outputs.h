@@ -85,11 +85,6 @@ std::string StampPairInputs(const std::string& record, const PairInputs& inputs)
 // The inputs of a stamped record; std::nullopt when it carries none.
 std::optional<PairInputs> PairInputsOfRecord(const std::string& record);
 
-// Why a map file's text is not a map of a source with `source_vertices` vertices onto a target
-// with `target_vertices` (one 1-based target id per line, one line per source vertex); empty
-// when it is one.
-std::string MapTextProblem(const std::string& text, int source_vertices, int target_vertices);
-
 // A folder being written (a variant of `symembed run`, a merge, an eval) holds IN_PROGRESS until
 // its summary is complete; readers of results refuse such a folder.
 std::string InProgressPath(const std::string& dir);

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <set>
 
+#include "core/map_io.h"
 #include "core/parallel.h"
 #include "registry/files.h"
 #include "registry/progress.h"
@@ -34,13 +35,6 @@ void Write(ArchiveWriter& out, const PairEntry& entry) {
 void Read(ArchiveReader& in, PairEntry* entry) {
   entry->map = in.Ints();
   entry->record = in.String();
-}
-
-std::string MapText(const std::vector<int>& map) {
-  std::string text;
-  text.reserve(map.size() * 6);
-  for (int t : map) text += std::to_string(t + 1) + "\n";
-  return text;
 }
 
 std::string VariantsText(const ExperimentConfig& config) {
@@ -223,13 +217,15 @@ class VariantRun {
       } catch (const std::exception& e) {
         problem = std::string("unreadable record (") + e.what() + ")";
       }
+      const std::string map_path = PairMapPath(dir_, pair.source, pair.target);
+      if (problem.empty() && !fs::exists(map_path)) problem = "its map " + map_path + " is missing";
       if (problem.empty()) {
-        const std::string map_path = PairMapPath(dir_, pair.source, pair.target);
-        const std::optional<std::string> map = ReadFileBytes(map_path);
-        problem = !map ? "its map " + map_path + " is missing"
-                       : MapTextProblem(*map, setup->source->input.NumVertices(),
-                                        setup->target->input.NumVertices());
-        if (!problem.empty() && map) problem = "its map " + map_path + ": " + problem;
+        try {
+          ReadMapFile(map_path, 1, setup->source->input.NumVertices(),
+                      setup->target->input.NumVertices());
+        } catch (const std::exception& e) {
+          problem = std::string("its map ") + e.what();  // the message starts with the path
+        }
       }
       if (problem.empty()) {
         records_[i] = *text;
@@ -322,7 +318,7 @@ class VariantRun {
     if (cache_.Load("pair", setup->inputs.pair, &cached)) {
       counters_->Hit("pair");
       const std::string record = StampPairInputs(cached.record, setup->inputs);
-      WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), MapText(cached.map));
+      WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), FormatMap(cached.map));
       WriteFileAtomically(PairRecordPath(dir_, pair.source, pair.target), record);
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_->pairs_done;
@@ -334,7 +330,7 @@ class VariantRun {
         source, target, pipeline_, truth.source_ids.empty() ? nullptr : &truth,
         [&](const std::vector<int>& predicted) { return evaluation.MeanError(context, predicted); },
         counters_);
-    WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), MapText(outcome.map));
+    WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), FormatMap(outcome.map));
     std::string failure;
     const std::string evaluated = evaluation.Evaluate(context, outcome, &failure);
     if (!failure.empty()) {

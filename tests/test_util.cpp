@@ -55,6 +55,10 @@ std::string ReadText(const std::string& path) {
 
 std::string SourceDir() { return SYMEMBED_SOURCE_DIR; }
 
+int Symembed(const std::string& args, std::string* output) {
+  return RunShell(std::string(SYMEMBED_BINARY) + " " + args, output);
+}
+
 std::string DataRoot() {
   std::string root;
   if (const char* env = std::getenv("SYMEMBED_DATA")) {

@@ -36,6 +36,9 @@ std::string DataRoot();
 // Runs a shell command, returns its exit code; its stdout+stderr go to *output when given.
 int RunShell(const std::string& command, std::string* output = nullptr);
 
+// Runs the symembed binary under test with `args` (RunShell).
+int Symembed(const std::string& args, std::string* output = nullptr);
+
 // A closed, smooth, asymmetric blob with 6 n^2 + 2 vertices: BoxMesh(n) projected to
 // the unit sphere, stretched to an ellipsoid with semi-axes (1.3, 1.0, 0.8) and displaced
 // radially by random Gaussian bumps (seeded). It has no nontrivial self-isometry, so maps onto a

@@ -4,7 +4,7 @@
 
 #include "core/mesh_io.h"
 #include "eval/html/side_files.h"
-#include "eval/map_io.h"
+#include "core/map_io.h"
 #include "eval/report.h"
 #include "registry/files.h"
 #include "registry/hash.h"

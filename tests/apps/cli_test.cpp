@@ -10,9 +10,7 @@
 namespace symembed {
 namespace {
 
-int Symembed(const std::string& args, std::string* output) {
-  return testing::RunShell(std::string(SYMEMBED_BINARY) + " " + args, output);
-}
+using testing::Symembed;
 
 TEST(Cli, NoArgumentsPrintsUsageAndExits2) {
   std::string out;

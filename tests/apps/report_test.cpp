@@ -16,14 +16,12 @@
 namespace symembed {
 namespace {
 
+using testing::Symembed;
+
 namespace fs = std::filesystem;
 using testing::ReadText;
 using testing::TempDir;
 using testing::WriteText;
-
-int Symembed(const std::string& args, std::string* output = nullptr) {
-  return testing::RunShell(std::string(SYMEMBED_BINARY) + " " + args, output);
-}
 
 // The JSON of a report's data.js, each variant's pairs expanded from {columns, rows} to objects.
 JsonValue ReportJson(const std::string& report_dir) {

@@ -20,15 +20,13 @@
 namespace symembed {
 namespace {
 
+using testing::Symembed;
+
 namespace fs = std::filesystem;
 using testing::OutputsWithoutTimings;
 using testing::ReadText;
 using testing::TempDir;
 using testing::WriteText;
-
-int Symembed(const std::string& args, std::string* output = nullptr) {
-  return testing::RunShell(std::string(SYMEMBED_BINARY) + " " + args, output);
-}
 
 // Starts the binary with args (stdout and stderr to log); returns its pid.
 pid_t Spawn(const std::vector<std::string>& args, const std::string& log) {

@@ -7,7 +7,7 @@
 #include "core/mesh_io.h"
 #include "core/primitives.h"
 #include "eval/json.h"
-#include "eval/map_io.h"
+#include "core/map_io.h"
 #include "registry/registry.h"
 #include "tests/test_util.h"
 
@@ -34,14 +34,21 @@ void WriteDataset(const std::string& root) {
   testing::WriteText(root + "/test_pairs.txt", "a\tb\na\tc\nb\tc\n\n");
 }
 
-TEST(EvalCommand, ScoresMapsRecordsMalformedOnesAndWritesOutputs) {
-  Registry registry;
-  RegisterBuiltinStages(registry);
-  if (!registry.Has("dataset", "pairs_vts") || !registry.Has("geodesics", "dijkstra")) {
-    GTEST_SKIP() << "needs the pairs_vts loader and the dijkstra stage";
+// The dataset above in a temporary folder (dir_.File("data")).
+class EvalCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Registry registry;
+    RegisterBuiltinStages(registry);
+    if (!registry.Has("dataset", "pairs_vts") || !registry.Has("geodesics", "dijkstra")) {
+      GTEST_SKIP() << "needs the pairs_vts loader and the dijkstra stage";
+    }
+    WriteDataset(dir.File("data"));
   }
   testing::TempDir dir;
-  WriteDataset(dir.File("data"));
+};
+
+TEST_F(EvalCommand, ScoresMapsRecordsMalformedOnesAndWritesOutputs) {
   std::vector<int> identity(kN * kN), mirror(kN * kN);
   for (int v = 0; v < kN * kN; ++v) {
     identity[v] = v;
@@ -51,8 +58,8 @@ TEST(EvalCommand, ScoresMapsRecordsMalformedOnesAndWritesOutputs) {
   testing::WriteText(dir.File("maps/a_c.map"), "1\n2\n3\n");  // wrong length
   WriteMapFile(dir.File("maps/b_c.map"), mirror);
   std::string out;
-  const int code = testing::RunShell(std::string(SYMEMBED_BINARY) + " eval --dataset " +
-                                         dir.File("data") + " --maps " + dir.File("maps") +
+  const int code = testing::Symembed("eval --dataset " + dir.File("data") + " --maps " +
+                                         dir.File("maps") +
                                          " --base 1 --name grid --geodesics dijkstra --out " +
                                          dir.File("out"),
                                      &out);
@@ -73,19 +80,12 @@ TEST(EvalCommand, ScoresMapsRecordsMalformedOnesAndWritesOutputs) {
   EXPECT_FALSE(testing::ReadText(dir.File("out/timings.csv")).empty());
 
   // Usage errors exit 2.
-  EXPECT_EQ(testing::RunShell(std::string(SYMEMBED_BINARY) + " eval --maps x", &out), 2) << out;
+  EXPECT_EQ(testing::Symembed("eval --maps x", &out), 2) << out;
 }
 
 // Maps that are plainly 1-based scored with --base 0 are called out; --out alone names the
 // evaluation; a folder where a map file should be is called a folder.
-TEST(EvalCommand, WrongBaseAFolderForAMapAndNameFromOut) {
-  Registry registry;
-  RegisterBuiltinStages(registry);
-  if (!registry.Has("dataset", "pairs_vts") || !registry.Has("geodesics", "dijkstra")) {
-    GTEST_SKIP() << "needs the pairs_vts loader and the dijkstra stage";
-  }
-  testing::TempDir dir;
-  WriteDataset(dir.File("data"));
+TEST_F(EvalCommand, WrongBaseAFolderForAMapAndNameFromOut) {
   std::string text;  // the identity, 1-based
   for (int v = 0; v < kN * kN; ++v) text += std::to_string(v + 1) + "\n";
   testing::WriteText(dir.File("maps/a_b.map"), text);
@@ -97,9 +97,8 @@ TEST(EvalCommand, WrongBaseAFolderForAMapAndNameFromOut) {
   testing::WriteText(dir.File("maps/b_c.map"), without_last);
   std::filesystem::create_directories(dir.File("maps/a_c.map"));
   std::string out;
-  const int code = testing::RunShell(std::string(SYMEMBED_BINARY) + " eval --dataset " +
-                                         dir.File("data") + " --maps " + dir.File("maps") +
-                                         " --base 0 --geodesics dijkstra --out " +
+  const int code = testing::Symembed("eval --dataset " + dir.File("data") + " --maps " +
+                                         dir.File("maps") + " --base 0 --geodesics dijkstra --out " +
                                          dir.File("out/named"),
                                      &out);
   EXPECT_EQ(code, 1) << out;

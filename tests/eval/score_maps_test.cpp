@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/primitives.h"
-#include "eval/map_io.h"
+#include "core/map_io.h"
 #include "eval/report.h"
 #include "tests/eval/euclidean_geodesics.h"
 #include "tests/test_util.h"

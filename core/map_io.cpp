@@ -1,4 +1,4 @@
-#include "eval/map_io.h"
+#include "core/map_io.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -38,11 +38,15 @@ std::vector<int> ParseMap(const std::string& text, int base, int expected_length
     throw InvalidInputError(where + ": " + std::to_string(lines.size()) + " entries, expected " +
                             std::to_string(expected_length) + " (one per source vertex)");
   }
-  // With base 0, ids from 1 to #V and none 0 are a 1-based file given the wrong base.
-  bool has_zero = false;
-  for (const std::string& token : lines) {
-    has_zero = has_zero || (!token.empty() && std::strtod(token.c_str(), nullptr) == 0.0);
-  }
+  // With base 0, an id equal to #V in a file without a 0 is a 1-based file given the wrong
+  // base (checked only on that error path).
+  auto looks_one_based = [&](int id) {
+    if (base != 0 || id != num_target_vertices) return false;
+    for (const std::string& token : lines) {
+      if (!token.empty() && std::strtod(token.c_str(), nullptr) == 0.0) return false;
+    }
+    return true;
+  };
   std::vector<int> map(lines.size());
   for (size_t i = 0; i < lines.size(); ++i) {
     const std::string at = where + ":" + std::to_string(i + 1) + ": ";
@@ -65,7 +69,7 @@ std::vector<int> ParseMap(const std::string& text, int base, int expected_length
                                    ? std::to_string(num_target_vertices - 1 + base)
                                    : std::string("inf")) +
                               "] (" + std::to_string(base) + "-based)" +
-                              (base == 0 && !has_zero && id == num_target_vertices
+                              (looks_one_based(id)
                                    ? "; no id is 0 and this one is the vertex count: the file "
                                      "looks 1-based (--base 1)"
                                    : ""));

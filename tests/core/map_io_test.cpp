@@ -1,4 +1,4 @@
-#include "eval/map_io.h"
+#include "core/map_io.h"
 
 #include <gtest/gtest.h>
 
