@@ -151,24 +151,6 @@ LaplaceBasis ComputeLaplaceBasis(const Surface& surface, const LaplaceBasisOptio
   return basis;
 }
 
-void PutLaplaceBasis(const LaplaceBasis& basis, AuxMap* aux) {
-  SYMEMBED_CHECK(aux != nullptr, "aux is null");
-  (*aux)[kLbEvalsKey] = basis.evals;
-  (*aux)[kLbEvecsKey] = basis.evecs;
-  (*aux)[kLbMassKey] = basis.mass;
-}
-
-bool HasLaplaceBasis(const AuxMap& aux, int k, int num_vertices) {
-  const auto evals = aux.find(kLbEvalsKey);
-  const auto evecs = aux.find(kLbEvecsKey);
-  const auto mass = aux.find(kLbMassKey);
-  if (evals == aux.end() || evecs == aux.end() || mass == aux.end()) return false;
-  const int stored = static_cast<int>(evals->second.rows());
-  return evals->second.cols() == 1 && evecs->second.cols() == stored &&
-         evecs->second.rows() == num_vertices && mass->second.rows() == num_vertices &&
-         mass->second.cols() == 1 && stored >= k;
-}
-
 void PositiveEigenvalueRange(const Eigen::VectorXd& evals, double* lambda_1, double* lambda_max) {
   SYMEMBED_CHECK(evals.size() > 0, "no eigenvalues");
   *lambda_max = evals.maxCoeff();
@@ -178,61 +160,27 @@ void PositiveEigenvalueRange(const Eigen::VectorXd& evals, double* lambda_1, dou
   }
 }
 
-LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k) {
-  LaplaceBasis basis;
-  GetLaplaceBasis(aux, k, &basis);
-  return basis;
-}
-
-void GetLaplaceBasis(const AuxMap& aux, int k, LaplaceBasis* basis) {
-  const auto evals = aux.find(kLbEvalsKey);
-  const auto evecs = aux.find(kLbEvecsKey);
-  const auto mass = aux.find(kLbMassKey);
-  if (evals == aux.end() || evecs == aux.end() || mass == aux.end()) {
-    throw InvalidInputError(
-        "shape data holds no Laplace-Beltrami basis (lb_evals, lb_evecs, lb_mass)");
+void LeadingEigenpairs(const LaplaceBasis& basis, int k, LaplaceBasis* out) {
+  SYMEMBED_CHECK(out != nullptr, "out is null");
+  const int stored = basis.NumEigenpairs();
+  const int n = basis.NumVertices();
+  if (basis.evecs.cols() != stored || basis.mass.size() != n || stored < std::max(k, 0)) {
+    std::ostringstream message;
+    message << "the Laplace-Beltrami basis is inconsistent or holds fewer than " << k
+            << " eigenpairs (evals " << stored << ", evecs " << basis.evecs.rows() << "x"
+            << basis.evecs.cols() << ", mass " << basis.mass.size() << ")";
+    throw InvalidInputError(message.str());
   }
-  const int n = static_cast<int>(evecs->second.rows());
-  if (!HasLaplaceBasis(aux, std::max(k, 0), n)) {
-    std::ostringstream out;
-    out << "shape data holds an inconsistent Laplace-Beltrami basis or fewer than " << k
-        << " eigenpairs (lb_evals " << evals->second.rows() << "x" << evals->second.cols()
-        << ", lb_evecs " << evecs->second.rows() << "x" << evecs->second.cols() << ", lb_mass "
-        << mass->second.rows() << "x" << mass->second.cols() << ")";
-    throw InvalidInputError(out.str());
-  }
-  const int used = k < 0 ? static_cast<int>(evals->second.rows()) : k;
-  basis->evals = evals->second.col(0).head(used);
-  basis->evecs = evecs->second.leftCols(used);
-  basis->mass = mass->second.col(0);
+  const int used = k < 0 ? stored : k;
+  out->evals = basis.evals.head(used);
+  out->evecs = basis.evecs.leftCols(used);
+  out->mass = basis.mass;
 }
 
-namespace {
-
-// Eigenpairs of the consistent basis in aux, or 0 when it holds none.
-int StoredBasisSize(const AuxMap& aux) {
-  const auto evecs = aux.find(kLbEvecsKey);
-  if (evecs == aux.end()) return 0;
-  const int nv = static_cast<int>(evecs->second.rows());
-  return HasLaplaceBasis(aux, 0, nv) ? static_cast<int>(evecs->second.cols()) : 0;
-}
-
-}  // namespace
-
-void MergeAux(AuxMap from, AuxMap* into) {
-  SYMEMBED_CHECK(into != nullptr, "into is null");
-  const int incoming = StoredBasisSize(from);
-  if (incoming > 0 && StoredBasisSize(*into) >= incoming) {
-    for (const char* key : {kLbEvalsKey, kLbEvecsKey, kLbMassKey}) from.erase(key);
-  }
-  for (auto& [key, value] : from) (*into)[key] = std::move(value);
-}
-
-bool EnsureLaplaceBasis(const Surface& surface, const LaplaceBasisOptions& options, AuxMap* aux) {
-  SYMEMBED_CHECK(aux != nullptr, "aux is null");
-  if (HasLaplaceBasis(*aux, options.k, surface.NumVertices())) return false;
-  PutLaplaceBasis(ComputeLaplaceBasis(surface, options), aux);
-  return true;
+LaplaceBasis LeadingEigenpairs(const LaplaceBasis& basis, int k) {
+  LaplaceBasis out;
+  LeadingEigenpairs(basis, k, &out);
+  return out;
 }
 
 }  // namespace symembed

@@ -54,46 +54,16 @@ struct LaplaceBasisOptions {
 // number of vertices with mass, SolverError when the factorisation or the iteration fails.
 LaplaceBasis ComputeLaplaceBasis(const Surface& surface, const LaplaceBasisOptions& options);
 
-// Per-shape storage of a basis in ShapeData::aux (shared by the refine stages and the `hks` flip
-// scorer, so that a shape's basis is computed once):
-//   "lb_evals"  k x 1   eigenvalues, ascending
-//   "lb_evecs"  #V x k  M-orthonormal eigenvectors
-//   "lb_mass"   #V x 1  lumped vertex areas
-inline constexpr const char* kLbEvalsKey = "lb_evals";
-inline constexpr const char* kLbEvecsKey = "lb_evecs";
-inline constexpr const char* kLbMassKey = "lb_mass";
-
-using AuxMap = std::map<std::string, Eigen::MatrixXd>;
-
-// Stores basis under the three keys (replacing what was there).
-void PutLaplaceBasis(const LaplaceBasis& basis, AuxMap* aux);
-
-// True when aux holds a consistent basis with at least k eigenpairs for a #V = num_vertices
-// shape.
-bool HasLaplaceBasis(const AuxMap& aux, int k, int num_vertices);
-
 // The spectrum's range for signatures built from eigenvalues: *lambda_max the largest eigenvalue
 // and *lambda_1 the smallest above 1e-8 lambda_max (the ~0 eigenvalues of the constant
 // eigenfunctions excluded). *lambda_1 is not positive when no eigenvalue is.
 void PositiveEigenvalueRange(const Eigen::VectorXd& evals, double* lambda_1, double* lambda_max);
 
-// The first k eigenpairs stored in aux (k = -1: all of them). Throws InvalidInputError when the
-// keys are missing, inconsistent, or hold fewer than k eigenpairs.
-LaplaceBasis GetLaplaceBasis(const AuxMap& aux, int k = -1);
-
-// The same into *basis, reusing its storage when it already has the sizes: a per-pair stage that
-// keeps one basis per thread copies it without allocating (fresh megabytes of eigenvectors cost
-// more in page faults than in copying).
-void GetLaplaceBasis(const AuxMap& aux, int k, LaplaceBasis* basis);
-
-// Computes the basis with options into aux unless aux already holds at least options.k
-// eigenpairs for this surface. Returns true when it computed.
-bool EnsureLaplaceBasis(const Surface& surface, const LaplaceBasisOptions& options, AuxMap* aux);
-
-// Merges per-shape data that stages prepared separately: entries of `from` replace those of
-// `into`, except the Laplace-Beltrami basis, of which the one with more eigenpairs is kept (its
-// leading eigenpairs serve every stage that asked for fewer, so a stage preparing a small basis
-// never takes away the larger one another stage needs).
-void MergeAux(AuxMap from, AuxMap* into);
+// The first k eigenpairs of basis (k = -1: all of them) into *out, reusing its storage when it
+// already has the sizes: a per-pair stage that keeps one basis per thread copies it without
+// allocating (fresh megabytes of eigenvectors cost more in page faults than in copying). Throws
+// InvalidInputError when basis is inconsistent or holds fewer than k eigenpairs.
+void LeadingEigenpairs(const LaplaceBasis& basis, int k, LaplaceBasis* out);
+LaplaceBasis LeadingEigenpairs(const LaplaceBasis& basis, int k);
 
 }  // namespace symembed

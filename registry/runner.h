@@ -22,9 +22,9 @@
 // --resume keeps a pair only when its record parses, carries this run's PairInputs and its map
 // holds one id per source vertex; every other pair is computed again, with a warning.
 //
-// A shapes-only run computes the per-shape stages (and the per-pair stages' PrepareShape) of
-// the shapes of shard i of N (ShapesOfShard over the shapes of all the variant's pairs) for
-// every variant, into the cache, and writes nothing else: run with N shards before the pair
+// A shapes-only run computes the per-shape stages (and what the per-pair stages need of each
+// shape) of the shapes of shard i of N (ShapesOfShard over the shapes of all the variant's
+// pairs) for every variant, into the cache, and writes nothing else: run with N shards before the pair
 // shards, no shape is computed by two processes and the pair shards find every shape cached.
 //
 // The evaluation lives above this library (eval/), so it is reached through RunEvaluation.

@@ -91,7 +91,9 @@ void Write(ArchiveWriter& out, const SymmetryResult& result);
 void Read(ArchiveReader& in, SymmetryResult* result);
 void Write(ArchiveWriter& out, const SymmetrizeResult& result);
 void Read(ArchiveReader& in, SymmetrizeResult* result);
-void Write(ArchiveWriter& out, const std::map<std::string, Eigen::MatrixXd>& aux);
-void Read(ArchiveReader& in, std::map<std::string, Eigen::MatrixXd>* aux);
+void Write(ArchiveWriter& out, const Eigen::MatrixXd& M);
+void Read(ArchiveReader& in, Eigen::MatrixXd* M);
+void Write(ArchiveWriter& out, const LaplaceBasis& basis);
+void Read(ArchiveReader& in, LaplaceBasis* basis);
 
 }  // namespace symembed

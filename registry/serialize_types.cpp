@@ -136,21 +136,24 @@ void Read(ArchiveReader& in, SymmetrizeResult* result) {
   Read(in, &result->status);
 }
 
-void Write(ArchiveWriter& out, const std::map<std::string, Eigen::MatrixXd>& aux) {
-  out.U64(aux.size());
-  for (const auto& [name, M] : aux) {
-    out.String(name);
-    out.Matrix(M);
-  }
+void Write(ArchiveWriter& out, const Eigen::MatrixXd& M) { out.Matrix(M); }
+void Read(ArchiveReader& in, Eigen::MatrixXd* M) { *M = in.Matrix(); }
+
+void Write(ArchiveWriter& out, const LaplaceBasis& basis) {
+  out.Matrix(basis.evals);
+  out.Matrix(basis.evecs);
+  out.Matrix(basis.mass);
 }
 
-void Read(ArchiveReader& in, std::map<std::string, Eigen::MatrixXd>* aux) {
-  const uint64_t n = in.U64();
-  aux->clear();
-  for (uint64_t i = 0; i < n; ++i) {
-    std::string name = in.String();
-    (*aux)[name] = in.Matrix();
+void Read(ArchiveReader& in, LaplaceBasis* basis) {
+  const Eigen::MatrixXd evals = in.Matrix(), evecs = in.Matrix(), mass = in.Matrix();
+  if (evals.cols() != 1 || mass.cols() != 1 || evecs.cols() != evals.rows() ||
+      evecs.rows() != mass.rows()) {
+    throw ArchiveError("inconsistent Laplace-Beltrami basis");
   }
+  basis->evals = evals.col(0);
+  basis->evecs = evecs;
+  basis->mass = mass.col(0);
 }
 
 }  // namespace symembed

@@ -1,5 +1,6 @@
 #include "registry/shape_pipeline.h"
 
+#include <any>
 #include <chrono>
 #include <filesystem>
 #include <limits>
@@ -36,7 +37,14 @@ struct Distances {
 void Write(ArchiveWriter& out, const Distances& d) { out.FloatMatrix(d.D); }
 void Read(ArchiveReader& in, Distances* d) { d->D = in.FloatMatrix(); }
 
-using AuxMap = std::map<std::string, Eigen::MatrixXd>;
+// A product in the cache, read and written with its need's functions.
+struct StoredProduct {
+  const ProductNeed* need = nullptr;
+  std::any value;
+};
+
+void Write(ArchiveWriter& out, const StoredProduct& p) { p.need->write(out, p.value); }
+void Read(ArchiveReader& in, StoredProduct* p) { p->value = p->need->read(in); }
 
 template <typename T>
 void Write(ArchiveWriter& out, const Timed<T>& t) {
@@ -58,11 +66,11 @@ uint64_t StageKey(uint64_t previous, const std::string& kind, const Stage& stage
   return Hasher(previous).AddString(kind).AddString(OptionsText(stage)).Digest();
 }
 
-// Loads entry `key` of `kind`, or computes it with `compute` and stores it.
+// Loads entry `key` of `kind` into `initial`, or computes it with `compute` and stores it.
 template <typename T, typename Compute>
 T Cached(const ShapeContext& context, const std::string& kind, uint64_t key, Compute compute,
-         std::vector<StageTime>* times) {
-  Timed<T> entry;
+         std::vector<StageTime>* times, T initial = T()) {
+  Timed<T> entry{std::move(initial)};
   if (context.cache->Load(kind, key, &entry)) {
     context.counters->Hit(kind);
     times->push_back({kind, entry.seconds, true});
@@ -205,34 +213,77 @@ void AddShapeMeasures(const SamplingResult& sampling, const SymmetrizeResult& sy
   }
 }
 
-// Runs (or loads) each per-pair stage's PrepareShape on the shape, in pipeline order, merging
-// what they add into data->aux. Returns the shape's key for the pair cache: symz_key and the
-// key of every preparation.
-uint64_t PreparePairStages(const Pipeline& pipeline, const ShapeContext& context, uint64_t symz_key,
-                           ShapeData* data, ShapeOutcome* out) {
-  Hasher data_key(symz_key);
-  Pipeline::ForEachStage(pipeline, [&](const char* kind, const auto& member) {
+// The cache keys of what a product can be computed from (ProductInput).
+struct InputKeys {
+  uint64_t surface = 0;    // preprocess
+  uint64_t samples = 0;    // sampling
+  uint64_t embedding = 0;  // symmetrize
+};
+
+uint64_t BasisKey(uint64_t surface_key, const LaplaceBasisOptions& options) {
+  return Hasher(surface_key)
+      .AddString("laplace_basis")
+      .AddU64(static_cast<uint64_t>(options.k))
+      .AddU64(static_cast<uint64_t>(options.mass))
+      .AddBytes(&options.tolerance, sizeof(options.tolerance))
+      .AddU64(static_cast<uint64_t>(options.max_iterations))
+      .Digest();
+}
+
+// Computes (or loads) what the per-pair stages declare they need (PairStage::Needs) into
+// data->basis and data->products: the basis of the most eigenpairs any stage reads, each
+// product keyed by its input's key and its id, and a smaller basis only when a product missing
+// from the cache is computed from it. Returns the shape's key for the pair cache: the embedding's
+// key and the key of everything the stages read.
+uint64_t PrepareNeeds(const Pipeline& pipeline, const ShapeContext& context, const InputKeys& keys,
+                      ShapeData* data, ShapeOutcome* out) {
+  ShapeNeeds needs;
+  Pipeline::ForEachStage(pipeline, [&](const char*, const auto& member) {
     using T = typename std::decay_t<decltype(member)>::element_type;
-    if constexpr (std::is_base_of_v<PairStage, T>) {
-      const PairStage* stage = member.get();
-      const std::string name = std::string("prepare_") + kind;
-      const uint64_t key = Hasher(StageKey(symz_key, name, *stage))
-                               .AddU64(static_cast<uint64_t>(stage->PrepareVersion()))
-                               .Digest();
-      data_key.AddU64(key);
-      AuxMap aux = Cached<AuxMap>(
-          context, name, key,
-          [&] {
-            ShapeData copy = *data;
-            copy.aux.clear();
-            stage->PrepareShape(copy);
-            return copy.aux;
-          },
-          &out->times);
-      MergeAux(std::move(aux), &data->aux);
-    }
+    if constexpr (std::is_base_of_v<PairStage, T>) needs.Add(member->Needs());
   });
-  return data_key.Digest();
+  auto options_of = [](int k) {
+    LaplaceBasisOptions options;
+    options.k = k;
+    return options;
+  };
+  std::map<int, LaplaceBasis> bases;  // by eigenpairs
+  auto basis = [&](int k) -> const LaplaceBasis& {
+    auto it = bases.find(k);
+    if (it == bases.end()) {
+      LaplaceBasis b = Cached<LaplaceBasis>(
+          context, "laplace_basis", BasisKey(keys.surface, options_of(k)),
+          [&] { return ComputeLaplaceBasis(data->surface, options_of(k)); }, &out->times);
+      it = bases.emplace(k, std::move(b)).first;
+    }
+    return it->second;
+  };
+  Hasher pair_key(keys.embedding);
+  if (needs.basis > 0) {
+    data->basis = basis(needs.basis);
+    pair_key.AddU64(BasisKey(keys.surface, options_of(needs.basis)));
+  }
+  static const LaplaceBasis kNoBasis;
+  for (const ProductNeed& need : needs.products) {
+    uint64_t input_key = keys.surface;
+    if (need.input == ProductInput::kSamples) input_key = keys.samples;
+    if (need.input == ProductInput::kEmbedding) input_key = keys.embedding;
+    if (need.input == ProductInput::kBasis) {
+      input_key = BasisKey(keys.surface, options_of(need.basis_size));
+    }
+    const uint64_t key = Hasher(input_key).AddString(need.id).Digest();
+    pair_key.AddU64(key);
+    StoredProduct stored = Cached<StoredProduct>(
+        context, need.name, key,
+        [&] {
+          const LaplaceBasis& b =
+              need.input == ProductInput::kBasis ? basis(need.basis_size) : kNoBasis;
+          return StoredProduct{&need, need.compute(*data, b)};
+        },
+        &out->times, StoredProduct{&need, {}});
+    data->products.PutAny(need.id, std::make_shared<const std::any>(std::move(stored.value)));
+  }
+  return pair_key.Digest();
 }
 
 }  // namespace
@@ -321,7 +372,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
 
   AddShapeMeasures(sampling, symmetrized, axis_ratio, *data, &out);
 
-  out.key = PreparePairStages(pipeline, context, symz_key, data.get(), &out);
+  out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, symz_key}, data.get(), &out);
   out.data = std::move(data);
   return out;
 }

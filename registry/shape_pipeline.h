@@ -1,13 +1,15 @@
 // Per-shape work of one variant (DESIGN.md, "Data flow"): load -> preprocess -> sampling ->
-// geodesics -> embedding -> symmetry -> symmetrize -> canonical frame -> ShapeData, then each
-// per-pair stage's PrepareShape (flip, matching, refine) adding ShapeData::aux entries.
+// geodesics -> embedding -> symmetry -> symmetrize -> canonical frame -> ShapeData, then what the
+// per-pair stages (flip, matching, refine) declare they need of the shape (PairStage::Needs:
+// a Laplace-Beltrami basis, products; registry/product_needs.h).
 //
 // Every stage output is cached on disk under a chained key: H(mesh bytes, file extension), then
 // for each stage H(previous key, kind, resolved options as YAML text). A variant that changes
-// only a later stage therefore finds every earlier output in the cache. Each per-pair stage's
-// aux entries are keyed by the symmetrize key and that stage's options alone, and PrepareShape
-// sees the shape without other stages' aux entries, so a changed flip scorer keeps the refine
-// stage's eigenbasis.
+// only a later stage therefore finds every earlier output in the cache. A basis is keyed by the
+// preprocess key and its options, a product by the key of its declared input (surface, samples,
+// embedding or basis) and its id, so a product is shared by every stage and variant that declares
+// it from the same input: a changed flip scorer keeps the refine stage's basis, a changed
+// embedding keeps the curvature features.
 //
 // Geodesic distances (#S x #V) are cached as 32-bit floats (half the disk: ~20 MB per 5k-vertex
 // shape with 1,000 samples) and rounded to float precision also when computed, so a cold and a
@@ -31,7 +33,7 @@
 namespace symembed {
 
 // Thread-safe counts of stage executions (cache misses) and cache hits, by stage name
-// ("preprocess", ..., "geodesics", "prepare_flip", "flip", "matching", "refine", "oracle").
+// ("preprocess", ..., "geodesics", "laplace_basis", a product's name, "flip", "matching", "refine", "oracle").
 class StageCounters {
  public:
   void Executed(const std::string& stage);
@@ -59,13 +61,13 @@ struct StageTime {
 struct ShapeOutcome {
   std::string name;
   Surface input;                      // as loaded, input vertex ids
-  std::shared_ptr<ShapeData> data;    // after the per-pair stages' PrepareShape
+  std::shared_ptr<ShapeData> data;    // with what the per-pair stages need (basis, products)
   std::vector<int> kept_of_input;     // #V_input: preprocessed id of each input vertex, -1: removed
   std::vector<int> nearest_kept;      // #V_input: preprocessed id of the nearest kept vertex
   ShapeGroundTruth ground_truth;      // input ids (empty when the dataset has none)
   std::vector<StageTime> times;
   Report report;                      // preprocess report, then stage measures
-  uint64_t key = 0;                   // cache key of `data` (all stages and aux entries)
+  uint64_t key = 0;                   // cache key of `data` (all stages, basis and products)
 };
 
 struct ShapeContext {

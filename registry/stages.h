@@ -9,6 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "registry/product_needs.h"
 #include "registry/types.h"
 
 namespace symembed {
@@ -77,14 +78,12 @@ class SymmetrizeStage : public Stage {
   virtual SymmetrizeResult Run(const SymmetryInput& input, const SymmetryResult& symmetry) const = 0;
 };
 
-// Per-pair stages may compute per-shape data once (features, eigenbases) into ShapeData::aux.
+// Per-pair stages declare what they read of each shape beyond the per-shape stages' outputs (a
+// basis, products: registry/product_needs.h); the runner computes it once per shape into
+// ShapeData::basis and ShapeData::products, cached.
 class PairStage : public Stage {
  public:
-  // Adds this stage's per-shape data to shape.aux (cached by the runner).
-  virtual void PrepareShape(ShapeData& /*shape*/) const {}
-  // The version of what PrepareShape adds, part of its cache key: bump it when the entries
-  // change, so that caches written before are not read.
-  virtual int PrepareVersion() const { return 1; }
+  virtual ShapeNeeds Needs() const { return {}; }
 };
 
 class FlipStage : public PairStage {

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/spectral.h"
+#include "registry/shape_products.h"
 
 namespace symembed {
 
@@ -72,9 +74,21 @@ struct ShapeData {
   EmbeddingResult embedding;  // before symmetrization
   SymmetryResult symmetry;
   Eigen::MatrixX3d Y;  // #V x 3 canonical symmetric embedding (plane normal = x)
-  // Per-shape data computed by per-pair stages' PrepareShape (features, eigenbases, ...).
-  std::map<std::string, Eigen::MatrixXd> aux;
+  // What the per-pair stages declared they need (PairStage::Needs, registry/product_needs.h):
+  // the Laplace-Beltrami basis with the most eigenpairs any of them reads (empty when none; a
+  // stage reads its leading eigenpairs), and their products.
+  LaplaceBasis basis;
+  ShapeProducts products;
 };
+
+// The product `key` of a shape. Throws InvalidInputError naming the shape and the product when
+// it is missing (the stage did not declare it) or has another type.
+template <typename T>
+const T& ProductOf(const ShapeData& shape, const ProductKey<T>& key) {
+  const T* value = shape.products.Find(key);
+  if (value == nullptr) ThrowMissingProduct(shape.name, key.Id());
+  return *value;
+}
 
 // Ground truth of one pair in the vertex ids of the preprocessed shapes: line i says that
 // source_ids[i] corresponds to target_ids[i] (and to target_sym_ids[i] under the symmetry).

@@ -27,10 +27,6 @@
 
 namespace symembed {
 
-// Per-vertex features in ShapeData::aux under this key: #V x 3 columns
-// [shape index in [-1, 1], log(1 + curvedness * sqrt(area)), vertex area / total area].
-inline constexpr const char* kExtrinsicFeaturesKey = "extrinsic_features";
-
 struct ExtrinsicFlipOptions {
   double local_weight = 1.0;
   double global_weight = 1.0;
@@ -50,7 +46,7 @@ struct ExtrinsicScores {
   std::array<double, 4> local{}, global{}, chamfer{}, total{};
 };
 
-// Ys, Yt: #Vs x 3, #Vt x 3 canonical embeddings; Fs, Ft: #V x 3 features (kExtrinsicFeaturesKey
+// Ys, Yt: #Vs x 3, #Vt x 3 canonical embeddings; Fs, Ft: #V x 3 features (ExtrinsicFeatures
 // layout); maps: ComputeCandidateMaps(Ys, Yt) (the stage shares them with the orientation
 // term); threads: of the Chamfer distances. Throws ConfigError for invalid options,
 // InvalidInputError on mismatched shapes.
@@ -70,7 +66,8 @@ double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                            const std::vector<int>& map, const std::array<double, 2>& scales,
                            const std::vector<int>& vertices = {});
 
-// The features of `surface` in the kExtrinsicFeaturesKey layout from core/curvature.h, with
+// The curvature features of `surface`, #V x 3 columns [shape index in [-1, 1],
+// log(1 + curvedness * sqrt(area)), vertex area / total area], from core/curvature.h with
 // curvatures averaged over smoothing_rings rings. Curvedness sqrt((k1^2 + k2^2) / 2)
 // [Koenderink & van Doorn 1992] is made scale-free by sqrt(total area).
 Eigen::MatrixXd ExtrinsicFeatures(const Surface& surface, int smoothing_rings);

@@ -65,34 +65,34 @@ class ExtrinsicStage : public FlipStage {
     basis_size_ = decision_->BasisSize();
     for (const auto& term : terms_) {
       basis_size_ = std::max(basis_size_, term->BasisSize());
-      features_ = features_ || term->PreparesFeatures();
+      if (term->FeatureRings() >= 0) feature_rings_ = term->FeatureRings();
     }
   }
 
-  void PrepareShape(ShapeData& shape) const override {
-    if (basis_size_ > 0) {
-      LaplaceBasisOptions basis;
-      basis.k = basis_size_;
-      EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
-    }
-    for (const auto& term : terms_) term->PrepareShape(shape);
+  ShapeNeeds Needs() const override {
+    ShapeNeeds needs;
+    needs.basis = basis_size_;
+    for (const auto& term : terms_) term->AddNeeds(basis_size_, &needs);
+    return needs;
   }
-  int PrepareVersion() const override { return 3; }  // 3: the refined-maps term's geodesics
-  // Whether the decision reads features that no term prepares.
-  bool LacksFeatures() const { return decision_->ReadsFeatures() && !features_; }
+  // Whether the decision reads features that no term declares.
+  bool LacksFeatures() const { return decision_->ReadsFeatures() && feature_rings_ < 0; }
 
   FlipResult Run(const PairInput& pair) const override {
     CheckFlipPair(pair);
     // One set of candidate maps for every term.
     const CandidateMaps maps = ComputeCandidateMaps(pair.source.Y, pair.target.Y, threads_);
-    const Eigen::MatrixXd* Fs = features_ ? &AuxOf(pair.source, kExtrinsicFeaturesKey) : nullptr;
-    const Eigen::MatrixXd* Ft = features_ ? &AuxOf(pair.target, kExtrinsicFeaturesKey) : nullptr;
+    const bool features = feature_rings_ >= 0;
+    const Eigen::MatrixXd* Fs =
+        features ? &ProductOf(pair.source, CurvatureFeaturesKey(feature_rings_)) : nullptr;
+    const Eigen::MatrixXd* Ft =
+        features ? &ProductOf(pair.target, CurvatureFeaturesKey(feature_rings_)) : nullptr;
     // One copy of each basis for all parts, into storage the thread keeps from pair to pair.
     thread_local LaplaceBasis source_basis, target_basis;
     static const LaplaceBasis kNoBasis;
     if (basis_size_ > 0) {
-      GetLaplaceBasis(pair.source.aux, basis_size_, &source_basis);
-      GetLaplaceBasis(pair.target.aux, basis_size_, &target_basis);
+      ShapeBasis(pair.source, basis_size_, &source_basis);
+      ShapeBasis(pair.target, basis_size_, &target_basis);
     }
     const LaplaceBasis& source = basis_size_ > 0 ? source_basis : kNoBasis;
     const LaplaceBasis& target = basis_size_ > 0 ? target_basis : kNoBasis;
@@ -110,8 +110,10 @@ class ExtrinsicStage : public FlipStage {
   int threads_;
   std::vector<std::unique_ptr<FlipTerm>> terms_;  // those of weight > 0, in kFlipTerms order
   std::unique_ptr<FlipDecision> decision_;
-  int basis_size_ = 0;     // eigenpairs the parts read (0: none)
-  bool features_ = false;  // whether a term prepares the curvature features
+  int basis_size_ = 0;  // eigenpairs the parts read (0: none)
+  // The smoothing rings of the curvature features of the context: those of the last term that
+  // reads features (-1: none does).
+  int feature_rings_ = -1;
 };
 
 }  // namespace

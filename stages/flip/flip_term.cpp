@@ -1,16 +1,18 @@
 #include "stages/flip/flip_term.h"
 
-#include "core/errors.h"
+#include "stages/flip/extrinsic.h"
 
 namespace symembed {
 
-const Eigen::MatrixXd& AuxOf(const ShapeData& shape, const std::string& key) {
-  auto it = shape.aux.find(key);
-  if (it == shape.aux.end()) {
-    throw InvalidInputError("flip extrinsic: shape '" + shape.name + "' has no '" + key +
-                            "' (PrepareShape was not called)");
-  }
-  return it->second;
+ProductKey<Eigen::MatrixXd> CurvatureFeaturesKey(int smoothing_rings) {
+  return {"curvature_features", "smoothing_rings=" + std::to_string(smoothing_rings)};
+}
+
+ProductNeed CurvatureFeaturesNeed(int smoothing_rings) {
+  return NeedProduct(CurvatureFeaturesKey(smoothing_rings), ProductInput::kSurface, 0,
+                     [smoothing_rings](const ShapeData& shape, const LaplaceBasis&) {
+                       return ExtrinsicFeatures(shape.surface, smoothing_rings);
+                     });
 }
 
 }  // namespace symembed

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/spectral.h"
+#include "registry/product_needs.h"
 #include "registry/types.h"
 #include "stages/flip/flip_common.h"
 
@@ -27,7 +28,8 @@ struct FlipTermContext {
   // none asks).
   const LaplaceBasis& source_basis;
   const LaplaceBasis& target_basis;
-  // The shapes' kExtrinsicFeaturesKey features (extrinsic.h), or null when no term prepares them.
+  // The shapes' curvature features (ExtrinsicFeatures, extrinsic.h) of the last term that reads
+  // them (FeatureRings), or null when none does.
   const Eigen::MatrixXd* source_features;
   const Eigen::MatrixXd* target_features;
   int threads;                        // the stage's threads (0: all cores)
@@ -40,13 +42,14 @@ class FlipTerm {
   virtual ~FlipTerm() = default;
   double weight() const { return weight_; }
 
-  // Adds the term's per-shape data to shape.aux; the stage has added the basis before.
-  virtual void PrepareShape(ShapeData& /*shape*/) const {}
+  // Adds the products the term reads to *needs; stage_basis: the eigenpairs of the basis the
+  // stage declares (the largest any part reads), which products of the basis are computed from.
+  virtual void AddNeeds(int /*stage_basis*/, ShapeNeeds* /*needs*/) const {}
   // Laplace-Beltrami eigenpairs the term reads (0: none).
   virtual int BasisSize() const { return 0; }
-  // Whether PrepareShape adds the kExtrinsicFeaturesKey features (which the stage then passes
-  // to every part in the context).
-  virtual bool PreparesFeatures() const { return false; }
+  // The smoothing rings of the curvature features the term reads (CurvatureFeaturesKey), which
+  // the stage then passes to every part in the context, or -1 when it reads none.
+  virtual int FeatureRings() const { return -1; }
   // Adds the term to *total (per candidate of CandidateRotations()) and its values to *detail
   // ("; <name> v0 v1 v2 v3", the status message of the stage).
   virtual void Score(const FlipTermContext& context, std::array<double, 4>* total,
@@ -69,8 +72,9 @@ class FlipDecision {
                      std::ostringstream* detail) const = 0;
 };
 
-// The entry `key` of a shape's aux. Throws InvalidInputError naming the shape and the key when
-// it is missing (the stage's PrepareShape was not called).
-const Eigen::MatrixXd& AuxOf(const ShapeData& shape, const std::string& key);
+// The curvature features of a shape (ExtrinsicFeatures, extrinsic.h), #V x 3, a product of its
+// surface.
+ProductKey<Eigen::MatrixXd> CurvatureFeaturesKey(int smoothing_rings);
+ProductNeed CurvatureFeaturesNeed(int smoothing_rings);
 
 }  // namespace symembed

@@ -3,7 +3,7 @@
 //
 // [Sun et al. 2009] A concise and provably informative multi-scale signature based on heat
 // diffusion: HKS(x, t) = sum_i exp(-lambda_i t) phi_i(x)^2 from the Laplace-Beltrami eigenpairs
-// (core/spectral.h, stored in ShapeData::aux and shared with the refine stages). HKS is
+// (core/spectral.h; the shape's basis, shared with the refine stages). HKS is
 // intrinsic, so it cannot tell left from right, but it tells head from tail and top from
 // bottom, which is exactly the ambiguity left by the canonical frame. Signatures are divided by
 // the heat trace sum_i exp(-lambda_i t) (scale normalisation on unit-area shapes) and compared in
@@ -20,7 +20,7 @@
 namespace symembed {
 
 struct HksFlipOptions {
-  // Laplace-Beltrami eigenpairs used (computed per shape when aux does not hold enough).
+  // Laplace-Beltrami eigenpairs used.
   int eigenpairs = 50;
   // Number of diffusion times.
   int num_times = 16;

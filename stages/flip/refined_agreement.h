@@ -112,7 +112,7 @@ struct RefinedChoice {
 // the target turned by the candidate's rotation) with normals. The shapes' samples give the
 // source samples (the first options.zoomout.samples) and the target samples (the first
 // options.zoomout.target_samples; every target vertex when it is 0). Fs, Ft:
-// kExtrinsicFeaturesKey features. Throws ConfigError for invalid options, InvalidInputError for
+// ExtrinsicFeatures. Throws ConfigError for invalid options, InvalidInputError for
 // inputs that do not match.
 RefinedChoice RefinedFrontBackChoice(const std::array<double, 4>& scores,
                                      const ShapeData& source, const ShapeData& target,

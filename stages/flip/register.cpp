@@ -26,15 +26,16 @@ class ChamferStage : public FlipStage {
 class HksStage : public FlipStage {
  public:
   explicit HksStage(HksFlipOptions options) : options_(options) {}
-  void PrepareShape(ShapeData& shape) const override {
-    LaplaceBasisOptions basis;
-    basis.k = options_.eigenpairs;
-    EnsureLaplaceBasis(shape.surface, basis, &shape.aux);
+  ShapeNeeds Needs() const override {
+    ShapeNeeds needs;
+    needs.basis = options_.eigenpairs;
+    return needs;
   }
   FlipResult Run(const PairInput& pair) const override {
     CheckFlipPair(pair);
-    const LaplaceBasis source = GetLaplaceBasis(pair.source.aux, options_.eigenpairs);
-    const LaplaceBasis target = GetLaplaceBasis(pair.target.aux, options_.eigenpairs);
+    LaplaceBasis source, target;
+    ShapeBasis(pair.source, options_.eigenpairs, &source);
+    ShapeBasis(pair.target, options_.eigenpairs, &target);
     return MakeFlipResult(
         HksFlipScores(pair.source.Y, pair.target.Y, source, target, options_), "hks");
   }

@@ -10,8 +10,8 @@ CurvatureTerm::CurvatureTerm(double weight, const ExtrinsicFlipOptions& options)
   if (!options_.IsValid(&error)) throw ConfigError("flip curvature: " + error);
 }
 
-void CurvatureTerm::PrepareShape(ShapeData& shape) const {
-  shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
+void CurvatureTerm::AddNeeds(int, ShapeNeeds* needs) const {
+  needs->products.push_back(CurvatureFeaturesNeed(options_.smoothing_rings));
 }
 
 void CurvatureTerm::Score(const FlipTermContext& context, std::array<double, 4>* total,

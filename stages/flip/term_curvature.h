@@ -3,7 +3,7 @@
 // globally along the canonical axes (extrinsic.h), times the term's weight.
 //   curvature: {weight: 1, local_weight: 1, global_weight: 1, chamfer_weight: 0,
 //               profile_bins: 16, histogram_bins: 8, smoothing_rings: 2}
-// Per shape it prepares the features (kExtrinsicFeaturesKey), which the refined decision
+// Per shape it needs the curvature features (CurvatureFeaturesKey), which the refined decision
 // (decide_refined.h) reads too. Status message: "; local l0 l1 l2 l3; global g0 g1 g2 g3".
 #pragma once
 
@@ -19,8 +19,8 @@ class CurvatureTerm : public FlipTerm {
  public:
   // Throws ConfigError for invalid options.
   CurvatureTerm(double weight, const ExtrinsicFlipOptions& options);
-  void PrepareShape(ShapeData& shape) const override;
-  bool PreparesFeatures() const override { return true; }
+  void AddNeeds(int stage_basis, ShapeNeeds* needs) const override;
+  int FeatureRings() const override { return options_.smoothing_rings; }
   // Needs the context's features.
   void Score(const FlipTermContext& context, std::array<double, 4>* total,
              std::ostringstream* detail) const override;

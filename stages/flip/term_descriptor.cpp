@@ -1,19 +1,9 @@
 #include "stages/flip/term_descriptor.h"
 
 #include "core/errors.h"
+#include "stages/products.h"
 
 namespace symembed {
-namespace {
-
-// The products in ShapeData::aux.
-constexpr const char* kWksPKey = "extrinsic_wks_P";
-constexpr const char* kWksQKey = "extrinsic_wks_Q";
-
-WksProducts WksProductsOf(const ShapeData& shape) {
-  return {AuxOf(shape, kWksPKey), AuxOf(shape, kWksQKey)};
-}
-
-}  // namespace
 
 DescriptorTerm::DescriptorTerm(double weight, const DescriptorMapOptions& options)
     : FlipTerm(weight), options_(options) {
@@ -21,12 +11,19 @@ DescriptorTerm::DescriptorTerm(double weight, const DescriptorMapOptions& option
   if (!options_.IsValid(&error)) throw ConfigError("flip descriptor: " + error);
 }
 
-void DescriptorTerm::PrepareShape(ShapeData& shape) const {
+ProductKey<WksProducts> DescriptorTerm::ProductsKey() const {
+  return {"flip_descriptor_products",
+          "k=" + std::to_string(options_.k) + " eigenpairs=" + std::to_string(options_.eigenpairs)};
+}
+
+void DescriptorTerm::AddNeeds(int stage_basis, ShapeNeeds* needs) const {
   // Over the shape's vertices, once per shape.
-  const WksProducts products = ComputeWksProducts(GetLaplaceBasis(shape.aux, options_.eigenpairs),
-                                                  options_.k, options_.eigenpairs);
-  shape.aux[kWksPKey] = products.P;
-  shape.aux[kWksQKey] = products.Q;
+  const int k = options_.k, eigenpairs = options_.eigenpairs;
+  needs->products.push_back(NeedProduct(
+      ProductsKey(), ProductInput::kBasis, stage_basis,
+      [k, eigenpairs](const ShapeData&, const LaplaceBasis& basis) {
+        return ComputeWksProducts(LeadingEigenpairs(basis, eigenpairs), k, eigenpairs);
+      }));
 }
 
 void DescriptorTerm::Score(const FlipTermContext& context, std::array<double, 4>* total,
@@ -34,7 +31,8 @@ void DescriptorTerm::Score(const FlipTermContext& context, std::array<double, 4>
   const PairInput& pair = context.pair;
   const DescriptorAgreement d = DescriptorMapAgreement(
       pair.source.Y, pair.target.Y, context.source_basis, context.target_basis,
-      WksProductsOf(pair.source), WksProductsOf(pair.target), pair.source.samples, options_);
+      ProductOf(pair.source, ProductsKey()), ProductOf(pair.target, ProductsKey()),
+      pair.source.samples, options_);
   for (int k = 0; k < 4; ++k) (*total)[k] += weight() * (1.0 - d.agreement[k]) / 2.0;
   *detail << "; descriptor";
   for (double v : d.agreement) *detail << " " << v;

@@ -3,8 +3,8 @@
 // signatures (descriptor_map.h).
 //   descriptor: {weight: 1, k: 30, eigenpairs: 60, energies: 100, sigma: 7, mu: 0.01,
 //                samples: 300, axes: 1}
-// Per shape it prepares the signature products (WksProducts) from the first `eigenpairs`
-// eigenpairs. Status message: "; descriptor a0 a1 a2 a3".
+// Per shape it needs the signature products (WksProducts) of the first `eigenpairs` eigenpairs
+// of the stage's basis. Status message: "; descriptor a0 a1 a2 a3".
 #pragma once
 
 #include <memory>
@@ -19,12 +19,13 @@ class DescriptorTerm : public FlipTerm {
  public:
   // Throws ConfigError for invalid options.
   DescriptorTerm(double weight, const DescriptorMapOptions& options);
-  // Needs the basis in aux (BasisSize() eigenpairs).
-  void PrepareShape(ShapeData& shape) const override;
+  void AddNeeds(int stage_basis, ShapeNeeds* needs) const override;
   int BasisSize() const override { return options_.eigenpairs; }
   void Score(const FlipTermContext& context, std::array<double, 4>* total,
              std::ostringstream* detail) const override;
   const DescriptorMapOptions& options() const { return options_; }
+  // The key of its products of a shape.
+  ProductKey<WksProducts> ProductsKey() const;
 
  private:
   DescriptorMapOptions options_;

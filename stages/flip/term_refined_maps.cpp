@@ -13,8 +13,10 @@
 namespace symembed {
 namespace {
 
-// The source's graph geodesics from its first `sources` samples (#sources x #V).
-constexpr const char* kGeodesicsKey = "flip_refined_maps_geodesics";
+// The key of a shape's graph geodesics from its first `sources` samples (#sources x #V).
+ProductKey<Eigen::MatrixXd> SampleGeodesicsKey(int sources) {
+  return {"sample_geodesics", "dijkstra sources=" + std::to_string(sources)};
+}
 
 }  // namespace
 
@@ -75,20 +77,26 @@ RefinedMapsTerm::RefinedMapsTerm(double weight, const RefinedMapsTermOptions& op
   if (!options_.IsValid(&error)) throw ConfigError("flip refined_maps: " + error);
 }
 
-void RefinedMapsTerm::PrepareShape(ShapeData& shape) const {
-  const std::vector<int> sources =
-      SamplePrefix(shape.samples, options_.sources, 1, "flip refined_maps: shape '" + shape.name + "'");
-  shape.aux[kGeodesicsKey] = DijkstraDistances(shape.surface, sources);
-  shape.aux[kExtrinsicFeaturesKey] = ExtrinsicFeatures(shape.surface, options_.smoothing_rings);
+void RefinedMapsTerm::AddNeeds(int, ShapeNeeds* needs) const {
+  const int count = options_.sources;
+  needs->products.push_back(NeedProduct(
+      SampleGeodesicsKey(count), ProductInput::kSamples, 0,
+      [count](const ShapeData& shape, const LaplaceBasis&) {
+        const std::vector<int> sources = SamplePrefix(
+            shape.samples, count, 1, "flip refined_maps: shape '" + shape.name + "'");
+        return DijkstraDistances(shape.surface, sources);
+      }));
+  needs->products.push_back(CurvatureFeaturesNeed(options_.smoothing_rings));
 }
 
 void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4>* total,
                          std::ostringstream* detail) const {
   const ShapeData& source = context.pair.source;
   const ShapeData& target = context.pair.target;
-  const Eigen::MatrixXd& source_distances = AuxOf(source, kGeodesicsKey);
-  const Eigen::MatrixXd& Fs = AuxOf(source, kExtrinsicFeaturesKey);
-  const Eigen::MatrixXd& Ft = AuxOf(target, kExtrinsicFeaturesKey);
+  const Eigen::MatrixXd& source_distances =
+      ProductOf(source, SampleGeodesicsKey(options_.sources));
+  const Eigen::MatrixXd& Fs = ProductOf(source, CurvatureFeaturesKey(options_.smoothing_rings));
+  const Eigen::MatrixXd& Ft = ProductOf(target, CurvatureFeaturesKey(options_.smoothing_rings));
   // Shapes with fewer samples than the options ask for use all of theirs.
   const int sources = std::min<int>(options_.sources, source.samples.size());
   if (source_distances.rows() != sources ||

@@ -23,9 +23,9 @@
 // It adds weight * (distortion_weight g_k + disagreement_weight c_k
 // + orientation_weight (1 - o_k)) to candidate k's total. The three measure different failures,
 // so none needs a threshold: each is a mean over the samples of a quantity near 0 for the right
-// map. The source's geodesics from its first `sources` samples are per-shape
-// data (PrepareShape), with the curvature features; the target's geodesics are computed per
-// candidate from the images of the samples.
+// map. The source's geodesics from its first `sources` samples are a per-shape product
+// (AddNeeds), with the curvature features; the target's geodesics are computed per candidate from
+// the images of the samples.
 // [Bronstein, Bronstein & Kimmel 2006] Generalized multidimensional scaling (distortion of a map
 // as the criterion of a correspondence).
 #pragma once
@@ -72,8 +72,8 @@ class RefinedMapsTerm : public FlipTerm {
  public:
   // Throws ConfigError for invalid options.
   RefinedMapsTerm(double weight, const RefinedMapsTermOptions& options);
-  void PrepareShape(ShapeData& shape) const override;
-  bool PreparesFeatures() const override { return true; }
+  void AddNeeds(int stage_basis, ShapeNeeds* needs) const override;
+  int FeatureRings() const override { return options_.smoothing_rings; }
   int BasisSize() const override { return options_.zoomout.k_end; }
   void Score(const FlipTermContext& context, std::array<double, 4>* total,
              std::ostringstream* detail) const override;

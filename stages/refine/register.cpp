@@ -1,6 +1,6 @@
-// The refine stages: thin adapters around ZoomOut, DiscreteOpt and FunctionalMapIcp. Each computes
-// the Laplace-Beltrami basis of a shape once, in PrepareShape, into ShapeData::aux (keys of
-// core/spectral.h, shared with the `hks` flip scorer).
+// The refine stages: thin adapters around ZoomOut, DiscreteOpt and FunctionalMapIcp. Each declares
+// the Laplace-Beltrami basis it reads (Needs), which the runner computes once per shape
+// (ShapeData::basis, shared with the flip stage).
 #include "stages/register.h"
 
 #include <memory>
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/spectral.h"
+#include "stages/products.h"
 #include "stages/refine/discrete_opt.h"
 #include "stages/refine/fmap_icp.h"
 #include "stages/refine/functional_map.h"
@@ -17,11 +18,12 @@ namespace symembed {
 
 namespace {
 
-// The first k eigenpairs of the shape's basis: from aux when PrepareShape stored enough, else
-// computed here (*computed set) so that a runner that skips PrepareShape still gets a result.
-LaplaceBasis ShapeBasis(const ShapeData& shape, int k, bool* computed) {
-  if (HasLaplaceBasis(shape.aux, k, shape.surface.NumVertices())) {
-    return GetLaplaceBasis(shape.aux, k);
+// The first k eigenpairs of the shape's basis when it holds enough, else computed here
+// (*computed set) so that a stage run without its needs (ComputeNeeds) still gets a result.
+LaplaceBasis RefineBasis(const ShapeData& shape, int k, bool* computed) {
+  if (shape.basis.NumEigenpairs() >= k &&
+      shape.basis.NumVertices() == shape.surface.NumVertices()) {
+    return LeadingEigenpairs(shape.basis, k);
   }
   *computed = true;
   LaplaceBasisOptions options;
@@ -29,14 +31,14 @@ LaplaceBasis ShapeBasis(const ShapeData& shape, int k, bool* computed) {
   return ComputeLaplaceBasis(shape.surface, options);
 }
 
-void PrepareBasis(ShapeData& shape, int k) {
-  LaplaceBasisOptions options;
-  options.k = k;
-  EnsureLaplaceBasis(shape.surface, options, &shape.aux);
+ShapeNeeds BasisNeeds(int k) {
+  ShapeNeeds needs;
+  needs.basis = k;
+  return needs;
 }
 
 std::string BasisNote(bool computed) {
-  return computed ? " (basis computed per pair: PrepareShape was not called)" : "";
+  return computed ? " (basis computed per pair: the shape lacks the stage's needs)" : "";
 }
 
 // `count` vertices with area: the prefix of the shape's farthest-point samples when there are
@@ -73,12 +75,12 @@ class ZoomOutRefine : public RefineStage {
   ZoomOutRefine(const ZoomOutOptions& options, int sample_count, int target_sample_count)
       : options_(options), sample_count_(sample_count), target_sample_count_(target_sample_count) {}
 
-  void PrepareShape(ShapeData& shape) const override { PrepareBasis(shape, options_.k_end); }
+  ShapeNeeds Needs() const override { return BasisNeeds(options_.k_end); }
 
   MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
     bool computed = false;
-    const LaplaceBasis source = ShapeBasis(pair.source, options_.k_end, &computed);
-    const LaplaceBasis target = ShapeBasis(pair.target, options_.k_end, &computed);
+    const LaplaceBasis source = RefineBasis(pair.source, options_.k_end, &computed);
+    const LaplaceBasis target = RefineBasis(pair.target, options_.k_end, &computed);
     const std::vector<int> samples = Samples(pair.source, source, sample_count_);
     // Target samples only go with source samples (the dense variant maps onto every vertex).
     const std::vector<int> target_samples =
@@ -98,12 +100,12 @@ class IcpRefine : public RefineStage {
  public:
   explicit IcpRefine(const FunctionalMapIcpOptions& options) : options_(options) {}
 
-  void PrepareShape(ShapeData& shape) const override { PrepareBasis(shape, options_.k); }
+  ShapeNeeds Needs() const override { return BasisNeeds(options_.k); }
 
   MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
     bool computed = false;
-    const LaplaceBasis source = ShapeBasis(pair.source, options_.k, &computed);
-    const LaplaceBasis target = ShapeBasis(pair.target, options_.k, &computed);
+    const LaplaceBasis source = RefineBasis(pair.source, options_.k, &computed);
+    const LaplaceBasis target = RefineBasis(pair.target, options_.k, &computed);
     FunctionalMapIcpResult r = FunctionalMapIcp(source, target, initial_map, options_);
     r.status.message += BasisNote(computed);
     return MatchResult{std::move(r.map), std::move(r.status)};
@@ -119,22 +121,23 @@ class DiscreteRefine : public RefineStage {
       : options_(options), sample_count_(sample_count) {}
 
   // The basis, and the descriptor term's products, which depend on the shape alone.
-  void PrepareShape(ShapeData& shape) const override {
-    PrepareBasis(shape, options_.k_end);
+  ShapeNeeds Needs() const override {
+    ShapeNeeds needs = BasisNeeds(options_.k_end);
     if (options_.weights.descriptor > 0.0) {
-      const WksProducts products =
-          DiscreteWksProducts(GetLaplaceBasis(shape.aux, options_.k_end), options_.k_end);
-      shape.aux[kWksPKey] = products.P;
-      shape.aux[kWksQKey] = products.Q;
+      const int k_end = options_.k_end;
+      needs.products.push_back(NeedProduct(
+          ProductsKey(), ProductInput::kBasis, k_end,
+          [k_end](const ShapeData&, const LaplaceBasis& basis) {
+            return DiscreteWksProducts(basis, k_end);
+          }));
     }
+    return needs;
   }
-  // 2: PrepareShape adds the descriptor products.
-  int PrepareVersion() const override { return 2; }
 
   MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
     bool computed = false;
-    const LaplaceBasis source = ShapeBasis(pair.source, options_.k_end, &computed);
-    const LaplaceBasis target = ShapeBasis(pair.target, options_.k_end, &computed);
+    const LaplaceBasis source = RefineBasis(pair.source, options_.k_end, &computed);
+    const LaplaceBasis target = RefineBasis(pair.target, options_.k_end, &computed);
     std::vector<int> samples, target_samples;
     if (sample_count_ > 0) {
       samples = SamplesOrAll(pair.source, source);
@@ -150,9 +153,9 @@ class DiscreteRefine : public RefineStage {
   }
 
  private:
-  // Keys of the descriptor products in ShapeData::aux.
-  static constexpr const char* kWksPKey = "discrete_wks_P";
-  static constexpr const char* kWksQKey = "discrete_wks_Q";
+  ProductKey<WksProducts> ProductsKey() const {
+    return {"discrete_descriptor_products", "k_end=" + std::to_string(options_.k_end)};
+  }
 
   // Samples of a shape, or every vertex with area when it has no more than sample_count_.
   std::vector<int> SamplesOrAll(const ShapeData& shape, const LaplaceBasis& basis) const {
@@ -160,14 +163,11 @@ class DiscreteRefine : public RefineStage {
     return ids.empty() ? MatchableTargets(basis.mass) : ids;
   }
 
-  // The prepared descriptor products of a shape for k_end, if PrepareShape stored them.
+  // The descriptor products of a shape for k_end, if it holds them.
   std::optional<WksProducts> ProductsOf(const ShapeData& shape) const {
-    const auto p = shape.aux.find(kWksPKey), q = shape.aux.find(kWksQKey);
-    if (p == shape.aux.end() || q == shape.aux.end() || p->second.rows() != options_.k_end ||
-        q->second.rows() != options_.k_end) {
-      return std::nullopt;
-    }
-    return WksProducts{p->second, q->second};
+    const WksProducts* products = shape.products.Find(ProductsKey());
+    if (products == nullptr) return std::nullopt;
+    return *products;
   }
 
   DiscreteOptOptions options_;

@@ -249,7 +249,8 @@ TEST_F(RunCommandTest, ShapesOnlyAndTargetShardsMergeAndUnfinishedShardsAreNamed
     ASSERT_NE(at, std::string::npos) << log;
     const std::string stages = log.substr(at, log.find(';', at) - at);
     for (const char* kind :
-         {"preprocess=", "geodesics=", "embedding=", "symmetrize=", "prepare_"}) {
+         {"preprocess=", "geodesics=", "embedding=", "symmetrize=", "laplace_basis=",
+          "curvature_features=", "sample_geodesics="}) {
       EXPECT_EQ(stages.find(kind), std::string::npos) << "a shape was computed again: " << stages;
     }
     EXPECT_NE(ReadText(dir + "/shard.txt").find("status: complete"), std::string::npos);

@@ -6,7 +6,7 @@
 //   BM_Flip/<scorer>            FlipStage::Run on one pair (per-shape data prepared outside);
 //                               extrinsic_300_samples, extrinsic_all_target_vertices: the
 //                               orientation term with 300 source samples, on every target vertex
-//   BM_FlipPrepare/<scorer>     FlipStage::PrepareShape on one shape
+//   BM_FlipPrepare/<scorer>     ComputeNeeds of FlipStage::Needs on one shape
 //   BM_Matching/<matcher>       MatchingStage::Run on one pair
 //   BM_Symmetry/<stage>         SymmetryStage::Run, 1,000 samples (Euclidean distances)
 //   BM_Symmetrize/<stage>       SymmetrizeStage::Run, 1,000 samples (ceres_without_warm_start:
@@ -84,8 +84,8 @@ std::string Type(const std::string& name) { return "{type: " + name + "}"; }
 void BM_Flip(benchmark::State& state, const Registry* registry, std::string yaml) {
   const auto stage = Make<FlipStage>(*registry, "flip", yaml);
   Pair p = TestPair();
-  stage->PrepareShape(p.source);
-  stage->PrepareShape(p.target);
+  ComputeNeeds(stage->Needs(), &p.source);
+  ComputeNeeds(stage->Needs(), &p.target);
   for (auto _ : state) {
     FlipResult r = stage->Run(PairInput{p.source, p.target, &p.gt});
     benchmark::DoNotOptimize(r.chosen);
@@ -97,8 +97,8 @@ void BM_FlipPrepare(benchmark::State& state, const Registry* registry, std::stri
   const auto stage = Make<FlipStage>(*registry, "flip", Type(name));
   for (auto _ : state) {
     ShapeData shape = TestPair().source;
-    stage->PrepareShape(shape);
-    benchmark::DoNotOptimize(shape.aux.size());
+    ComputeNeeds(stage->Needs(), &shape);
+    benchmark::DoNotOptimize(shape.products.size());
   }
 }
 

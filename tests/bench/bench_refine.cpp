@@ -68,12 +68,12 @@ std::vector<int> Perturbed(const Surface& t, const std::vector<int>& truth, unsi
   return map;
 }
 
-// Bases for the largest k any variant uses, so every variant reads them from aux.
+// Bases for the largest k any variant uses, so every variant reads its leading eigenpairs.
 void Prepare(BenchPair* p) {
-  LaplaceBasisOptions options;
-  options.k = 120;
-  EnsureLaplaceBasis(p->source.surface, options, &p->source.aux);
-  EnsureLaplaceBasis(p->target.surface, options, &p->target.aux);
+  ShapeNeeds needs;
+  needs.basis = 120;
+  ComputeNeeds(needs, &p->source);
+  ComputeNeeds(needs, &p->target);
 }
 
 const BenchPair& BlobPair() {
@@ -120,8 +120,8 @@ BENCHMARK(BM_LaplaceBasis)->Arg(50)->Arg(120)->Arg(200)->Unit(benchmark::kMillis
 void BM_SpectralNearest(benchmark::State& state, SpectralNearest::Method method) {
   const BenchPair& p = BlobPair();
   const int k = static_cast<int>(state.range(0));
-  const Eigen::MatrixXd source = p.source.aux.at(kLbEvecsKey).leftCols(k);
-  const Eigen::MatrixXd target = p.target.aux.at(kLbEvecsKey).leftCols(k);
+  const Eigen::MatrixXd source = p.source.basis.evecs.leftCols(k);
+  const Eigen::MatrixXd target = p.target.basis.evecs.leftCols(k);
   std::vector<int> nearest;
   for (auto _ : state) {
     const SpectralNearest search(target, {}, method);
@@ -149,9 +149,9 @@ void BM_NearestKernel(benchmark::State& state, NearestIsa isa) {
   }
   const BenchPair& p = BlobPair();
   const int k = static_cast<int>(state.range(0));
-  const Eigen::MatrixXf target = p.target.aux.at(kLbEvecsKey).leftCols(k).cast<float>();
+  const Eigen::MatrixXf target = p.target.basis.evecs.leftCols(k).cast<float>();
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> source =
-      p.source.aux.at(kLbEvecsKey).leftCols(k).cast<float>();
+      p.source.basis.evecs.leftCols(k).cast<float>();
   const PackedPoints packed = PackPoints(target.data(), static_cast<int>(target.rows()), k,
                                          static_cast<int>(target.rows()));
   std::vector<int> nearest(source.rows());
@@ -187,8 +187,8 @@ void BM_Refine(benchmark::State& state, const BenchPair* pair, const std::string
   const auto stage = registry.CreateAs<RefineStage>("refine", YAML::Load(yaml), "bench", "refine");
   // The per-shape data the runner prepares once per shape, outside the timed loop.
   ShapeData source = pair->source, target = pair->target;
-  stage->PrepareShape(source);
-  stage->PrepareShape(target);
+  ComputeNeeds(stage->Needs(), &source);
+  ComputeNeeds(stage->Needs(), &target);
   MatchResult r;
   for (auto _ : state) {
     r = stage->Run({source, target}, pair->initial);

@@ -133,64 +133,28 @@ TEST(LaplaceBasis, RejectsBadOptionsAndTooLargeK) {
   EXPECT_THROW(ComputeLaplaceBasis(Icosphere(1), options), InvalidInputError);
 }
 
-TEST(LaplaceBasis, AuxRoundTripAndReuse) {
+TEST(LaplaceBasis, LeadingEigenpairsAreThePrefixOrAnError) {
   const Surface s = testing::BumpyBlob(6);
-  AuxMap aux;
   LaplaceBasisOptions options;
   options.k = 10;
-  EXPECT_FALSE(HasLaplaceBasis(aux, 10, s.NumVertices()));
-  EXPECT_THROW(GetLaplaceBasis(aux), InvalidInputError);
-  EXPECT_TRUE(EnsureLaplaceBasis(s, options, &aux));
-  EXPECT_TRUE(HasLaplaceBasis(aux, 10, s.NumVertices()));
-  EXPECT_FALSE(HasLaplaceBasis(aux, 11, s.NumVertices()));
-  EXPECT_EQ(aux.at(kLbEvalsKey).rows(), 10);
-  EXPECT_EQ(aux.at(kLbEvecsKey).cols(), 10);
-  EXPECT_EQ(aux.at(kLbMassKey).rows(), s.NumVertices());
-  // Fewer eigenpairs than stored: reused, not recomputed.
-  options.k = 5;
-  EXPECT_FALSE(EnsureLaplaceBasis(s, options, &aux));
-  const LaplaceBasis five = GetLaplaceBasis(aux, 5);
+  const LaplaceBasis basis = ComputeLaplaceBasis(s, options);
+  EXPECT_EQ(LeadingEigenpairs(basis, -1).evecs, basis.evecs);
+  const LaplaceBasis five = LeadingEigenpairs(basis, 5);
   EXPECT_EQ(five.NumEigenpairs(), 5);
-  EXPECT_EQ(five.evecs, aux.at(kLbEvecsKey).leftCols(5));
-  EXPECT_THROW(GetLaplaceBasis(aux, 11), InvalidInputError);
+  EXPECT_EQ(five.evecs, basis.evecs.leftCols(5));
+  EXPECT_EQ(five.evals, basis.evals.head(5));
+  EXPECT_EQ(five.mass, basis.mass);
+  EXPECT_THROW(LeadingEigenpairs(basis, 11), InvalidInputError);
+  EXPECT_THROW(LeadingEigenpairs(LaplaceBasis{}, 1), InvalidInputError);
+  LaplaceBasis broken = basis;
+  broken.mass.resize(3);
+  EXPECT_THROW(LeadingEigenpairs(broken, 5), InvalidInputError);
   // Into a basis that held more eigenpairs (a thread's reused storage): the same five.
-  LaplaceBasis reused = GetLaplaceBasis(aux, 10);
-  GetLaplaceBasis(aux, 5, &reused);
+  LaplaceBasis reused = basis;
+  LeadingEigenpairs(basis, 5, &reused);
   EXPECT_EQ(reused.evecs, five.evecs);
   EXPECT_EQ(reused.evals, five.evals);
   EXPECT_EQ(reused.mass, five.mass);
-  // More eigenpairs than stored: recomputed.
-  options.k = 12;
-  EXPECT_TRUE(EnsureLaplaceBasis(s, options, &aux));
-  EXPECT_EQ(GetLaplaceBasis(aux).NumEigenpairs(), 12);
-}
-
-TEST(LaplaceBasis, MergeAuxKeepsTheLargerBasis) {
-  const Surface s = testing::BumpyBlob(6);
-  AuxMap small, large;
-  LaplaceBasisOptions options;
-  options.k = 8;
-  EnsureLaplaceBasis(s, options, &small);
-  small["features"] = Eigen::MatrixXd::Ones(2, 2);
-  options.k = 12;
-  EnsureLaplaceBasis(s, options, &large);
-  large["other"] = Eigen::MatrixXd::Zero(1, 1);
-  // A stage that prepared a small basis after one that prepared a large one (the order of the
-  // pipeline's prepare steps) leaves the large one, and either way the other entries merge.
-  AuxMap merged = large;
-  MergeAux(small, &merged);
-  EXPECT_EQ(GetLaplaceBasis(merged).NumEigenpairs(), 12);
-  EXPECT_EQ(merged.at(kLbEvecsKey), large.at(kLbEvecsKey));
-  EXPECT_EQ(merged.count("features"), 1u);
-  EXPECT_EQ(merged.count("other"), 1u);
-  merged = small;
-  MergeAux(large, &merged);
-  EXPECT_EQ(GetLaplaceBasis(merged).NumEigenpairs(), 12);
-  EXPECT_EQ(merged.count("features"), 1u);
-  // Without a basis on either side, entries of `from` replace those of `into`.
-  AuxMap plain = {{"features", Eigen::MatrixXd::Zero(2, 2)}};
-  MergeAux({{"features", Eigen::MatrixXd::Ones(2, 2)}}, &plain);
-  EXPECT_EQ(plain.at("features"), Eigen::MatrixXd::Ones(2, 2));
 }
 
 }  // namespace

@@ -195,20 +195,28 @@ class TestSymmetrize : public SymmetrizeStage {
   }
 };
 
-// Chooses a fixed candidate; PrepareShape adds a per-vertex feature.
+// Chooses a fixed candidate; needs a per-vertex feature of the embedding, a product.
 class TestFlip : public FlipStage {
  public:
   explicit TestFlip(int choose) : choose_(choose) {}
-  void PrepareShape(ShapeData& shape) const override {
-    Count("prepare_flip");
-    shape.aux["test_feature"] = shape.Y.col(0);
+  static ProductKey<Eigen::MatrixXd> FeatureKey() {
+    return {"test_feature", "column=" + std::to_string(feature_column)};
   }
-  int PrepareVersion() const override { return prepare_version; }
-  // What PrepareVersion returns, the same for every instance (a code change, not an option).
-  static inline int prepare_version = 1;
+  ShapeNeeds Needs() const override {
+    ShapeNeeds needs;
+    const int column = feature_column;
+    needs.products.push_back(NeedProduct(FeatureKey(), ProductInput::kEmbedding, 0,
+                                         [column](const ShapeData& shape, const LaplaceBasis&) {
+                                           Count("test_feature");
+                                           return Eigen::MatrixXd(shape.Y.col(column));
+                                         }));
+    return needs;
+  }
+  // The column of Y the feature is (a product's option), the same for every instance.
+  static inline int feature_column = 0;
   FlipResult Run(const PairInput& pair) const override {
     Count("flip");
-    SYMEMBED_CHECK(pair.source.aux.count("test_feature"), "missing aux");
+    ProductOf(pair.source, FeatureKey());
     FlipResult r;
     r.chosen = choose_;
     r.status.message = "test flip chose " + std::to_string(choose_);

@@ -116,14 +116,14 @@ TEST(Runner, SecondIdenticalRunRecomputesNothing) {
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
   const RunResult first = RunConfig(config, tmp.File("out"), tmp.File("cache"));
   for (const char* kind : {"preprocess", "sampling", "geodesics", "embedding", "symmetry",
-                           "symmetrize", "prepare_flip"}) {
+                           "symmetrize", "test_feature"}) {
     EXPECT_EQ(Get(first.calls, kind), 3) << kind;
     EXPECT_EQ(Get(first.stats.executed, kind), 3) << kind;
   }
   const auto before = Snapshot(tmp.File("out"));
   const RunResult second = RunConfig(config, tmp.File("out"), tmp.File("cache"));
   for (const char* kind : {"preprocess", "sampling", "geodesics", "embedding", "symmetry",
-                           "symmetrize", "prepare_flip", "prepare_matching", "prepare_refine"}) {
+                           "symmetrize", "test_feature"}) {
     EXPECT_EQ(Get(second.calls, kind), 0) << kind;
     EXPECT_EQ(Get(second.stats.executed, kind), 0) << kind;
   }
@@ -145,15 +145,15 @@ TEST(Runner, SecondIdenticalRunRecomputesNothing) {
   EXPECT_EQ(Snapshot(tmp.File("out")), before);
 }
 
-TEST(Runner, ANewPrepareVersionRecomputesThePreparedDataAndThePairs) {
+TEST(Runner, AProductOfNewOptionsIsComputedWithThePairs) {
   TempDir tmp;
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
   RunConfig(config, tmp.File("out1"), tmp.File("cache"));
-  testing::runner::TestFlip::prepare_version = 2;
+  testing::runner::TestFlip::feature_column = 1;
   const RunResult second = RunConfig(config, tmp.File("out2"), tmp.File("cache"));
-  testing::runner::TestFlip::prepare_version = 1;
-  // The flip stage's per-shape data is stale, what comes before it is not.
-  EXPECT_EQ(Get(second.stats.executed, "prepare_flip"), 3);
+  testing::runner::TestFlip::feature_column = 0;
+  // The flip stage's product is new, what comes before it is not.
+  EXPECT_EQ(Get(second.stats.executed, "test_feature"), 3);
   EXPECT_EQ(Get(second.stats.executed, "symmetrize"), 0);
   EXPECT_EQ(Get(second.stats.cache_hits, "pair"), 0);
   EXPECT_EQ(Get(second.calls, "flip"), 6);
@@ -178,9 +178,10 @@ TEST(Runner, VariantChangingALaterStageRecomputesNothingBeforeIt) {
   EXPECT_EQ(Get(run.calls, "embedding"), 6);
   EXPECT_EQ(Get(run.calls, "symmetry"), 6);
   EXPECT_EQ(Get(run.calls, "symmetrize"), 6);
-  // Aux entries of the flip scorer: base, scaled (new embedding), flip1 (new options).
-  EXPECT_EQ(Get(run.calls, "prepare_flip"), 9);
-  EXPECT_EQ(Get(run.stats.executed, "prepare_refine"), 6);
+  // The flip stage's product of the embedding: base and scaled (new embedding); flip1 changes
+  // an option the product does not name, so it shares base's.
+  EXPECT_EQ(Get(run.calls, "test_feature"), 6);
+  EXPECT_EQ(Get(run.stats.cache_hits, "test_feature"), 3);
   EXPECT_EQ(Get(run.stats.cache_hits, "geodesics"), 3);  // scaled reads base's D
   EXPECT_EQ(ReadText(tmp.File("out/comparison.txt")), "base\nscaled\nflip1\n");
   // flip1 chose candidate 1 (Rx(pi)); the oracle knows better.
@@ -360,7 +361,7 @@ TEST(Runner, ShapesOnlyShardsThenTargetShardsComputeEachShapeOnceAndEqualASingle
     shapes.on_shape = [&](const std::string& shape, const std::string& variant,
                           const std::vector<std::string>& stages) {
       if (variant == "base") {
-        EXPECT_EQ(stages.size(), 9u) << shape;  // preprocess ... symmetrize, 3 prepare_ stages
+        EXPECT_EQ(stages.size(), 7u) << shape;  // preprocess ... symmetrize, the flip's product
         ++computed[shape];
       }
     };
@@ -383,7 +384,7 @@ TEST(Runner, ShapesOnlyShardsThenTargetShardsComputeEachShapeOnceAndEqualASingle
     shards.push_back(tmp.File("shard" + std::to_string(i)));
     const RunResult run = RunConfig(config, shards.back(), tmp.File("cache"), shard);
     for (const char* kind : {"preprocess", "sampling", "geodesics", "embedding", "symmetry",
-                             "symmetrize", "prepare_flip", "prepare_matching", "prepare_refine"}) {
+                             "symmetrize", "test_feature"}) {
       EXPECT_EQ(Get(run.stats.executed, kind), 0) << kind << " in shard " << i;
     }
   }

@@ -101,22 +101,23 @@ TEST(Archive, RoundTripsShapeResults) {
   emb.Y = Eigen::MatrixXd::Random(4, 3);
   emb.reflection = -1;
   emb.stress_history = {3, 2, 1};
-  std::map<std::string, Eigen::MatrixXd> aux = {{"hks", Eigen::MatrixXd::Ones(4, 2)}};
+  LaplaceBasis basis{Eigen::VectorXd::LinSpaced(2, 0.0, 1.0), Eigen::MatrixXd::Random(4, 2),
+                     Eigen::VectorXd::Ones(4)};
 
   ArchiveWriter out;
   Write(out, pre);
   Write(out, sym);
   Write(out, emb);
-  Write(out, aux);
+  Write(out, basis);
   ArchiveReader in(out.Finish("shape"), "shape");
   PreprocessResult pre2;
   SymmetryResult sym2;
   EmbeddingResult emb2;
-  std::map<std::string, Eigen::MatrixXd> aux2;
+  LaplaceBasis basis2;
   Read(in, &pre2);
   Read(in, &sym2);
   Read(in, &emb2);
-  Read(in, &aux2);
+  Read(in, &basis2);
   in.ExpectEnd();
   EXPECT_EQ(pre2.surface.V, pre.surface.V);
   EXPECT_EQ(pre2.surface.F, pre.surface.F);
@@ -130,7 +131,9 @@ TEST(Archive, RoundTripsShapeResults) {
   EXPECT_EQ(emb2.Y, emb.Y);
   EXPECT_EQ(emb2.reflection, -1);
   EXPECT_EQ(emb2.stress_history, emb.stress_history);
-  EXPECT_EQ(aux2.at("hks"), aux.at("hks"));
+  EXPECT_EQ(basis2.evals, basis.evals);
+  EXPECT_EQ(basis2.evecs, basis.evecs);
+  EXPECT_EQ(basis2.mass, basis.mass);
 }
 
 }  // namespace

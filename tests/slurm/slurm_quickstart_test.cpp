@@ -28,9 +28,9 @@ using testing::RunShell;
 using testing::SourceDir;
 using testing::TempDir;
 
-const char* const kShapeStages[] = {"preprocess",   "sampling",         "geodesics",
-                                    "embedding",    "symmetry",         "symmetrize",
-                                    "prepare_flip", "prepare_matching", "prepare_refine"};
+const char* const kShapeStages[] = {"preprocess",    "sampling",         "geodesics",
+                                    "embedding",     "symmetry",         "symmetrize",
+                                    "laplace_basis", "sample_geodesics", "curvature_features"};
 
 // Why Slurm cannot be used here, or empty when it can (sets SLURM_CONF when it finds the
 // local cluster's configuration).

@@ -164,8 +164,8 @@ class DiscreteOptTest : public ::testing::Test {
   static void SetUpTestSuite() {
     pair_ = new Pair(testing::MakePair(16, 0.1));
     const auto stage = MakeRefine("{type: discrete, k_start: 10, k_end: 60}");
-    stage->PrepareShape(pair_->source);
-    stage->PrepareShape(pair_->target);
+    ComputeNeeds(stage->Needs(), &pair_->source);
+    ComputeNeeds(stage->Needs(), &pair_->target);
   }
   static void TearDownTestSuite() { delete pair_; }
   static Pair* pair_;
@@ -201,8 +201,8 @@ TEST_F(DiscreteOptTest, LowersTheErrorOfANoisyTruth) {
 }
 
 TEST_F(DiscreteOptTest, WithoutDenseResultOnlyTheSamplesMove) {
-  const LaplaceBasis s = GetLaplaceBasis(pair_->source.aux, 60);
-  const LaplaceBasis t = GetLaplaceBasis(pair_->target.aux, 60);
+  const LaplaceBasis s = LeadingEigenpairs(pair_->source.basis, 60);
+  const LaplaceBasis t = LeadingEigenpairs(pair_->target.basis, 60);
   const std::vector<int> samples = EuclideanFarthestPoints(pair_->source.surface.V, 400);
   const std::vector<int> target_samples = EuclideanFarthestPoints(pair_->target.surface.V, 500);
   const std::vector<int> noisy = PerturbedTruth(*pair_, 0.5, 3, 7);
@@ -258,8 +258,8 @@ TEST(DiscreteOptSynthetic, EndsCloserThanZoomOutOnAStretchedHumanoidAndKeepsTheS
   const std::vector<int> noisy = PerturbedTruth(p, 0.8, 6, 7);
   const auto discrete = MakeRefine("{type: discrete}");
   const auto zoomout = MakeRefine("{type: zoomout}");
-  discrete->PrepareShape(p.source);
-  discrete->PrepareShape(p.target);
+  ComputeNeeds(discrete->Needs(), &p.source);
+  ComputeNeeds(discrete->Needs(), &p.target);
   const MatchResult d = discrete->Run({p.source, p.target}, noisy);
   const MatchResult z = zoomout->Run({p.source, p.target}, noisy);
   const double before = MeanError(p, noisy), after_d = MeanError(p, d.map),

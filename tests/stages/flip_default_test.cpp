@@ -40,8 +40,8 @@ TEST(FlipDefault, RefinedMapsKeepTheFrontOfAStretchedHumanoidWhereTheFormerTerms
   const auto chosen_by = [&](const std::string& yaml) {
     const auto stage = testing::MakeStageAs<FlipStage>(r, "flip", yaml);
     ShapeData s = source, t = target;
-    stage->PrepareShape(s);
-    stage->PrepareShape(t);
+    ComputeNeeds(stage->Needs(), &s);
+    ComputeNeeds(stage->Needs(), &t);
     return stage->Run(PairInput{s, t, &gt});
   };
   const int oracle = chosen_by("{type: oracle}").chosen;

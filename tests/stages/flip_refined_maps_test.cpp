@@ -87,8 +87,10 @@ void ExpectTermFindsTheOracle(FigureKind kind) {
   ShapeData source = FlipShape("pose0", figures.shapes[0].shape.surface);
   ShapeData posed = FlipShape("pose1", figures.shapes[1].shape.surface);
   const RefinedMapsTerm term(1.0, SmallOptions());
-  term.PrepareShape(source);
-  term.PrepareShape(posed);
+  ShapeNeeds needs;
+  term.AddNeeds(term.BasisSize(), &needs);
+  ComputeNeeds(needs, &source);
+  ComputeNeeds(needs, &posed);
   LaplaceBasisOptions basis_options;
   basis_options.k = term.BasisSize();
   const LaplaceBasis source_basis = ComputeLaplaceBasis(source.surface, basis_options);
@@ -130,7 +132,9 @@ TEST(RefinedMapsFlip, BadOptionsAndInputsFailClearly) {
   // A shape without samples.
   ShapeData shape = FlipShape("rest", testing::SymmetricFigure());
   shape.samples.clear();
-  EXPECT_THROW(RefinedMapsTerm(1.0, SmallOptions()).PrepareShape(shape), InvalidInputError);
+  ShapeNeeds needs;
+  RefinedMapsTerm(1.0, SmallOptions()).AddNeeds(60, &needs);
+  EXPECT_THROW(ComputeNeeds(needs, &shape), InvalidInputError);
 }
 
 }  // namespace

@@ -194,11 +194,11 @@ struct TermInputs {
   explicit TermInputs(int turn) : shapes(HumanoidPoses(1200)) {
     shapes[1].Y = shapes[1].Y * CandidateRotations()[turn];
     const auto stage = MakeStage(testing::kFormerDefault);
-    for (ShapeData& shape : shapes) stage->PrepareShape(shape);
+    for (ShapeData& shape : shapes) ComputeNeeds(stage->Needs(), &shape);
     gt = testing::IdentityGroundTruth(shapes[0].surface.NumVertices());
     maps = ComputeCandidateMaps(shapes[0].Y, shapes[1].Y);
-    source_basis = GetLaplaceBasis(shapes[0].aux, 60);
-    target_basis = GetLaplaceBasis(shapes[1].aux, 60);
+    source_basis = LeadingEigenpairs(shapes[0].basis, 60);
+    target_basis = LeadingEigenpairs(shapes[1].basis, 60);
   }
   PairInput Pair() const { return PairInput{shapes[0], shapes[1], &gt}; }
   FlipTermContext Context(const PairInput& pair) const {
@@ -206,8 +206,8 @@ struct TermInputs {
             maps,
             source_basis,
             target_basis,
-            &shapes[0].aux.at(kExtrinsicFeaturesKey),
-            &shapes[1].aux.at(kExtrinsicFeaturesKey),
+            &ProductOf(shapes[0], CurvatureFeaturesKey(2)),
+            &ProductOf(shapes[1], CurvatureFeaturesKey(2)),
             1};
   }
 };
@@ -234,10 +234,13 @@ TEST(CurvatureTerm, IsThePapersScoreTimesItsWeight) {
   }
   // Its per-shape data: the features, nothing else.
   ShapeData shape = in.shapes[0];
-  shape.aux.clear();
-  CurvatureTerm(1.0, options).PrepareShape(shape);
-  ASSERT_EQ(shape.aux.size(), 1u);
-  EXPECT_EQ(shape.aux.at(kExtrinsicFeaturesKey), ExtrinsicFeatures(shape.surface, 2));
+  shape.products.Clear();
+  ShapeNeeds needs;
+  CurvatureTerm(1.0, options).AddNeeds(60, &needs);
+  EXPECT_EQ(needs.basis, 0);
+  ComputeNeeds(needs, &shape);
+  ASSERT_EQ(shape.products.size(), 1u);
+  EXPECT_EQ(ProductOf(shape, CurvatureFeaturesKey(2)), ExtrinsicFeatures(shape.surface, 2));
   EXPECT_THROW(CurvatureTerm(1.0, ExtrinsicFlipOptions{0, 0, 0}), ConfigError);
 }
 
@@ -260,15 +263,19 @@ TEST(DescriptorTerm, AddsWeightedDisagreementWithTheDescriptorMap) {
     EXPECT_EQ(total[k], before[k] + 0.5 * (1.0 - a.agreement[k]) / 2.0) << k;
   }
   EXPECT_EQ(detail.str().substr(0, 12), "; descriptor");
-  // Its per-shape data: the products of the basis in aux, for its k and eigenpairs.
+  // Its per-shape data: the products of the stage's basis, for its k and eigenpairs.
   ShapeData shape = in.shapes[0];
-  shape.aux.erase("extrinsic_wks_P");
-  shape.aux.erase("extrinsic_wks_Q");
-  term.PrepareShape(shape);
+  shape.products.Erase(term.ProductsKey().Id());
+  ShapeNeeds needs;
+  term.AddNeeds(60, &needs);
+  ASSERT_EQ(needs.products.size(), 1u);
+  EXPECT_EQ(needs.products[0].input, ProductInput::kBasis);
+  EXPECT_EQ(needs.products[0].basis_size, 60);
+  ComputeNeeds(needs, &shape);
   const WksProducts products = ComputeWksProducts(in.source_basis, options.k, options.eigenpairs);
-  EXPECT_EQ(shape.aux.at("extrinsic_wks_P"), products.P);
-  EXPECT_EQ(shape.aux.at("extrinsic_wks_Q"), products.Q);
-  shape.aux.erase("extrinsic_wks_P");
+  EXPECT_EQ(ProductOf(shape, term.ProductsKey()).P, products.P);
+  EXPECT_EQ(ProductOf(shape, term.ProductsKey()).Q, products.Q);
+  shape.products.Erase(term.ProductsKey().Id());
   EXPECT_THROW(term.Score(in.Context(PairInput{shape, in.shapes[1]}), &total, &detail),
                InvalidInputError);
 }
@@ -342,8 +349,8 @@ FlipResult OldExtrinsicRun(const PairInput& pair, const OldStageOptions& o) {
   const Eigen::MatrixXd Fs = ExtrinsicFeatures(pair.source.surface, curvature.smoothing_rings);
   const Eigen::MatrixXd Ft = ExtrinsicFeatures(pair.target.surface, curvature.smoothing_rings);
   ExtrinsicScores s = ExtrinsicFlipScores(pair.source.Y, pair.target.Y, Fs, Ft, curvature, maps);
-  const LaplaceBasis bs = GetLaplaceBasis(pair.source.aux, 60);
-  const LaplaceBasis bt = GetLaplaceBasis(pair.target.aux, 60);
+  const LaplaceBasis bs = LeadingEigenpairs(pair.source.basis, 60);
+  const LaplaceBasis bt = LeadingEigenpairs(pair.target.basis, 60);
   DescriptorAgreement d;
   if (o.descriptor_weight > 0.0) {
     d = DescriptorMapAgreement(pair.source.Y, pair.target.Y, bs, bt,
@@ -430,10 +437,11 @@ TEST(ExtrinsicStage, TermOfWeightZeroIsNeitherPreparedNorComputed) {
                          testing::FlipShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2))};
   const auto stage = MakeStage(testing::FormerTerms(0, 0, "{type: argmin}"));
   for (ShapeData& shape : shapes) {
-    stage->PrepareShape(shape);
+    ComputeNeeds(stage->Needs(), &shape);
     // No basis, no signature products: the features only.
-    ASSERT_EQ(shape.aux.size(), 1u);
-    EXPECT_EQ(shape.aux.begin()->first, kExtrinsicFeaturesKey);
+    EXPECT_EQ(shape.basis.NumEigenpairs(), 0);
+    ASSERT_EQ(shape.products.size(), 1u);
+    EXPECT_TRUE(shape.products.Has(CurvatureFeaturesKey(2).Id()));
   }
   const std::string message = stage->Run(PairInput{shapes[0], shapes[1]}).status.message;
   EXPECT_NE(message.find("; local"), std::string::npos) << message;
@@ -441,14 +449,13 @@ TEST(ExtrinsicStage, TermOfWeightZeroIsNeitherPreparedNorComputed) {
     EXPECT_EQ(message.find(part), std::string::npos) << part << ": " << message;
   }
   // The descriptor term alone prepares its products, the orientation term a basis only.
-  ShapeData shape = shapes[0];
-  shape.aux.clear();
-  MakeStage(testing::FormerTerms(1, 0, "{type: argmin}"))->PrepareShape(shape);
-  EXPECT_EQ(shape.aux.count("extrinsic_wks_P"), 1u);
-  shape.aux.clear();
-  MakeStage(testing::FormerTerms(0, 1, "{type: argmin}"))->PrepareShape(shape);
-  EXPECT_EQ(shape.aux.count("extrinsic_wks_P"), 0u);
-  EXPECT_EQ(GetLaplaceBasis(shape.aux).NumEigenpairs(), 60);
+  const ShapeNeeds descriptor = MakeStage(testing::FormerTerms(1, 0, "{type: argmin}"))->Needs();
+  ASSERT_EQ(descriptor.products.size(), 2u);
+  EXPECT_EQ(descriptor.products[1].name, "flip_descriptor_products");
+  const ShapeNeeds orientation = MakeStage(testing::FormerTerms(0, 1, "{type: argmin}"))->Needs();
+  ASSERT_EQ(orientation.products.size(), 1u);
+  EXPECT_EQ(orientation.products[0].name, "curvature_features");
+  EXPECT_EQ(orientation.basis, 60);
 }
 
 }  // namespace

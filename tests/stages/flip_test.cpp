@@ -39,14 +39,14 @@ TEST_P(FlipScorers, RecoverEveryCandidateRotation) {
   ShapeData source = FlipShape("rest", testing::SymmetricFigure());
   const ShapeData posed = FlipShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2));
   const PreprocessedGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
-  stage->PrepareShape(source);
+  ComputeNeeds(stage->Needs(), &source);
   // The right candidate for the unturned target, from the ground truth.
   const int base = OracleChoice(source, posed);
   const auto rotations = CandidateRotations();
   for (int j = 0; j < 4; ++j) {
     ShapeData target = posed;
     target.Y = posed.Y * rotations[j];  // rows R_j y (R_j is symmetric)
-    stage->PrepareShape(target);
+    ComputeNeeds(stage->Needs(), &target);
     const FlipResult r = stage->Run(PairInput{source, target, &gt});
     EXPECT_EQ(r.chosen, base ^ j) << GetParam() << " candidate " << j << ": " << r.status.message;
   }

@@ -39,8 +39,8 @@ class RefineTest : public ::testing::Test {
   static void SetUpTestSuite() {
     pair_ = new Pair(MakePair(16, 0.1));  // 1538 vertices
     const auto stage = MakeStage("{type: zoomout, k_start: 10, k_end: 60, step: 5}");
-    stage->PrepareShape(pair_->source);
-    stage->PrepareShape(pair_->target);
+    ComputeNeeds(stage->Needs(), &pair_->source);
+    ComputeNeeds(stage->Needs(), &pair_->target);
   }
   static void TearDownTestSuite() { delete pair_; }
 
@@ -51,7 +51,7 @@ class RefineTest : public ::testing::Test {
     std::vector<int> samples, target_samples;
   };
   static ZoomOutInputs SampledInputs() {
-    return {GetLaplaceBasis(pair_->source.aux, 60), GetLaplaceBasis(pair_->target.aux, 60),
+    return {LeadingEigenpairs(pair_->source.basis, 60), LeadingEigenpairs(pair_->target.basis, 60),
             EuclideanFarthestPoints(pair_->source.surface.V, 400),
             EuclideanFarthestPoints(pair_->target.surface.V, 800)};
   }
@@ -60,18 +60,28 @@ class RefineTest : public ::testing::Test {
 };
 Pair* RefineTest::pair_ = nullptr;
 
-TEST_F(RefineTest, PrepareShapeStoresTheBasisOnce) {
-  EXPECT_TRUE(HasLaplaceBasis(pair_->source.aux, 60, pair_->source.surface.NumVertices()));
-  const Eigen::MatrixXd before = pair_->source.aux.at(kLbEvecsKey);
-  // A stage needing fewer eigenpairs reuses the stored basis.
-  MakeStage("{type: icp, k: 30}")->PrepareShape(pair_->source);
-  EXPECT_EQ(pair_->source.aux.at(kLbEvecsKey).cols(), 60);
-  EXPECT_EQ(pair_->source.aux.at(kLbEvecsKey), before);
+TEST_F(RefineTest, StagesDeclareTheirBasisAndAShapeKeepsTheLargest) {
+  EXPECT_EQ(pair_->source.basis.NumEigenpairs(), 60);
+  EXPECT_EQ(pair_->source.basis.NumVertices(), pair_->source.surface.NumVertices());
+  const Eigen::MatrixXd before = pair_->source.basis.evecs;
+  // A stage needing fewer eigenpairs reuses the shape's basis.
+  const ShapeNeeds icp = MakeStage("{type: icp, k: 30}")->Needs();
+  EXPECT_EQ(icp.basis, 30);
+  EXPECT_TRUE(icp.products.empty());
+  ComputeNeeds(icp, &pair_->source);
+  EXPECT_EQ(pair_->source.basis.evecs, before);
+  // The discrete stage's descriptor products are computed from its own basis.
+  const ShapeNeeds discrete = MakeStage("{type: discrete, k_start: 10, k_end: 40}")->Needs();
+  EXPECT_EQ(discrete.basis, 40);
+  ASSERT_EQ(discrete.products.size(), 1u);
+  EXPECT_EQ(discrete.products[0].input, ProductInput::kBasis);
+  EXPECT_EQ(discrete.products[0].basis_size, 40);
+  EXPECT_EQ(MakeStage("{type: none}")->Needs().basis, 0);
 }
 
 TEST_F(RefineTest, FunctionalMapOfTruthIsNearlyOrthogonal) {
-  const LaplaceBasis s = GetLaplaceBasis(pair_->source.aux, 30);
-  const LaplaceBasis t = GetLaplaceBasis(pair_->target.aux, 30);
+  const LaplaceBasis s = LeadingEigenpairs(pair_->source.basis, 30);
+  const LaplaceBasis t = LeadingEigenpairs(pair_->target.basis, 30);
   std::vector<int> all(pair_->truth.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
   const Eigen::MatrixXd C = FitFunctionalMap(s.evecs, t.evecs, all, pair_->truth, s.mass);
@@ -311,7 +321,7 @@ TEST_F(RefineTest, RejectsMalformedMaps) {
   EXPECT_THROW(stage->Run({pair_->source, pair_->target}, map), InvalidInputError);
 }
 
-TEST(RefineStages, WorkWithoutPrepareShape) {
+TEST(RefineStages, WorkWithoutTheirNeeds) {
   Pair p = MakePair(6, 0.2);  // 218 vertices
   const MatchResult r = MakeStage("{type: zoomout, k_start: 5, k_end: 20, step: 5}")
                             ->Run({p.source, p.target}, p.truth);
@@ -375,8 +385,8 @@ TEST(RefineSynthetic, ZoomOutOnPosedHumanoidImprovesAndKeepsTheSide) {
   flipped.truth = mirrored;
   for (const std::string yaml : {"{type: zoomout, k_end: 80}", "{type: icp, k: 40}"}) {
     const auto stage = MakeStage(yaml);
-    stage->PrepareShape(p.source);
-    stage->PrepareShape(p.target);
+    ComputeNeeds(stage->Needs(), &p.source);
+    ComputeNeeds(stage->Needs(), &p.target);
     const MatchResult from_truth = stage->Run({p.source, p.target}, p.truth);
     const MatchResult r = stage->Run({p.source, p.target}, noisy);
     // Bending is not isometric at the joints: from the truth the map settles within about half a

@@ -45,7 +45,7 @@ ShapeData RunShape(const Chain& c, const std::string& name, const Surface& surfa
   const SymmetryInput input{surface, shape.samples, D, shape.embedding};
   shape.symmetry = c.symmetry->Run(input);
   shape.Y = CanonicalFrame(c.symmetrize->Run(input, shape.symmetry).Y);
-  c.flip->PrepareShape(shape);
+  ComputeNeeds(c.flip->Needs(), &shape);
   return shape;
 }
 
