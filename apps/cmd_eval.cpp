@@ -57,9 +57,8 @@ void PrintEvalReport(const std::string& name, const std::string& out, const Scor
             << " (left-right " << summary.flipped_left_right << "); outputs in " << out << "\n";
 }
 
-}  // namespace
-
-int EvalCommand(const Args& args) {
+// The command's options.
+ArgParser EvalParser() {
   ArgParser parser(
       "eval",
       "Score a folder of map files A_B.map (one target vertex id per source vertex, in the ids "
@@ -89,7 +88,12 @@ int EvalCommand(const Args& args) {
   parser.Option("jobs", "worker threads (0 = all cores)", "0");
   parser.Option("cache-mb", "memory budget of the geodesic distance cache in MiB", "2048");
   parser.Switch("no-report", "do not write the HTML report (OUT/report; see symembed report)");
-  if (!parser.Parse(args)) return 0;
+  return parser;
+}
+
+// The map-scoring options of the arguments. Throws UsageError, IoError for a missing maps
+// folder; refuses the maps of a run that has not finished.
+ScoreMapsOptions ScoreMapsOptionsOf(const ArgParser& parser) {
   for (const char* required : {"dataset", "maps", "base"}) {
     if (!parser.Given(required)) throw UsageError{std::string("--") + required + " is required"};
   }
@@ -110,6 +114,15 @@ int EvalCommand(const Args& args) {
   std::filesystem::path maps_path = std::filesystem::path(options.maps_dir).lexically_normal();
   if (maps_path.filename().empty()) maps_path = maps_path.parent_path();
   if (maps_path.has_parent_path()) RequireNotInProgress(maps_path.parent_path().string());
+  return options;
+}
+
+}  // namespace
+
+int EvalCommand(const Args& args) {
+  ArgParser parser = EvalParser();
+  if (!parser.Parse(args)) return 0;
+  const ScoreMapsOptions options = ScoreMapsOptionsOf(parser);
   const std::string out = parser.Given("out") ? parser.Get("out") : "results/" + parser.Get("name");
   std::filesystem::path out_path = std::filesystem::path(out).lexically_normal();
   if (out_path.filename().empty()) out_path = out_path.parent_path();

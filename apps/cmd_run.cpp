@@ -58,9 +58,8 @@ std::string RerunTemplate(const ArgParser& parser, const std::string& config) {
   return c.str();
 }
 
-}  // namespace
-
-int RunCommand(const Args& args) {
+// The command's options.
+ArgParser RunParser() {
   ArgParser parser(
       "run",
       "Run an experiment: every variant of CONFIG (or one), per-shape stages cached on disk, "
@@ -92,8 +91,12 @@ int RunCommand(const Args& args) {
                   "override dotted.path=value in the base and every variant "
                   "(e.g. --set evaluation.geodesics=fast_marching)");
   parser.Positionals("CONFIG", "the experiment's YAML file", 1, 1);
-  if (!parser.Parse(args)) return 0;
+  return parser;
+}
 
+// The runner's options from the parsed arguments, but for the output folder (it names the
+// config). Throws UsageError for arguments that do not go together.
+RunOptions RunOptionsOf(const ArgParser& parser) {
   RunOptions options;
   ParseShard(parser.Get("shard"), &options.shard_index, &options.shard_count);
   options.jobs = parser.GetInt("jobs");
@@ -128,6 +131,49 @@ int RunCommand(const Args& args) {
     }
   }
   options.load_mesh = [](const std::string& path) { return LoadSurface(path); };
+  return options;
+}
+
+// The run's last lines on stderr: warnings, the stages computed, the pairs, the failures.
+void PrintRunOutcome(const RunOptions& options, const RunStats& stats,
+                     const std::vector<std::string>& warnings) {
+  for (const std::string& warning : warnings) {
+    std::cerr << "symembed run: warning: " << warning << "\n";
+  }
+  if (!options.quiet) {
+    std::cerr << "symembed run: stages computed: " << CountsText(stats.executed)
+              << "; from the cache: " << CountsText(stats.cache_hits) << "\n";
+  }
+  if (!options.quiet && options.shapes_only) {
+    std::cerr << "symembed run: shard " << options.shard_index << "/" << options.shard_count
+              << " of the shapes: " << stats.shapes_computed << " shapes (all variants), "
+              << stats.failures.size() << " failures; cache in " << options.cache_dir << "\n";
+  } else if (!options.quiet) {
+    std::cerr << "symembed run: " << stats.pairs_done << " pairs computed, " << stats.pairs_skipped
+              << " kept from an earlier run";
+    if (stats.pairs_recomputed > 0) {
+      std::cerr << " (" << stats.pairs_recomputed
+                << " more had outputs that did not match this run and were computed again)";
+    }
+    std::cerr << ", " << stats.failures.size() << " failures; outputs in " << options.out_dir
+              << "\n";
+  }
+  if (!stats.ok()) {
+    const Failure& first = stats.failures.front();
+    std::cerr << "symembed run: " << stats.failures.size() << " failures (first: " << first.kind
+              << " " << first.source << (first.target.empty() ? "" : " -> " + first.target)
+              << ": " << first.message << ")"
+              << (options.shapes_only ? "; the pair runs record them in failures.csv\n"
+                                      : "; see failures.csv\n");
+  }
+}
+
+}  // namespace
+
+int RunCommand(const Args& args) {
+  ArgParser parser = RunParser();
+  if (!parser.Parse(args)) return 0;
+  RunOptions options = RunOptionsOf(parser);
 
   Registry registry;
   RegisterBuiltinStages(registry);
@@ -151,37 +197,7 @@ int RunCommand(const Args& args) {
   }
   std::vector<std::string> warnings = stats.warnings;
   warnings.insert(warnings.end(), evaluation.warnings().begin(), evaluation.warnings().end());
-  for (const std::string& warning : warnings) {
-    std::cerr << "symembed run: warning: " << warning << "\n";
-  }
-  if (!options.quiet) {
-    std::cerr << "symembed run: stages computed: " << CountsText(stats.executed)
-              << "; from the cache: " << CountsText(stats.cache_hits) << "\n";
-  }
-  if (!options.quiet && options.shapes_only) {
-    std::cerr << "symembed run: shard " << options.shard_index << "/" << options.shard_count
-              << " of the shapes: " << stats.shapes_computed << " shapes (all variants), "
-              << stats.failures.size() << " failures; cache in " << options.cache_dir << "\n";
-  } else if (!options.quiet) {
-    std::cerr << "symembed run: " << stats.pairs_done << " pairs computed, " << stats.pairs_skipped
-              << " kept from an earlier run";
-    if (stats.pairs_recomputed > 0) {
-      std::cerr << " (" << stats.pairs_recomputed
-                << " more had outputs that did not match this run and were computed again)";
-    }
-    std::cerr << ", " << stats.failures.size() << " failures; outputs in " << options.out_dir
-              << "\n";
-  }
-  if (!stats.ok()) {
-    std::cerr << "symembed run: " << stats.failures.size()
-              << " failures (first: " << stats.failures.front().kind << " "
-              << stats.failures.front().source
-              << (stats.failures.front().target.empty() ? ""
-                                                        : " -> " + stats.failures.front().target)
-              << ": " << stats.failures.front().message << ")"
-              << (options.shapes_only ? "; the pair runs record them in failures.csv\n"
-                                      : "; see failures.csv\n");
-  }
+  PrintRunOutcome(options, stats, warnings);
   if (!parser.Flag("no-report") && options.shard_count == 1 && !options.shapes_only) {
     ReportAfterCommand("run", options.out_dir, registry);
   }

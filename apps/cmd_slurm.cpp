@@ -85,9 +85,8 @@ std::string Submit(const std::string& submit_script) {
   return out;
 }
 
-}  // namespace
-
-int SlurmCommand(const Args& args) {
+// The command's options.
+ArgParser SlurmParser() {
   ArgParser parser(
       "slurm",
       "Write sbatch scripts that run the study CONFIG on a Slurm cluster, and with --submit "
@@ -113,11 +112,11 @@ int SlurmCommand(const Args& args) {
   parser.Option("symembed", "the symembed executable the jobs run", "this one");
   parser.Switch("submit", "submit the jobs with sbatch and print their ids");
   parser.Positionals("CONFIG", "the experiment's YAML file", 1, 1);
-  if (!parser.Parse(args)) return 0;
-  if (!parser.Given("shards")) throw UsageError{"--shards N is required"};
-  const int shards = parser.GetInt("shards");
-  if (shards < 1) throw UsageError{"--shards: must be >= 1, got " + std::to_string(shards)};
+  return parser;
+}
 
+// The job options given on the command line (not those that depend on the study).
+SlurmOptions SlurmJobOptions(const ArgParser& parser) {
   SlurmOptions options;
   try {
     options.split = ParseShardSplit(parser.Get("shard-by"));
@@ -131,6 +130,50 @@ int SlurmCommand(const Args& args) {
   options.sbatch_args = parser.GetAll("sbatch");
   options.variant = parser.Get("variant");
   options.sets = parser.GetAll("set");
+  return options;
+}
+
+// Writes the scripts into OUT/slurm/ (submit.sh executable); returns that folder.
+std::string WriteSlurmScripts(const SlurmOptions& options, const SlurmScripts& scripts) {
+  const std::string dir = SlurmScriptDir(options.out_dir);
+  fs::create_directories(SlurmLogDir(options.out_dir));
+  WriteFileAtomically(dir + "/shapes.sbatch", scripts.shapes);
+  WriteFileAtomically(dir + "/pairs.sbatch", scripts.pairs);
+  WriteFileAtomically(dir + "/merge.sbatch", scripts.merge);
+  WriteFileAtomically(dir + "/submit.sh", scripts.submit);
+  fs::permissions(dir + "/submit.sh", fs::perms::owner_exec | fs::perms::group_exec,
+                  fs::perm_options::add);
+  return dir;
+}
+
+// What the three jobs will do, on stdout.
+void PrintSlurmPlan(const std::string& name, const StudySize& size, const SlurmOptions& options,
+                    int shards, const std::string& dir) {
+  std::cout << "symembed slurm: " << name << ", " << size.variants << " variant(s), "
+            << size.shapes << " shapes, " << size.pairs << " pairs; scripts in " << dir << "\n"
+            << "  shapes.sbatch  " << options.shape_tasks << " array tasks: the per-shape stages "
+            << "of every variant into " << options.cache_dir << ", each shape in one task\n"
+            << "  pairs.sbatch   " << options.pair_tasks << " array tasks, after the shapes job: "
+            << "the pairs split by " << ShardSplitName(options.split) << ", task I into "
+            << options.out_dir << "/shards/I\n"
+            << "  merge.sbatch   after the pairs job: the shards merged into " << options.out_dir
+            << "\n";
+  if (options.shape_tasks < shards || options.pair_tasks < shards) {
+    std::cout << "  (--shards " << shards << " capped: " << size.shapes << " shapes, "
+              << size.max_pair_shards << " pair groups split by " << ShardSplitName(options.split)
+              << ")\n";
+  }
+}
+
+}  // namespace
+
+int SlurmCommand(const Args& args) {
+  ArgParser parser = SlurmParser();
+  if (!parser.Parse(args)) return 0;
+  if (!parser.Given("shards")) throw UsageError{"--shards N is required"};
+  const int shards = parser.GetInt("shards");
+  if (shards < 1) throw UsageError{"--shards: must be >= 1, got " + std::to_string(shards)};
+  SlurmOptions options = SlurmJobOptions(parser);
 
   const std::string config_path = parser.positionals()[0];
   if (!fs::is_regular_file(config_path)) throw ConfigError(config_path + ": no such config file");
@@ -153,31 +196,8 @@ int SlurmCommand(const Args& args) {
   options.job_name = "symembed-" + config.name;
   options.shape_tasks = std::min(shards, size.shapes);
   options.pair_tasks = std::min(shards, size.max_pair_shards);
-  const SlurmScripts scripts = MakeSlurmScripts(options);
-
-  const std::string dir = SlurmScriptDir(options.out_dir);
-  fs::create_directories(SlurmLogDir(options.out_dir));
-  WriteFileAtomically(dir + "/shapes.sbatch", scripts.shapes);
-  WriteFileAtomically(dir + "/pairs.sbatch", scripts.pairs);
-  WriteFileAtomically(dir + "/merge.sbatch", scripts.merge);
-  WriteFileAtomically(dir + "/submit.sh", scripts.submit);
-  fs::permissions(dir + "/submit.sh", fs::perms::owner_exec | fs::perms::group_exec,
-                  fs::perm_options::add);
-
-  std::cout << "symembed slurm: " << config.name << ", " << size.variants << " variant(s), "
-            << size.shapes << " shapes, " << size.pairs << " pairs; scripts in " << dir << "\n"
-            << "  shapes.sbatch  " << options.shape_tasks << " array tasks: the per-shape stages "
-            << "of every variant into " << options.cache_dir << ", each shape in one task\n"
-            << "  pairs.sbatch   " << options.pair_tasks << " array tasks, after the shapes job: "
-            << "the pairs split by " << ShardSplitName(options.split) << ", task I into "
-            << options.out_dir << "/shards/I\n"
-            << "  merge.sbatch   after the pairs job: the shards merged into " << options.out_dir
-            << "\n";
-  if (options.shape_tasks < shards || options.pair_tasks < shards) {
-    std::cout << "  (--shards " << shards << " capped: " << size.shapes << " shapes, "
-              << size.max_pair_shards << " pair groups split by " << ShardSplitName(options.split)
-              << ")\n";
-  }
+  const std::string dir = WriteSlurmScripts(options, MakeSlurmScripts(options));
+  PrintSlurmPlan(config.name, size, options, shards, dir);
   if (!parser.Flag("submit")) {
     std::cout << "to submit (or run again with --submit): " << ShellQuote(dir + "/submit.sh")
               << "\nwhich runs:\n"

@@ -262,6 +262,45 @@ PlyHeader ReadPlyHeader(TextCursor& c) {
   return out;
 }
 
+// Where a PLY file's mesh is: its vertex and face elements, the properties of the coordinates,
+// the colours (-1 when absent) and the face's vertex ids.
+struct PlyLayout {
+  const PlyElement* vertex = nullptr;
+  const PlyElement* face = nullptr;
+  int coord[3] = {-1, -1, -1};
+  int color[3] = {-1, -1, -1};
+  bool has_color = false;
+  int ids_prop = -1;
+};
+
+// Fails (Fail) naming the file when an element or property the mesh needs is missing.
+PlyLayout FindPlyLayout(const std::vector<PlyElement>& elements, const std::string& name) {
+  PlyLayout layout;
+  const auto vertex_it = std::find_if(elements.begin(), elements.end(),
+                                      [](const PlyElement& e) { return e.name == "vertex"; });
+  if (vertex_it == elements.end()) Fail(name, 0, "PLY header has no 'vertex' element");
+  const auto face_it = std::find_if(elements.begin(), elements.end(),
+                                    [](const PlyElement& e) { return e.name == "face"; });
+  if (face_it == elements.end()) Fail(name, 0, "PLY header has no 'face' element");
+  layout.vertex = &*vertex_it;
+  layout.face = &*face_it;
+  const char* axes[3] = {"x", "y", "z"};
+  const char* channels[3] = {"red", "green", "blue"};
+  for (int k = 0; k < 3; ++k) {
+    layout.coord[k] = FindProperty(*vertex_it, {axes[k]});
+    if (layout.coord[k] < 0 || vertex_it->properties[layout.coord[k]].is_list) {
+      Fail(name, 0, std::string("'vertex' element has no scalar property '") + axes[k] + "'");
+    }
+    layout.color[k] = FindProperty(*vertex_it, {channels[k], k == 0 ? "r" : k == 1 ? "g" : "b"});
+  }
+  layout.has_color = layout.color[0] >= 0 && layout.color[1] >= 0 && layout.color[2] >= 0;
+  layout.ids_prop = FindProperty(*face_it, {"vertex_indices", "vertex_index"});
+  if (layout.ids_prop < 0 || !face_it->properties[layout.ids_prop].is_list) {
+    Fail(name, 0, "'face' element has no list property 'vertex_indices'");
+  }
+  return layout;
+}
+
 }  // namespace
 
 void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
@@ -269,35 +308,19 @@ void ReadPly(std::string_view data, const std::string& name, RawMesh* mesh) {
   const PlyHeader header = ReadPlyHeader(c);
   const Encoding encoding = header.encoding;
   const std::vector<PlyElement>& elements = header.elements;
-
-  const auto vertex_it = std::find_if(elements.begin(), elements.end(),
-                                      [](const PlyElement& e) { return e.name == "vertex"; });
-  if (vertex_it == elements.end()) Fail(name, 0, "PLY header has no 'vertex' element");
-  const auto face_it = std::find_if(elements.begin(), elements.end(),
-                                    [](const PlyElement& e) { return e.name == "face"; });
-  if (face_it == elements.end()) Fail(name, 0, "PLY header has no 'face' element");
-  const int64_t nv = vertex_it->count;
-  int coord[3], color[3];
-  const char* axes[3] = {"x", "y", "z"};
-  const char* channels[3] = {"red", "green", "blue"};
-  for (int k = 0; k < 3; ++k) {
-    coord[k] = FindProperty(*vertex_it, {axes[k]});
-    if (coord[k] < 0 || vertex_it->properties[coord[k]].is_list) {
-      Fail(name, 0, std::string("'vertex' element has no scalar property '") + axes[k] + "'");
-    }
-    color[k] = FindProperty(*vertex_it, {channels[k], k == 0 ? "r" : k == 1 ? "g" : "b"});
-  }
-  const bool has_color = color[0] >= 0 && color[1] >= 0 && color[2] >= 0;
-  const int ids_prop = FindProperty(*face_it, {"vertex_indices", "vertex_index"});
-  if (ids_prop < 0 || !face_it->properties[ids_prop].is_list) {
-    Fail(name, 0, "'face' element has no list property 'vertex_indices'");
-  }
+  const PlyLayout layout = FindPlyLayout(elements, name);
+  const PlyElement* vertex = layout.vertex;
+  const int64_t nv = vertex->count;
+  const int* coord = layout.coord;
+  const int* color = layout.color;
+  const bool has_color = layout.has_color;
+  const int ids_prop = layout.ids_prop;
 
   PlyBody body(data.substr(c.pos()), c.line(), encoding, name);
   std::vector<double> values;
   std::vector<int> ids;
   for (const PlyElement& e : elements) {
-    const bool is_vertex = &e == &*vertex_it, is_face = &e == &*face_it;
+    const bool is_vertex = &e == vertex, is_face = &e == layout.face;
     if (e.count > 0 && e.properties.empty()) Fail(name, 0, "element '" + e.name + "' is empty");
     int64_t record_bytes = 0;
     for (const auto& p : e.properties) record_bytes += SizeOf(p.is_list ? p.count_type : p.type);

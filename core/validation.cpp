@@ -186,37 +186,35 @@ bool ValidationOptions::IsValid(std::string* error) const {
   return true;
 }
 
-MeshReport ValidateMesh(const Surface& s, const std::string& name,
-                        const ValidationOptions& options) {
-  std::string options_error;
-  if (!options.IsValid(&options_error)) throw ConfigError("ValidationOptions: " + options_error);
-  const int nv = s.NumVertices(), nf = s.NumFaces(), kx = options.max_examples;
-  MeshReport r;
-  r.name = name;
-  r.num_vertices = nv;
-  r.num_faces = nf;
+namespace {
 
-  Examples nonfinite(kx), invalid(kx), degenerate(kx), duplicate(kx), unreferenced(kx),
-      nm_edges(kx), nm_vertices(kx);
-  for (int i = 0; i < nv; ++i) {
-    if (!s.V.row(i).allFinite()) {
-      ++r.nonfinite_vertices;
-      nonfinite.Add(std::to_string(i));
-    }
-  }
+// The examples of each kind of issue, listed in the report's messages.
+struct IssueExamples {
+  explicit IssueExamples(int k)
+      : nonfinite(k), invalid(k), degenerate(k), duplicate(k), unreferenced(k), nm_edges(k),
+        nm_vertices(k) {}
+  Examples nonfinite, invalid, degenerate, duplicate, unreferenced, nm_edges, nm_vertices;
+};
 
-  // Per-face checks; `proper` faces (valid ids, three distinct vertices) carry the topology.
-  std::vector<char> referenced(nv, 0), proper(nf, 0);
+// Per-face checks: vertex ids in range, area, degenerate and duplicate faces. Marks the vertices
+// the faces reference and the faces that are proper (valid ids, three distinct vertices: they
+// carry the topology).
+void CheckFaces(const Surface& s, const ValidationOptions& options, MeshReport* r,
+                IssueExamples* examples, std::vector<char>* referenced,
+                std::vector<char>* proper) {
+  const int nv = s.NumVertices(), nf = s.NumFaces();
+  referenced->assign(nv, 0);
+  proper->assign(nf, 0);
   std::vector<std::array<int, 4>> sorted_faces;  // sorted vertex ids + face id
   sorted_faces.reserve(nf);
   for (int f = 0; f < nf; ++f) {
     const int a = s.F(f, 0), b = s.F(f, 1), c = s.F(f, 2);
     if (std::min({a, b, c}) < 0 || std::max({a, b, c}) >= nv) {
-      ++r.invalid_faces;
-      invalid.Add(std::to_string(f));
+      ++r->invalid_faces;
+      examples->invalid.Add(std::to_string(f));
       continue;
     }
-    referenced[a] = referenced[b] = referenced[c] = 1;
+    (*referenced)[a] = (*referenced)[b] = (*referenced)[c] = 1;
     std::array<int, 4> key = {a, b, c, f};
     std::sort(key.begin(), key.begin() + 3);
     sorted_faces.push_back(key);
@@ -224,37 +222,52 @@ MeshReport ValidateMesh(const Surface& s, const std::string& name,
     const double twice_area = (pb - pa).cross(pc - pa).norm();
     const double longest_sq =
         std::max({(pb - pa).squaredNorm(), (pc - pb).squaredNorm(), (pa - pc).squaredNorm()});
-    if (std::isfinite(twice_area)) r.total_area += 0.5 * twice_area;
+    if (std::isfinite(twice_area)) r->total_area += 0.5 * twice_area;
     const bool repeats = a == b || b == c || a == c;
     if (repeats || twice_area <= options.degenerate_tolerance * longest_sq) {
-      ++r.degenerate_faces;
-      degenerate.Add(std::to_string(f));
+      ++r->degenerate_faces;
+      examples->degenerate.Add(std::to_string(f));
     }
-    proper[f] = !repeats;
+    (*proper)[f] = !repeats;
   }
   std::sort(sorted_faces.begin(), sorted_faces.end());
   for (size_t i = 1; i < sorted_faces.size(); ++i) {
     const auto& p = sorted_faces[i - 1];
     const auto& q = sorted_faces[i];
     if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) {
-      ++r.duplicate_faces;
-      duplicate.Add(std::to_string(q[3]) + "=" + std::to_string(p[3]));
+      ++r->duplicate_faces;
+      examples->duplicate.Add(std::to_string(q[3]) + "=" + std::to_string(p[3]));
     }
   }
-  for (int i = 0; i < nv; ++i) {
-    if (!referenced[i]) {
-      ++r.unreferenced_vertices;
-      unreferenced.Add(std::to_string(i));
-    }
-  }
+}
 
-  // Undirected edges: sort the half-edges of the proper faces by their vertex pair.
+// The undirected edges of the proper faces and what they connect.
+struct EdgeScan {
+  EdgeScan(int nv, int nf)
+      : face_edge(3 * static_cast<size_t>(nf), -1),
+        boundary_sets(nv),
+        vertex_sets(nv),
+        orientation(nf),
+        on_boundary(nv, 0) {}
+  std::vector<int> face_edge;              // edge id per face corner
+  std::vector<std::array<int, 2>> edges;  // endpoints per edge id
+  DisjointSets boundary_sets, vertex_sets;
+  ParitySets orientation;  // of the proper faces, related across their manifold edges
+  std::vector<char> on_boundary;
+  int num_proper = 0;
+};
+
+// Sorts the half-edges of the proper faces by their vertex pair into edges, counting boundary,
+// non-manifold and inconsistently oriented edges in *r (and whether it is orientable).
+EdgeScan ScanEdges(const Surface& s, const std::vector<char>& proper, MeshReport* r,
+                   Examples* nm_edges) {
+  const int nv = s.NumVertices(), nf = s.NumFaces();
+  EdgeScan scan(nv, nf);
   std::vector<HalfEdge> half_edges;
   half_edges.reserve(3 * static_cast<size_t>(nf));
-  int num_proper = 0;
   for (int f = 0; f < nf; ++f) {
     if (!proper[f]) continue;
-    ++num_proper;
+    ++scan.num_proper;
     for (int k = 0; k < 3; ++k) {
       const int u = s.F(f, k), v = s.F(f, (k + 1) % 3);
       half_edges.push_back({std::min(u, v), std::max(u, v), f, k, u < v});
@@ -263,67 +276,97 @@ MeshReport ValidateMesh(const Surface& s, const std::string& name,
   std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.face < y.face;
   });
-  std::vector<int> face_edge(3 * static_cast<size_t>(nf), -1);  // edge id per face corner
-  std::vector<std::array<int, 2>> edges;                        // endpoints per edge id
-  DisjointSets boundary_sets(nv), vertex_sets(nv);
-  ParitySets orientation(nf);
-  std::vector<char> on_boundary(nv, 0);
   for (size_t i = 0; i < half_edges.size();) {
     size_t j = i;
     while (j < half_edges.size() && half_edges[j].lo == half_edges[i].lo &&
            half_edges[j].hi == half_edges[i].hi) {
       ++j;
     }
-    const int e = static_cast<int>(edges.size());
+    const int e = static_cast<int>(scan.edges.size());
     const int lo = half_edges[i].lo, hi = half_edges[i].hi;
-    edges.push_back({lo, hi});
-    for (size_t k = i; k < j; ++k) face_edge[3 * half_edges[k].face + half_edges[k].corner] = e;
-    vertex_sets.Union(lo, hi);
+    scan.edges.push_back({lo, hi});
+    for (size_t k = i; k < j; ++k) {
+      scan.face_edge[3 * half_edges[k].face + half_edges[k].corner] = e;
+    }
+    scan.vertex_sets.Union(lo, hi);
     const size_t n = j - i;
     if (n == 1) {
-      ++r.boundary_edges;
-      boundary_sets.Union(lo, hi);
-      on_boundary[lo] = on_boundary[hi] = 1;
+      ++r->boundary_edges;
+      scan.boundary_sets.Union(lo, hi);
+      scan.on_boundary[lo] = scan.on_boundary[hi] = 1;
     } else if (n > 2) {
-      ++r.non_manifold_edges;
-      nm_edges.Add(std::to_string(lo) + "-" + std::to_string(hi));
+      ++r->non_manifold_edges;
+      nm_edges->Add(std::to_string(lo) + "-" + std::to_string(hi));
     } else {
       const bool same_direction = half_edges[i].forward == half_edges[i + 1].forward;
-      if (same_direction) ++r.inconsistent_edges;
-      if (!orientation.Relate(half_edges[i].face, half_edges[i + 1].face, same_direction)) {
-        r.orientable = false;
+      if (same_direction) ++r->inconsistent_edges;
+      if (!scan.orientation.Relate(half_edges[i].face, half_edges[i + 1].face, same_direction)) {
+        r->orientable = false;
       }
     }
     i = j;
   }
-  r.num_edges = static_cast<int>(edges.size());
+  return scan;
+}
 
-  r.non_manifold_vertices = CountNonManifoldVertices(s, proper, face_edge, edges, &nm_vertices);
+}  // namespace
+
+MeshReport ValidateMesh(const Surface& s, const std::string& name,
+                        const ValidationOptions& options) {
+  std::string options_error;
+  if (!options.IsValid(&options_error)) throw ConfigError("ValidationOptions: " + options_error);
+  const int nv = s.NumVertices(), nf = s.NumFaces();
+  MeshReport r;
+  r.name = name;
+  r.num_vertices = nv;
+  r.num_faces = nf;
+
+  IssueExamples examples(options.max_examples);
+  for (int i = 0; i < nv; ++i) {
+    if (!s.V.row(i).allFinite()) {
+      ++r.nonfinite_vertices;
+      examples.nonfinite.Add(std::to_string(i));
+    }
+  }
+  std::vector<char> referenced, proper;
+  CheckFaces(s, options, &r, &examples, &referenced, &proper);
+  for (int i = 0; i < nv; ++i) {
+    if (!referenced[i]) {
+      ++r.unreferenced_vertices;
+      examples.unreferenced.Add(std::to_string(i));
+    }
+  }
+
+  EdgeScan scan = ScanEdges(s, proper, &r, &examples.nm_edges);
+  r.num_edges = static_cast<int>(scan.edges.size());
+  r.non_manifold_vertices =
+      CountNonManifoldVertices(s, proper, scan.face_edge, scan.edges, &examples.nm_vertices);
 
   // Faces that repeat a vertex still connect their vertices.
   for (int f = 0; f < nf; ++f) {
     if (proper[f] || s.F.row(f).minCoeff() < 0 || s.F.row(f).maxCoeff() >= nv) continue;
-    vertex_sets.Union(s.F(f, 0), s.F(f, 1));
-    vertex_sets.Union(s.F(f, 1), s.F(f, 2));
+    scan.vertex_sets.Union(s.F(f, 0), s.F(f, 1));
+    scan.vertex_sets.Union(s.F(f, 1), s.F(f, 2));
   }
   int num_referenced = 0;
   for (int i = 0; i < nv; ++i) {
     num_referenced += referenced[i];
-    if (referenced[i] && vertex_sets.Find(i) == i) ++r.components;
-    if (on_boundary[i] && boundary_sets.Find(i) == i) ++r.boundary_loops;
+    if (referenced[i] && scan.vertex_sets.Find(i) == i) ++r.components;
+    if (scan.on_boundary[i] && scan.boundary_sets.Find(i) == i) ++r.boundary_loops;
   }
 
-  if (r.orientable) r.flipped_faces = CountFlippedFaces(proper, &orientation);
+  if (r.orientable) r.flipped_faces = CountFlippedFaces(proper, &scan.orientation);
 
-  r.euler_characteristic = num_referenced - r.num_edges + num_proper;
-  r.closed_manifold = num_proper > 0 && num_proper == nf && r.boundary_edges == 0 &&
+  r.euler_characteristic = num_referenced - r.num_edges + scan.num_proper;
+  r.closed_manifold = scan.num_proper > 0 && scan.num_proper == nf && r.boundary_edges == 0 &&
                       r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
   if (r.closed_manifold && r.orientable && (2 * r.components - r.euler_characteristic) % 2 == 0) {
     r.genus = (2 * r.components - r.euler_characteristic) / 2;
   }
 
-  r.issues =
-      Issues(r, invalid, nonfinite, degenerate, duplicate, nm_edges, nm_vertices, unreferenced);
+  r.issues = Issues(r, examples.invalid, examples.nonfinite, examples.degenerate,
+                    examples.duplicate, examples.nm_edges, examples.nm_vertices,
+                    examples.unreferenced);
   return r;
 }
 

@@ -286,6 +286,29 @@ uint64_t PrepareNeeds(const Pipeline& pipeline, const ShapeContext& context, con
   return pair_key.Digest();
 }
 
+// The cache keys of the per-shape stages' outputs: H(mesh bytes, file extension), then for each
+// stage H(previous key, kind, resolved options).
+struct ShapeStageKeys {
+  uint64_t preprocess, sampling, geodesics, embedding, symmetry, symmetrize;
+};
+
+ShapeStageKeys ShapeStageKeysOf(const std::string& mesh_path, const Pipeline& pipeline) {
+  const std::string extension = std::filesystem::path(mesh_path).extension().string();
+  const uint64_t mesh_key = Hasher()
+                                .AddString(kCacheScheme)
+                                .AddString(extension)
+                                .AddU64(HashFile(mesh_path))
+                                .Digest();
+  ShapeStageKeys keys;
+  keys.preprocess = StageKey(mesh_key, "preprocess", *pipeline.preprocess);
+  keys.sampling = StageKey(keys.preprocess, "sampling", *pipeline.sampling);
+  keys.geodesics = StageKey(keys.sampling, "geodesics", *pipeline.geodesics);
+  keys.embedding = StageKey(keys.geodesics, "embedding", *pipeline.embedding);
+  keys.symmetry = StageKey(keys.embedding, "symmetry", *pipeline.symmetry);
+  keys.symmetrize = StageKey(keys.symmetry, "symmetrize", *pipeline.symmetrize);
+  return keys;
+}
+
 }  // namespace
 
 ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
@@ -297,18 +320,9 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   out.times.push_back({"load", Since(start), false});
   out.ground_truth = pipeline.dataset->GroundTruth(shape, out.input.NumVertices());
 
-  const std::string extension = std::filesystem::path(shape.mesh_path).extension().string();
-  const uint64_t mesh_key = Hasher()
-                                .AddString(kCacheScheme)
-                                .AddString(extension)
-                                .AddU64(HashFile(shape.mesh_path))
-                                .Digest();
-  const uint64_t pre_key = StageKey(mesh_key, "preprocess", *pipeline.preprocess);
-  const uint64_t samp_key = StageKey(pre_key, "sampling", *pipeline.sampling);
-  const uint64_t geo_key = StageKey(samp_key, "geodesics", *pipeline.geodesics);
-  const uint64_t emb_key = StageKey(geo_key, "embedding", *pipeline.embedding);
-  const uint64_t sym_key = StageKey(emb_key, "symmetry", *pipeline.symmetry);
-  const uint64_t symz_key = StageKey(sym_key, "symmetrize", *pipeline.symmetrize);
+  const ShapeStageKeys keys = ShapeStageKeysOf(shape.mesh_path, pipeline);
+  const uint64_t pre_key = keys.preprocess, samp_key = keys.sampling, geo_key = keys.geodesics,
+                 emb_key = keys.embedding, sym_key = keys.symmetry, symz_key = keys.symmetrize;
 
   auto data = std::make_shared<ShapeData>();
   data->name = shape.name;

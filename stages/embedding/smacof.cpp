@@ -194,41 +194,104 @@ Eigen::MatrixXd ScaleToDistances(const Eigen::MatrixXd& D, const Eigen::MatrixXd
   return ee > 0.0 ? (Xc * (de / ee)).eval() : Xc;
 }
 
-SmacofResult Smacof(const Eigen::MatrixXd& D_in, const Eigen::MatrixXd& init,
-                    const SmacofOptions& options) {
+namespace {
+
+// The Guttman transform X -> V^+ B(X) X of the stress of D. Weighted (w_ij = d_ij^-weight_power),
+// V^+ is applied through the factorisation of V + 11^T/n, whose inverse applied to the centred
+// B(X) X equals V^+ B(X) X (V 1 = 0, so adding 11^T/n only fixes the null space); unweighted, it
+// is B(X) X / n.
+class GuttmanTransform {
+ public:
+  // Throws InvalidInputError when the weight graph is disconnected.
+  GuttmanTransform(const Eigen::MatrixXd& D, double weight_power)
+      : n_(static_cast<int>(D.rows())), weighted_(weight_power > 0.0) {
+    if (!weighted_) return;
+    W_ = (D.array() > 0.0).select(D.array().pow(-weight_power), 0.0).matrix();
+    Eigen::MatrixXd Vm = -W_;
+    Vm.diagonal() = W_.rowwise().sum();
+    Vm.array() += 1.0 / n_;
+    v_factor_.compute(Vm);
+    if (v_factor_.info() != Eigen::Success) {
+      throw InvalidInputError("Smacof: the weight graph is disconnected (V + 11^T/n singular)");
+    }
+  }
+  bool weighted() const { return weighted_; }
+  // The weights, or null when unweighted (StressPass).
+  const Eigen::MatrixXd* weights() const { return weighted_ ? &W_ : nullptr; }
+  Eigen::MatrixXd operator()(const Eigen::MatrixXd& BX) const {
+    return weighted_ ? v_factor_.solve(BX).eval() : (BX / static_cast<double>(n_)).eval();
+  }
+
+ private:
+  int n_;
+  bool weighted_;
+  Eigen::MatrixXd W_;
+  Eigen::LLT<Eigen::MatrixXd> v_factor_;
+};
+
+// A step of SMACOF from X (stress sigma, Guttman transform G): the candidates in order of
+// preference, each kept only if it does not raise stress, the accelerated one only if it lowers
+// it: Anderson's (unless force_plain), the relaxed step X + relaxation (G - X), the plain step
+// G, which never raises stress in exact arithmetic. pass(Y, &BY) is the stress of Y and B(Y) Y.
+struct SmacofStep {
+  bool accepted = false;
+  bool accelerated = false;
+  Eigen::MatrixXd X;
+  double sigma = 0.0;
+};
+
+template <typename Pass>
+SmacofStep NextSmacofStep(const Eigen::MatrixXd& X, const Eigen::MatrixXd& G, double sigma,
+                          const SmacofOptions& options, bool force_plain, Anderson* anderson,
+                          Eigen::MatrixXd* BX_next, Pass pass) {
+  SmacofStep step;
+  step.sigma = sigma;
+  if (!force_plain && anderson->Ready()) {
+    step.X = anderson->Candidate();
+    step.sigma = pass(step.X, BX_next);
+    step.accepted = step.sigma < sigma;
+    step.accelerated = step.accepted;
+    if (!step.accepted) anderson->Reset();
+  }
+  if (!step.accepted && options.relaxation != 1.0) {
+    step.X = X + options.relaxation * (G - X);
+    step.sigma = pass(step.X, BX_next);
+    step.accepted = step.sigma <= sigma;
+  }
+  if (!step.accepted) {
+    step.X = G;
+    step.sigma = pass(step.X, BX_next);
+    step.accepted = step.sigma <= sigma;
+  }
+  return step;
+}
+
+// The checks of Smacof's inputs.
+void CheckSmacofInputs(const Eigen::MatrixXd& D, const Eigen::MatrixXd& init,
+                       const SmacofOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw ConfigError("SmacofOptions: " + why);
-  CheckDistances(D_in, "Smacof");
-  const int n = static_cast<int>(D_in.rows());
+  CheckDistances(D, "Smacof");
+  const int n = static_cast<int>(D.rows());
   if (init.rows() != n || init.cols() < 1 || !init.allFinite()) {
     std::ostringstream m;
     m << "Smacof: init is " << init.rows() << "x" << init.cols() << " (finite expected), D is " << n
       << "x" << n;
     throw InvalidInputError(m.str());
   }
+}
+
+}  // namespace
+
+SmacofResult Smacof(const Eigen::MatrixXd& D_in, const Eigen::MatrixXd& init,
+                    const SmacofOptions& options) {
+  CheckSmacofInputs(D_in, init, options);
+  const int n = static_cast<int>(D_in.rows());
   const Eigen::MatrixXd D = 0.5 * (D_in + D_in.transpose());
   const double eta2 = 0.5 * D.squaredNorm();
   const int threads = options.threads;
-
-  // Weighted path: W and the factorisation of V + 11^T/n, whose inverse applied to the centred
-  // B(X) X equals V^+ B(X) X (V 1 = 0, so adding 11^T/n only fixes the null space).
-  const bool weighted = options.weight_power > 0.0;
-  Eigen::MatrixXd W;
-  Eigen::LLT<Eigen::MatrixXd> v_factor;
-  if (weighted) {
-    W = (D.array() > 0.0).select(D.array().pow(-options.weight_power), 0.0).matrix();
-    Eigen::MatrixXd Vm = -W;
-    Vm.diagonal() = W.rowwise().sum();
-    Vm.array() += 1.0 / n;
-    v_factor.compute(Vm);
-    if (v_factor.info() != Eigen::Success) {
-      throw InvalidInputError("Smacof: the weight graph is disconnected (V + 11^T/n singular)");
-    }
-  }
-  const Eigen::MatrixXd* Wp = weighted ? &W : nullptr;
-  auto guttman = [&](const Eigen::MatrixXd& BX) -> Eigen::MatrixXd {
-    return weighted ? v_factor.solve(BX).eval() : (BX / static_cast<double>(n)).eval();
-  };
+  const GuttmanTransform guttman(D, options.weight_power);
+  const bool weighted = guttman.weighted();
 
   SmacofResult result;
   Eigen::MatrixXd X = init.rowwise() - init.colwise().mean();
@@ -236,12 +299,14 @@ SmacofResult Smacof(const Eigen::MatrixXd& D_in, const Eigen::MatrixXd& init,
   int evaluations = 0;
   auto pass = [&](const Eigen::MatrixXd& Y, Eigen::MatrixXd* BY) {
     ++evaluations;
-    return StressPass(D, Wp, Y, BY, threads);
+    return StressPass(D, guttman.weights(), Y, BY, threads);
   };
   double sigma = pass(X, &BX);
   result.stress_history.push_back(sigma);
   // Below this the configuration reproduces D to rounding; relative changes are then noise.
-  const double floor = 1e-24 * (weighted ? 0.5 * (W.array() * D.array().square()).sum() : eta2);
+  const double floor =
+      1e-24 *
+      (weighted ? 0.5 * (guttman.weights()->array() * D.array().square()).sum() : eta2);
 
   Anderson anderson(options.anderson_window);
   Eigen::MatrixXd G = guttman(BX);
@@ -252,38 +317,16 @@ SmacofResult Smacof(const Eigen::MatrixXd& D_in, const Eigen::MatrixXd& init,
       result.converged = true;
       break;
     }
-    // Candidates in order of preference; each must lower stress, the last never raises it in
-    // exact arithmetic (plain Guttman step).
-    bool accelerated = false;
-    Eigen::MatrixXd X_next;
-    double sigma_next = sigma;
-    bool accepted = false;
-    if (!force_plain && anderson.Ready()) {
-      X_next = anderson.Candidate();
-      sigma_next = pass(X_next, &BX_next);
-      accepted = sigma_next < sigma;
-      accelerated = accepted;
-      if (!accepted) anderson.Reset();
-    }
-    if (!accepted && options.relaxation != 1.0) {
-      X_next = X + options.relaxation * (G - X);
-      sigma_next = pass(X_next, &BX_next);
-      accepted = sigma_next <= sigma;
-    }
-    if (!accepted) {
-      X_next = G;
-      sigma_next = pass(X_next, &BX_next);
-      accepted = sigma_next <= sigma;
-    }
-    if (!accepted) {
+    SmacofStep step = NextSmacofStep(X, G, sigma, options, force_plain, &anderson, &BX_next, pass);
+    if (!step.accepted) {
       // Even the plain Guttman step went up: only rounding is left, keep the previous iterate.
       result.converged = true;
       break;
     }
-    const double change = (sigma - sigma_next) / sigma;
-    X.swap(X_next);
+    const double change = (sigma - step.sigma) / sigma;
+    X.swap(step.X);
     BX.swap(BX_next);
-    sigma = sigma_next;
+    sigma = step.sigma;
     G = guttman(BX);
     if (options.anderson_window > 0) anderson.Push(X, G);
     result.stress_history.push_back(sigma);
@@ -291,7 +334,7 @@ SmacofResult Smacof(const Eigen::MatrixXd& D_in, const Eigen::MatrixXd& init,
     force_plain = false;
     if (change < options.tolerance) {
       // An accelerated step can stall while plain steps still make progress: confirm with one.
-      if (!accelerated) {
+      if (!step.accelerated) {
         result.converged = true;
         break;
       }

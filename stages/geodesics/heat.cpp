@@ -32,92 +32,86 @@ std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> Factorize(
   return factor;
 }
 
-}  // namespace
-
-HeatGeodesicSolver::HeatGeodesicSolver(const Surface& s, const HeatOptions& options)
-    : surface_(s), options_(options) {
-  std::string error;
-  if (!options.IsValid(&error)) throw ConfigError("geodesics/heat: " + error);
+// Whether each vertex is in a face. Throws InvalidInputError for a surface without faces or a
+// face with a vertex id out of range.
+std::vector<char> UsedVertices(const Surface& s) {
   const int n = s.NumVertices(), nf = s.NumFaces();
   if (nf == 0) throw InvalidInputError("heat method: surface has no faces");
-  used_vertex_.assign(n, 0);
+  std::vector<char> used(n, 0);
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
       if (s.F(f, k) < 0 || s.F(f, k) >= n) {
         throw InvalidInputError("heat method: face " + std::to_string(f) + " has a bad vertex id");
       }
-      used_vertex_[s.F(f, k)] = 1;
+      used[s.F(f, k)] = 1;
     }
   }
-  // Boundary vertices: endpoints of edges with exactly one face.
-  boundary_vertex_.assign(n, 0);
-  {
-    std::vector<std::pair<int, int>> edges;
-    for (int f = 0; f < nf; ++f) {
-      for (int k = 0; k < 3; ++k) edges.push_back(std::minmax(s.F(f, k), s.F(f, (k + 1) % 3)));
-    }
-    std::sort(edges.begin(), edges.end());
-    for (size_t i = 0; i < edges.size();) {
-      size_t j = i;
-      while (j < edges.size() && edges[j] == edges[i]) ++j;
-      if (j - i == 1) {
-        boundary_vertex_[edges[i].first] = boundary_vertex_[edges[i].second] = 1;
-        has_boundary_ = true;
-      }
-      i = j;
-    }
-  }
-  const double h = MeanEdgeLength(s);
-  t_ = options.time_factor * h * h;
-  const IntrinsicTriangulation tri =
-      options.intrinsic_delaunay ? IntrinsicDelaunay(s) : IntrinsicFromSurface(s);
-  flips_ = tri.flips;
-  faces_ = tri.F;
-  const Eigen::SparseMatrix<double> K = IntrinsicCotanStiffness(tri, n);
-  const Eigen::VectorXd vertex_areas = IntrinsicVertexAreas(tri, n);
-  Eigen::SparseMatrix<double> M(n, n);
-  {
-    std::vector<Eigen::Triplet<double>> triplets;
-    for (int v = 0; v < n; ++v) triplets.emplace_back(v, v, vertex_areas(v));
-    M.setFromTriplets(triplets.begin(), triplets.end());
-  }
-  // Vertices in no face have empty rows; a unit diagonal keeps the systems non-singular.
-  Eigen::SparseMatrix<double> unused(n, n);
-  {
-    std::vector<Eigen::Triplet<double>> triplets;
-    for (int v = 0; v < n; ++v) {
-      if (!used_vertex_[v]) triplets.emplace_back(v, v, 1.0);
-    }
-    unused.setFromTriplets(triplets.begin(), triplets.end());
-  }
-  const Eigen::SparseMatrix<double> A = M + t_ * K + unused;
-  neumann_ = Factorize(A, "heat system");
-  if (has_boundary_ && options.boundary != HeatBoundary::kNeumann) {
-    // u = 0 on the boundary: boundary rows and columns become identity rows and columns.
-    std::vector<Eigen::Triplet<double>> triplets;
-    for (int col = 0; col < A.outerSize(); ++col) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it) {
-        const bool fixed = boundary_vertex_[it.row()] || boundary_vertex_[it.col()];
-        if (!fixed) triplets.emplace_back(it.row(), it.col(), it.value());
-      }
-    }
-    for (int v = 0; v < n; ++v) {
-      if (boundary_vertex_[v]) triplets.emplace_back(v, v, 1.0);
-    }
-    Eigen::SparseMatrix<double> AD(n, n);
-    AD.setFromTriplets(triplets.begin(), triplets.end());
-    dirichlet_ = Factorize(AD, "Dirichlet heat system");
-  }
-  const double total_area = vertex_areas.sum();
-  poisson_ = Factorize(K + (1e-8 / total_area) * M + unused, "Poisson system");
+  return used;
+}
 
-  // Face operators, in each face's 2D layout (p_0 at the origin, p_1 on +x). The gradient of
-  // the linear interpolant is sum_k u_k rot90(p_j - p_i) / (2A) with (k, i, j) counter-clockwise;
-  // vertex k's divergence weight is (cot(angle at j) (p_i - p_k) + cot(angle at i)
-  // (p_j - p_k)) / 2 [Crane et al. 2013, Sec. 3.2].
+// Whether each vertex is on the boundary (an endpoint of an edge with exactly one face).
+std::vector<char> BoundaryVertices(const Surface& s, bool* has_boundary) {
+  const int nf = s.NumFaces();
+  std::vector<char> boundary(s.NumVertices(), 0);
+  std::vector<std::pair<int, int>> edges;
+  for (int f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) edges.push_back(std::minmax(s.F(f, k), s.F(f, (k + 1) % 3)));
+  }
+  std::sort(edges.begin(), edges.end());
+  *has_boundary = false;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) {
+      boundary[edges[i].first] = boundary[edges[i].second] = 1;
+      *has_boundary = true;
+    }
+    i = j;
+  }
+  return boundary;
+}
+
+// The n x n diagonal matrix with `values` where `keep` is set (all when keep is empty).
+Eigen::SparseMatrix<double> Diagonal(const Eigen::VectorXd& values, const std::vector<char>& keep) {
+  const int n = static_cast<int>(values.size());
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int v = 0; v < n; ++v) {
+    if (keep.empty() || keep[v]) triplets.emplace_back(v, v, values(v));
+  }
+  Eigen::SparseMatrix<double> D(n, n);
+  D.setFromTriplets(triplets.begin(), triplets.end());
+  return D;
+}
+
+// A with the rows and columns of fixed vertices replaced by identity rows and columns (u = 0
+// there).
+Eigen::SparseMatrix<double> WithFixedVertices(const Eigen::SparseMatrix<double>& A,
+                                              const std::vector<char>& fixed_vertex) {
+  const int n = static_cast<int>(A.rows());
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int col = 0; col < A.outerSize(); ++col) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it) {
+      const bool fixed = fixed_vertex[it.row()] || fixed_vertex[it.col()];
+      if (!fixed) triplets.emplace_back(it.row(), it.col(), it.value());
+    }
+  }
+  for (int v = 0; v < n; ++v) {
+    if (fixed_vertex[v]) triplets.emplace_back(v, v, 1.0);
+  }
+  Eigen::SparseMatrix<double> AD(n, n);
+  AD.setFromTriplets(triplets.begin(), triplets.end());
+  return AD;
+}
+
+// Face operators, in each face's 2D layout (p_0 at the origin, p_1 on +x). The gradient of the
+// linear interpolant is sum_k u_k rot90(p_j - p_i) / (2A) with (k, i, j) counter-clockwise;
+// vertex k's divergence weight is (cot(angle at j) (p_i - p_k) + cot(angle at i) (p_j - p_k)) / 2
+// [Crane et al. 2013, Sec. 3.2]. grad[k], div[k]: nf x 2, for the first nf faces of tri.
+void FaceOperators(const IntrinsicTriangulation& tri, int nf, Eigen::MatrixX2d grad[3],
+                   Eigen::MatrixX2d div[3]) {
   for (int k = 0; k < 3; ++k) {
-    grad_[k] = Eigen::MatrixX2d::Zero(nf, 2);
-    div_[k] = Eigen::MatrixX2d::Zero(nf, 2);
+    grad[k] = Eigen::MatrixX2d::Zero(nf, 2);
+    div[k] = Eigen::MatrixX2d::Zero(nf, 2);
   }
   for (int f = 0; f < nf; ++f) {
     const Eigen::Matrix<double, 3, 2> p = IntrinsicLayout(tri, f);
@@ -130,10 +124,42 @@ HeatGeodesicSolver::HeatGeodesicSolver(const Surface& s, const HeatOptions& opti
     for (int k = 0; k < 3; ++k) {
       const int i = (k + 1) % 3, j = (k + 2) % 3;
       const Eigen::RowVector2d e = p.row(j) - p.row(i);
-      grad_[k].row(f) << -e.y() / double_area, e.x() / double_area;
-      div_[k].row(f) = 0.5 * (cot(j) * (p.row(i) - p.row(k)) + cot(i) * (p.row(j) - p.row(k)));
+      grad[k].row(f) << -e.y() / double_area, e.x() / double_area;
+      div[k].row(f) = 0.5 * (cot(j) * (p.row(i) - p.row(k)) + cot(i) * (p.row(j) - p.row(k)));
     }
   }
+}
+
+}  // namespace
+
+HeatGeodesicSolver::HeatGeodesicSolver(const Surface& s, const HeatOptions& options)
+    : surface_(s), options_(options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("geodesics/heat: " + error);
+  const int n = s.NumVertices();
+  used_vertex_ = UsedVertices(s);
+  boundary_vertex_ = BoundaryVertices(s, &has_boundary_);
+  const double h = MeanEdgeLength(s);
+  t_ = options.time_factor * h * h;
+  const IntrinsicTriangulation tri =
+      options.intrinsic_delaunay ? IntrinsicDelaunay(s) : IntrinsicFromSurface(s);
+  flips_ = tri.flips;
+  faces_ = tri.F;
+  const Eigen::SparseMatrix<double> K = IntrinsicCotanStiffness(tri, n);
+  const Eigen::VectorXd vertex_areas = IntrinsicVertexAreas(tri, n);
+  const Eigen::SparseMatrix<double> M = Diagonal(vertex_areas, {});
+  // Vertices in no face have empty rows; a unit diagonal keeps the systems non-singular.
+  std::vector<char> unused_vertex(n);
+  for (int v = 0; v < n; ++v) unused_vertex[v] = !used_vertex_[v];
+  const Eigen::SparseMatrix<double> unused = Diagonal(Eigen::VectorXd::Ones(n), unused_vertex);
+  const Eigen::SparseMatrix<double> A = M + t_ * K + unused;
+  neumann_ = Factorize(A, "heat system");
+  if (has_boundary_ && options.boundary != HeatBoundary::kNeumann) {
+    dirichlet_ = Factorize(WithFixedVertices(A, boundary_vertex_), "Dirichlet heat system");
+  }
+  const double total_area = vertex_areas.sum();
+  poisson_ = Factorize(K + (1e-8 / total_area) * M + unused, "Poisson system");
+  FaceOperators(tri, s.NumFaces(), grad_, div_);
 }
 
 void HeatGeodesicSolver::SolveBlock(const int* sources, int count, Eigen::MatrixXd* out) const {

@@ -154,16 +154,13 @@ void Descriptors(const LaplaceBasis& source, const LaplaceBasis& target, int k_e
                          EnergyWeights(target.evals.head(k_end), energies, sigma));
 }
 
-}  // namespace
-
-DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& target,
-                              const std::vector<int>& initial_map, const std::vector<int>& samples,
-                              const std::vector<int>& target_samples,
-                              const DiscreteOptOptions& options, const WksProducts* source_products,
-                              const WksProducts* target_products) {
+void CheckDiscreteOptInputs(const LaplaceBasis& source, const LaplaceBasis& target,
+                            const std::vector<int>& initial_map, const std::vector<int>& samples,
+                            const std::vector<int>& target_samples,
+                            const DiscreteOptOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("discrete: " + error);
-  const int ns = source.NumVertices(), nt = target.NumVertices(), k_end = options.k_end;
+  const int k_end = options.k_end;
   if (source.NumEigenpairs() < k_end || target.NumEigenpairs() < k_end) {
     std::ostringstream out;
     out << "discrete: k_end = " << k_end << " but the bases have " << source.NumEigenpairs()
@@ -173,7 +170,40 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
   if (samples.empty() != target_samples.empty()) {
     throw InvalidInputError("discrete: give samples of both shapes or of neither");
   }
-  CheckPointMap(initial_map, ns, nt);
+  CheckPointMap(initial_map, source.NumVertices(), target.NumVertices());
+}
+
+// The status message: the schedule, the samples, the weights, and per basis size the energy
+// and the defects of the functional maps.
+std::string DiscreteOptMessage(const DiscreteOptResult& result, const DiscreteOptOptions& options,
+                               int source_active, int target_active, bool sampled, int ns) {
+  const DiscreteOptWeights& w = options.weights;
+  std::ostringstream message;
+  message << "discrete k " << options.k_start << ".." << options.k_end << " step "
+          << options.step;
+  if (sampled) message << " on " << source_active << " / " << target_active << " samples";
+  message << "; weights orthogonality " << w.orthogonality << " bijectivity " << w.bijectivity
+          << " proper " << w.proper << " laplacian " << w.laplacian << " descriptor "
+          << w.descriptor;
+  message.precision(3);
+  message << "; changed " << result.changed << "/" << ns
+          << "; per k: energy per point, ||C12^T C12 - I||^2/k, ||C12 C21 - I||^2/k:";
+  for (size_t it = 0; it < result.k.size(); ++it) {
+    message << " " << result.k[it] << ":" << result.energy[it] << "," << result.orthogonality[it]
+            << "," << result.bijectivity[it];
+  }
+  return message.str();
+}
+
+}  // namespace
+
+DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& target,
+                              const std::vector<int>& initial_map, const std::vector<int>& samples,
+                              const std::vector<int>& target_samples,
+                              const DiscreteOptOptions& options, const WksProducts* source_products,
+                              const WksProducts* target_products) {
+  CheckDiscreteOptInputs(source, target, initial_map, samples, target_samples, options);
+  const int ns = source.NumVertices(), k_end = options.k_end;
   const bool sampled = !samples.empty();
   const Side S = MakeSide(source, samples, k_end, options.sample_candidates, "source");
   const Side T = MakeSide(target, target_samples, k_end, options.sample_candidates, "target");
@@ -244,23 +274,12 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
   }
   for (int i = 0; i < ns; ++i) result.changed += result.map[i] != initial_map[i];
 
-  std::ostringstream message;
-  message << "discrete k " << options.k_start << ".." << k_end << " step " << options.step;
-  if (sampled) message << " on " << S.active.size() << " / " << T.active.size() << " samples";
-  message << "; weights orthogonality " << w.orthogonality << " bijectivity " << w.bijectivity
-          << " proper " << w.proper << " laplacian " << w.laplacian << " descriptor "
-          << w.descriptor;
-  message.precision(3);
-  message << "; changed " << result.changed << "/" << ns
-          << "; per k: energy per point, ||C12^T C12 - I||^2/k, ||C12 C21 - I||^2/k:";
-  for (size_t it = 0; it < result.k.size(); ++it) {
-    message << " " << result.k[it] << ":" << result.energy[it] << "," << result.orthogonality[it]
-            << "," << result.bijectivity[it];
-  }
   result.status.converged = true;
   result.status.iterations = static_cast<int>(result.k.size());
   result.status.residual = result.energy.back();
-  result.status.message = message.str();
+  result.status.message =
+      DiscreteOptMessage(result, options, static_cast<int>(S.active.size()),
+                         static_cast<int>(T.active.size()), sampled, ns);
   return result;
 }
 

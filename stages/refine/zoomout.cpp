@@ -122,6 +122,45 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
   return ZoomOutSetup(source, target, samples, options, target_samples).Run(initial_map);
 }
 
+namespace {
+
+// Appends basis size k's trace to *run: the orthogonality defect of C and the mean squared
+// spectral residual sq of its query.
+void Record(StartRun* run, int k, const Eigen::MatrixXd& C, const std::vector<double>& sq) {
+  run->k.push_back(k);
+  run->orthogonality.push_back(OrthogonalityDefect(C));
+  run->spectral_residual.push_back(Mean(sq));
+}
+
+// The status message: the schedule, the samples (when sampled: `active` of them), the starts
+// compared, and the trace.
+std::string ZoomOutMessage(const ZoomOutResult& result, const std::vector<int>& starts,
+                           const ZoomOutOptions& options, bool sampled, size_t active,
+                           int target_samples, int ns) {
+  std::ostringstream message;
+  message << "zoomout k " << result.start << ".." << options.k_end << " step " << options.step
+          << (sampled ? " on " + std::to_string(active) + " samples" : "")
+          << (target_samples > 0 ? " onto " + std::to_string(target_samples) + " target samples"
+                                 : "");
+  message.precision(3);
+  if (!result.start_residuals.empty()) {
+    message << "; starts (k: residual at k_end)";
+    for (size_t s = 0; s < starts.size(); ++s) {
+      message << " " << starts[s] << ":" << result.start_residuals[s];
+    }
+    message << ", kept " << result.start;
+  }
+  message << "; changed " << result.changed << "/" << ns
+          << "; per k: orthogonality defect ||C^T C - I||^2/k, mean NN spectral residual:";
+  for (size_t it = 0; it < result.k.size(); ++it) {
+    message << " " << result.k[it] << ":" << result.orthogonality[it] << ","
+            << result.spectral_residual[it];
+  }
+  return message.str();
+}
+
+}  // namespace
+
 ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
   const int ns = source_.NumVertices();
   CheckPointMap(initial_map, ns, target_.NumVertices());
@@ -131,12 +170,6 @@ ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
   // single run goes straight to that query; several are first compared on the active points.
   const bool dense_last = sampled_ && options_.dense_result;
   const bool query_last_on_active = !dense_last || starts.size() > 1;
-  auto record = [](StartRun* run, int k, const Eigen::MatrixXd& C,
-                   const std::vector<double>& sq) {
-    run->k.push_back(k);
-    run->orthogonality.push_back(OrthogonalityDefect(C));
-    run->spectral_residual.push_back(Mean(sq));
-  };
 
   std::vector<StartRun> runs(starts.size());
   for (size_t s = 0; s < starts.size(); ++s) {
@@ -154,7 +187,7 @@ ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
         run.active_map =
             NearestUnderMap(source_rows_.leftCols(k), target_rows_.leftCols(k), targets_, run.C,
                             &sq);
-        record(&run, k, run.C, sq);
+        Record(&run, k, run.C, sq);
       }
     }
   }
@@ -182,7 +215,7 @@ ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
     std::vector<double> sq;
     result.map =
         PointMapFromFunctionalMap(source_.evecs, target_.evecs, target_.mass, run.C, all, &sq);
-    record(&run, options_.k_end, run.C, sq);
+    Record(&run, options_.k_end, run.C, sq);
   } else if (sampled_) {
     result.map = initial_map;
     for (size_t r = 0; r < active_.size(); ++r) result.map[active_[r]] = run.active_map[r];
@@ -194,30 +227,11 @@ ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
   result.spectral_residual = std::move(run.spectral_residual);
   for (int i = 0; i < ns; ++i) result.changed += result.map[i] != initial_map[i];
 
-  std::ostringstream message;
-  message << "zoomout k " << result.start << ".." << options_.k_end << " step " << options_.step
-          << (sampled_ ? " on " + std::to_string(active_.size()) + " samples" : "")
-          << (target_sample_count_ > 0
-                  ? " onto " + std::to_string(target_sample_count_) + " target samples"
-                  : "");
-  message.precision(3);
-  if (!result.start_residuals.empty()) {
-    message << "; starts (k: residual at k_end)";
-    for (size_t s = 0; s < starts.size(); ++s) {
-      message << " " << starts[s] << ":" << result.start_residuals[s];
-    }
-    message << ", kept " << result.start;
-  }
-  message << "; changed " << result.changed << "/" << ns
-          << "; per k: orthogonality defect ||C^T C - I||^2/k, mean NN spectral residual:";
-  for (size_t it = 0; it < result.k.size(); ++it) {
-    message << " " << result.k[it] << ":" << result.orthogonality[it] << ","
-            << result.spectral_residual[it];
-  }
   result.status.converged = true;
   result.status.iterations = static_cast<int>(result.k.size());
   result.status.residual = result.orthogonality.back();
-  result.status.message = message.str();
+  result.status.message = ZoomOutMessage(result, starts, options_, sampled_, active_.size(),
+                                         target_sample_count_, ns);
   return result;
 }
 

@@ -142,56 +142,35 @@ SymmetrizeEnergy CeresSymmetrizeEnergy(const Eigen::MatrixX3d& P, const Symmetry
   return energy;
 }
 
-SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<int>& samples,
-                                 const SymmetryResult& symmetry,
-                                 const CeresSymmetrizeOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) throw ConfigError("symmetrize ceres: " + error);
-  const Eigen::MatrixX3d Y = MovePlaneToX0(Y_in, symmetry.normal, symmetry.offset);
-  const Eigen::MatrixX3d P = SampleRows3(Y, samples);
-  const int n = static_cast<int>(samples.size());
-  const std::vector<int>& sigma = symmetry.sigma;
-  const double size = RmsRadius(P);
-  if (!(size > 0.0)) throw InvalidInputError("symmetrize ceres: all samples coincide");
-  const double inv_s = 1.0 / size;
+namespace {
 
-  // The energy's terms, shared by the warm start and the Ceres problem.
-  const SymmetrizeEnergy energy = CeresSymmetrizeEnergy(P, symmetry, options);
-  const auto& mirror = energy.mirror;
-
-  MajorizationResult warm;
-  warm.X = P;
-  if (options.warm_start_iterations > 0) {
-    warm = MajorizeSymmetrizeEnergy(energy, P, options.warm_start_iterations,
-                                    options.warm_start_tolerance);
-  }
-
-  // Unknowns: one 3-vector per sample, stored contiguously.
-  std::vector<double> x(3 * static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) x[3 * i + c] = warm.X(i, c);
-  }
-  auto block = [&](int i) { return x.data() + 3 * static_cast<size_t>(i); };
-  ceres::Problem problem;
-  for (int i = 0; i < n; ++i) problem.AddParameterBlock(block(i), 3);
+// The Ceres problem of `energy` over the unknowns x (one 3-vector per sample, contiguous),
+// residuals scaled by inv_s: graph stress per edge, then per sample its on-plane, symmetry and
+// anchor terms.
+void BuildSymmetrizeProblem(const SymmetrizeEnergy& energy, const Eigen::MatrixX3d& P,
+                            const CeresSymmetrizeOptions& options, double inv_s,
+                            std::vector<double>* x, ceres::Problem* problem) {
+  const int n = static_cast<int>(P.rows());
+  auto block = [&](int i) { return x->data() + 3 * static_cast<size_t>(i); };
+  for (int i = 0; i < n; ++i) problem->AddParameterBlock(block(i), 3);
   for (size_t e = 0; e < energy.edges.size(); ++e) {
     const auto [i, j] = energy.edges[e];
-    problem.AddResidualBlock(new EdgeStressCost(energy.lengths[e], inv_s), nullptr, block(i),
-                             block(j));
+    problem->AddResidualBlock(new EdgeStressCost(energy.lengths[e], inv_s), nullptr, block(i),
+                              block(j));
   }
   const Eigen::Matrix3d M = MirrorX(), I = Eigen::Matrix3d::Identity();
   std::vector<bool> on_plane(n, false);
   for (int i : energy.on_plane) on_plane[i] = true;
   for (int i = 0; i < n; ++i) {
     if (on_plane[i]) {
-      problem.AddResidualBlock(new OnPlaneCost(std::sqrt(options.plane_weight) * inv_s), nullptr,
-                               block(i));
+      problem->AddResidualBlock(new OnPlaneCost(std::sqrt(options.plane_weight) * inv_s), nullptr,
+                                block(i));
     }
     if (energy.symmetry_weight(i) > 0.0) {
       // M x_i - sum_j w_ij x_j, with x_i's own coefficient merged (blocks must be distinct).
       std::vector<Eigen::Matrix3d> A = {M};
       std::vector<double*> blocks = {block(i)};
-      for (const auto& [j, w] : mirror[i]) {
+      for (const auto& [j, w] : energy.mirror[i]) {
         if (j == i) {
           A[0] -= w * I;
         } else {
@@ -199,17 +178,20 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
           blocks.push_back(block(j));
         }
       }
-      problem.AddResidualBlock(
+      problem->AddResidualBlock(
           new LinearResidualCost(std::move(A), std::sqrt(energy.symmetry_weight(i)) * inv_s),
           nullptr, blocks);
     }
     if (options.anchor_weight > 0.0) {
       const double p[3] = {P(i, 0), P(i, 1), P(i, 2)};
-      problem.AddResidualBlock(new AnchorCost(p, std::sqrt(options.anchor_weight) * inv_s), nullptr,
-                               block(i));
+      problem->AddResidualBlock(new AnchorCost(p, std::sqrt(options.anchor_weight) * inv_s),
+                                nullptr, block(i));
     }
   }
+}
 
+// Sparse normal Cholesky with the first sparse library Ceres was built with, else CGNR.
+ceres::Solver::Options SymmetrizeSolverOptions(const CeresSymmetrizeOptions& options) {
   ceres::Solver::Options solver;
   solver.max_num_iterations = options.max_iterations;
   solver.function_tolerance = options.function_tolerance;
@@ -225,8 +207,58 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
   } else {
     solver.linear_solver_type = ceres::CGNR;
   }
+  return solver;
+}
+
+// The status message: asymmetry, mirror residual and graph stress of the samples P before and X
+// after, the warm start, and Ceres' report.
+std::string SymmetrizeMessage(const SymmetrizeResult& result, const Eigen::MatrixX3d& P,
+                              const Eigen::MatrixX3d& X, const SymmetrizeEnergy& energy,
+                              const CeresSymmetrizeOptions& options,
+                              const MajorizationResult& warm,
+                              const ceres::Solver::Summary& summary) {
+  std::ostringstream message;
+  message << "asymmetry " << result.asymmetry_before << " -> " << result.asymmetry_after
+          << ", mirror residual " << MirrorResidual(P, energy.mirror) << " -> "
+          << MirrorResidual(X, energy.mirror) << ", graph stress "
+          << GraphStress(P, X, options.graph_neighbors) << "; ";
+  if (options.warm_start_iterations > 0) {
+    message << "warm start: " << warm.iterations << " majorization iterations, energy "
+            << warm.energy_before << " -> " << warm.energy_after << "; ";
+  }
+  message << summary.BriefReport();
+  return message.str();
+}
+
+}  // namespace
+
+SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<int>& samples,
+                                 const SymmetryResult& symmetry,
+                                 const CeresSymmetrizeOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("symmetrize ceres: " + error);
+  const Eigen::MatrixX3d Y = MovePlaneToX0(Y_in, symmetry.normal, symmetry.offset);
+  const Eigen::MatrixX3d P = SampleRows3(Y, samples);
+  const int n = static_cast<int>(samples.size());
+  const double size = RmsRadius(P);
+  if (!(size > 0.0)) throw InvalidInputError("symmetrize ceres: all samples coincide");
+
+  // The energy's terms, shared by the warm start and the Ceres problem.
+  const SymmetrizeEnergy energy = CeresSymmetrizeEnergy(P, symmetry, options);
+  MajorizationResult warm;
+  warm.X = P;
+  if (options.warm_start_iterations > 0) {
+    warm = MajorizeSymmetrizeEnergy(energy, P, options.warm_start_iterations,
+                                    options.warm_start_tolerance);
+  }
+  std::vector<double> x(3 * static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) x[3 * i + c] = warm.X(i, c);
+  }
+  ceres::Problem problem;
+  BuildSymmetrizeProblem(energy, P, options, 1.0 / size, &x, &problem);
   ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
+  ceres::Solve(SymmetrizeSolverOptions(options), &problem, &summary);
   if (!summary.IsSolutionUsable()) {
     throw SolverError("symmetrize ceres: " + summary.message);
   }
@@ -236,22 +268,13 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
     for (int c = 0; c < 3; ++c) X(i, c) = x[3 * i + c];
   }
   SymmetrizeResult result;
-  result.asymmetry_before = Asymmetry(P, sigma);
+  result.asymmetry_before = Asymmetry(P, symmetry.sigma);
   result.Y = FollowSamples(Y, samples, X, options.follow_neighbors);
-  result.asymmetry_after = Asymmetry(X, sigma);
+  result.asymmetry_after = Asymmetry(X, symmetry.sigma);
   result.status.converged = summary.termination_type == ceres::CONVERGENCE;
   result.status.iterations = static_cast<int>(summary.iterations.size());
   result.status.residual = summary.final_cost;
-  std::ostringstream message;
-  message << "asymmetry " << result.asymmetry_before << " -> " << result.asymmetry_after
-          << ", mirror residual " << MirrorResidual(P, mirror) << " -> " << MirrorResidual(X, mirror)
-          << ", graph stress " << GraphStress(P, X, options.graph_neighbors) << "; ";
-  if (options.warm_start_iterations > 0) {
-    message << "warm start: " << warm.iterations << " majorization iterations, energy "
-            << warm.energy_before << " -> " << warm.energy_after << "; ";
-  }
-  message << summary.BriefReport();
-  result.status.message = message.str();
+  result.status.message = SymmetrizeMessage(result, P, X, energy, options, warm, summary);
   return result;
 }
 

@@ -59,11 +59,10 @@ struct Candidate {
   std::string origin;
 };
 
-}  // namespace
-
-SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
-                                     const Eigen::MatrixXd& Y, const Plane2dOptions& options,
-                                     const Eigen::MatrixXd& G, const Eigen::VectorXd& evals) {
+// The input checks of DetectSymmetryPlane2d.
+void CheckPlane2dInputs(const std::vector<int>& samples, const Eigen::MatrixXd& Y,
+                        const Plane2dOptions& options, const Eigen::MatrixXd& G,
+                        const Eigen::VectorXd& evals) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("symmetry plane2d: " + error);
   if (Y.cols() != 3) throw InvalidInputError("symmetry plane2d: the embedding must be 3D");
@@ -78,13 +77,10 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
                             " eigenvalues for " + std::to_string(G.cols()) +
                             " spectral coordinates");
   }
-  auto consistency = [&](const std::vector<int>& sigma) {
-    return SpectralConsistency(G, sigma, evals, options.spectral.eigenvalue_tolerance);
-  };
-  const Eigen::MatrixXd Dss = SampleDistances(D, samples);
-  const Eigen::MatrixXd X = EmbedSamples2d(Dss, options.smacof_iterations, options.threads);
-  const KnnIndex index2(X);
-  const Eigen::Vector2d centroid = X.colwise().mean().transpose();
+}
+
+// The samples' rows of the 3D embedding (#S x 3).
+Eigen::MatrixXd SamplePoints(const Eigen::MatrixXd& Y, const std::vector<int>& samples) {
   Eigen::MatrixXd P(samples.size(), 3);
   for (size_t i = 0; i < samples.size(); ++i) {
     if (samples[i] < 0 || samples[i] >= Y.rows()) {
@@ -92,153 +88,230 @@ SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector
     }
     P.row(i) = Y.row(samples[i]);
   }
-  const KnnIndex index3(P);
-  const double size2 = RmsRadius(X), size3 = RmsRadius(P);
-  auto intrinsic = [&](const std::vector<int>& sigma) {
-    return options.intrinsic_weight > 0.0
-               ? IntrinsicDistortion(Dss, sigma, options.search.trim_fraction,
-                                     options.intrinsic_pairs, static_cast<unsigned>(options.seed))
+  return P;
+}
+
+// One detection: the samples in 2D (X) and in the 3D embedding (P), and the candidates found.
+// Candidates are added in a fixed order (lines of the 2D embedding by angle, the 3D search, the
+// sign flips of the eigenfunctions), so the choice does not depend on the threads.
+class Plane2dSearch {
+ public:
+  Plane2dSearch(const Eigen::MatrixXd& D, const std::vector<int>& samples,
+                const Eigen::MatrixXd& Y, const Plane2dOptions& options, const Eigen::MatrixXd& G,
+                const Eigen::VectorXd& evals)
+      : options_(options),
+        G_(G),
+        evals_(evals),
+        Dss_(SampleDistances(D, samples)),
+        X_(EmbedSamples2d(Dss_, options.smacof_iterations, options.threads)),
+        index2_(X_),
+        centroid_(X_.colwise().mean().transpose()),
+        P_(SamplePoints(Y, samples)),
+        index3_(P_),
+        size2_(RmsRadius(X_)),
+        size3_(RmsRadius(P_)) {}
+
+  // Each line direction of the 2D embedding refined on its own (in parallel) into the lifted
+  // candidate and its refinement in 3D.
+  void AddLineCandidates() {
+    std::vector<std::vector<Candidate>> per_angle(options_.num_angles);
+    std::vector<int> angle_iterations(options_.num_angles, 0);
+    ParallelFor(
+        options_.num_angles,
+        [&](int k) { per_angle[k] = LineCandidates(k, &angle_iterations[k]); },
+        options_.threads);
+    for (int k = 0; k < options_.num_angles; ++k) {
+      iterations_ += angle_iterations[k];
+      for (Candidate& c : per_angle[k]) Consider(std::move(c));
+    }
+  }
+
+  // The best plane of the 3D search over directions (SearchPlanes3d).
+  void AddSearch3dCandidate() {
+    Plane3dOptions o3;
+    o3.search = options_.search;
+    o3.num_directions = options_.num_directions;
+    o3.intrinsic_weight = options_.intrinsic_weight;
+    o3.intrinsic_pairs = options_.intrinsic_pairs;
+    o3.seed = options_.seed;
+    o3.threads = options_.threads;
+    double total = 0.0, distortion = 0.0;
+    const ReflectionFit fit3 =
+        SearchPlanes3d(P_, index3_, Dss_, o3, &total, &distortion, &iterations_);
+    if (std::isfinite(total)) Consider(FromFit3d(fit3, distortion, "3D search"));
+  }
+
+  // Step 5: when the choice by distances is not an intrinsic symmetry of the eigenfunctions,
+  // self maps from sign flips of the eigenfunctions join the candidates, lifted to 3D, and the
+  // spectral inconsistency joins the criterion.
+  void AddSignFlipCandidatesIfInconsistent() {
+    if (candidates_.empty()) {
+      throw InvalidInputError("symmetry plane2d: every candidate symmetry was rejected");
+    }
+    Candidate& chosen = Best();
+    if (G_.size() > 0) chosen.consistency = Consistency(chosen.sigma);
+    if (G_.size() == 0 || chosen.consistency >= options_.spectral.min_consistency) return;
+    const double sizeG = RmsRadius(G_);
+    for (const SignFlipCandidate& flip : SignFlipCandidates(G_, options_.spectral.num_candidates,
+                                                            options_.search.outlier_distance)) {
+      if (flip.fixed_fraction > options_.search.max_fixed_fraction) continue;
+      AddSignFlipCandidate(flip, sizeG);
+    }
+    for (Candidate& c : candidates_) {
+      c.consistency = Consistency(c.sigma);
+      c.total += options_.spectral.weight * (1.0 - c.consistency);
+    }
+  }
+
+  SymmetryResult Result() {
+    const Candidate& best = Best();
+    SymmetryResult result;
+    result.normal = best.normal;
+    result.offset = best.offset;
+    result.sigma = best.sigma;
+    result.confidence = best.confidence;
+    result.score = best.score;
+    result.status.converged = best.converged;
+    result.status.iterations = iterations_;
+    result.status.residual = best.total;
+    std::ostringstream message;
+    message << "plane2d: " << best.origin << ", score " << best.score
+            << ", intrinsic distortion " << best.intrinsic;
+    if (G_.size() > 0) message << ", spectral consistency " << best.consistency;
+    result.status.message = message.str();
+    return result;
+  }
+
+ private:
+  double Consistency(const std::vector<int>& sigma) const {
+    return SpectralConsistency(G_, sigma, evals_, options_.spectral.eigenvalue_tolerance);
+  }
+
+  double Intrinsic(const std::vector<int>& sigma) const {
+    return options_.intrinsic_weight > 0.0
+               ? IntrinsicDistortion(Dss_, sigma, options_.search.trim_fraction,
+                                     options_.intrinsic_pairs,
+                                     static_cast<unsigned>(options_.seed))
                : 0.0;
-  };
+  }
+
   // A candidate from a fit in 3D: its plane, self map, confidence and score on the samples P.
-  auto from_fit_3d = [&](const ReflectionFit& fit, double intrinsic_distortion,
-                         std::string origin) {
+  Candidate FromFit3d(const ReflectionFit& fit, double intrinsic_distortion,
+                      std::string origin) const {
     Candidate c;
     c.normal = fit.normal;
     c.offset = fit.offset;
     c.sigma = fit.sigma;
-    c.confidence = SymmetryConfidence(fit.residual, fit.sigma, size3);
+    c.confidence = SymmetryConfidence(fit.residual, fit.sigma, size3_);
     c.score = fit.score;
     c.intrinsic = intrinsic_distortion;
     c.converged = fit.converged;
     c.origin = std::move(origin);
     return c;
-  };
+  }
+
   // The plane (normal, offset) refined in 3D for refine_3d_iterations, as a candidate; none when
   // that refinement is off or rejects the plane. Adds its iterations to *iterations.
-  auto refined_in_3d = [&](const Eigen::VectorXd& normal, double offset, const std::string& origin,
-                           int* iterations) -> std::optional<Candidate> {
-    if (options.refine_3d_iterations <= 0) return std::nullopt;
-    ReflectionSearchOptions o = options.search;
-    o.max_iterations = options.refine_3d_iterations;
-    const ReflectionFit fit3 = RefineReflection(P, index3, normal, offset, o);
+  std::optional<Candidate> RefinedIn3d(const Eigen::VectorXd& normal, double offset,
+                                       const std::string& origin, int* iterations) const {
+    if (options_.refine_3d_iterations <= 0) return std::nullopt;
+    ReflectionSearchOptions o = options_.search;
+    o.max_iterations = options_.refine_3d_iterations;
+    const ReflectionFit fit3 = RefineReflection(P_, index3_, normal, offset, o);
     *iterations += fit3.iterations;
     if (!std::isfinite(fit3.score)) return std::nullopt;
-    return from_fit_3d(fit3, intrinsic(fit3.sigma), origin + ", refined in 3D");
-  };
-  std::vector<Candidate> candidates;
-  auto consider = [&](Candidate c) {
-    c.total = c.score + options.intrinsic_weight * c.intrinsic;
-    if (std::isfinite(c.total)) candidates.push_back(std::move(c));
-  };
+    return FromFit3d(fit3, Intrinsic(fit3.sigma), origin + ", refined in 3D");
+  }
 
-  // Each line direction refined on its own (in parallel) into up to two candidates, then taken in
-  // order, so the candidates and the choice do not depend on the threads.
-  std::vector<std::vector<Candidate>> per_angle(options.num_angles);
-  std::vector<int> angle_iterations(options.num_angles, 0);
-  ParallelFor(
-      options.num_angles,
-      [&](int k) {
-        const double angle = M_PI * k / options.num_angles;
-        const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
-        const ReflectionFit fit = RefineReflection(X, index2, n, n.dot(centroid), options.search);
-        angle_iterations[k] += fit.iterations;
-        if (!std::isfinite(fit.score)) return;
-        // The 2D self map with the plane lifted to 3D.
-        Candidate lifted;
-        lifted.sigma = fit.sigma;
-        lifted.confidence = SymmetryConfidence(fit.residual, fit.sigma, size2);
-        if (!FitReflection(P, fit.sigma, lifted.confidence, &lifted.normal, &lifted.offset)) {
-          return;
-        }
-        lifted.score = fit.score;
-        lifted.intrinsic = intrinsic(fit.sigma);
-        lifted.converged = fit.converged;
-        std::ostringstream origin;
-        origin << "2D line from " << angle * 180.0 / M_PI << " deg";
-        lifted.origin = origin.str();
-        std::optional<Candidate> refined =
-            refined_in_3d(lifted.normal, lifted.offset, lifted.origin, &angle_iterations[k]);
-        per_angle[k].push_back(std::move(lifted));
-        if (refined) per_angle[k].push_back(std::move(*refined));
-      },
-      options.threads);
-  int iterations = 0;
-  for (int k = 0; k < options.num_angles; ++k) {
-    iterations += angle_iterations[k];
-    for (Candidate& c : per_angle[k]) consider(std::move(c));
-  }
-  if (options.candidates_3d) {
-    Plane3dOptions o3;
-    o3.search = options.search;
-    o3.num_directions = options.num_directions;
-    o3.intrinsic_weight = options.intrinsic_weight;
-    o3.intrinsic_pairs = options.intrinsic_pairs;
-    o3.seed = options.seed;
-    o3.threads = options.threads;
-    double total = 0.0, distortion = 0.0;
-    const ReflectionFit fit3 = SearchPlanes3d(P, index3, Dss, o3, &total, &distortion, &iterations);
-    if (std::isfinite(total)) consider(from_fit_3d(fit3, distortion, "3D search"));
-  }
-  auto best_of = [&]() {
-    return std::min_element(candidates.begin(), candidates.end(),
-                            [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
-  };
-  if (candidates.empty()) {
-    throw InvalidInputError("symmetry plane2d: every candidate symmetry was rejected");
-  }
-  Candidate& chosen = *best_of();
-  if (G.size() > 0) chosen.consistency = consistency(chosen.sigma);
-  if (G.size() > 0 && chosen.consistency < options.spectral.min_consistency) {
-    // Step 5: the choice by distances is not an intrinsic symmetry of the eigenfunctions. Self
-    // maps from sign flips of the eigenfunctions join the candidates, lifted to 3D, and the
-    // spectral inconsistency joins the criterion.
-    const double sizeG = RmsRadius(G);
-    for (const SignFlipCandidate& flip :
-         SignFlipCandidates(G, options.spectral.num_candidates, options.search.outlier_distance)) {
-      if (flip.fixed_fraction > options.search.max_fixed_fraction) continue;
-      Candidate c;
-      c.sigma = flip.sigma;
-      c.confidence = SymmetryConfidence(flip.residual, flip.sigma, sizeG);
-      if (!FitReflection(P, flip.sigma, c.confidence, &c.normal, &c.offset)) continue;
-      // Scored like the other candidates, by the lifted plane's fit in 3D.
-      c.score = EvaluateReflection(P, index3, c.normal, c.offset, options.search).score;
-      if (!std::isfinite(c.score)) continue;
-      c.intrinsic = intrinsic(flip.sigma);
-      std::ostringstream origin;
-      origin << "sign flip of eigenfunctions";
-      for (int j = 0; j < G.cols(); ++j) {
-        if (flip.pattern >> j & 1u) origin << " " << j + 1;
-      }
-      c.origin = origin.str();
-      // The sign-flip self map is coarse (nearest neighbours in a few eigenfunctions); the
-      // lifted plane refined in 3D gives the same symmetry's self map point by point where the
-      // 3D embedding has it, and another symmetry, which the criterion then weighs, where not.
-      std::optional<Candidate> refined = refined_in_3d(c.normal, c.offset, c.origin, &iterations);
-      if (refined) consider(std::move(*refined));
-      consider(std::move(c));
+  // The line of angle pi k / num_angles refined in 2D, its self map with the plane lifted to
+  // 3D, and that plane refined in 3D: up to two candidates.
+  std::vector<Candidate> LineCandidates(int k, int* iterations) const {
+    std::vector<Candidate> out;
+    const double angle = M_PI * k / options_.num_angles;
+    const Eigen::Vector2d n(std::cos(angle), std::sin(angle));
+    const ReflectionFit fit = RefineReflection(X_, index2_, n, n.dot(centroid_), options_.search);
+    *iterations += fit.iterations;
+    if (!std::isfinite(fit.score)) return out;
+    Candidate lifted;
+    lifted.sigma = fit.sigma;
+    lifted.confidence = SymmetryConfidence(fit.residual, fit.sigma, size2_);
+    if (!FitReflection(P_, fit.sigma, lifted.confidence, &lifted.normal, &lifted.offset)) {
+      return out;
     }
-    for (Candidate& c : candidates) {
-      c.consistency = consistency(c.sigma);
-      c.total += options.spectral.weight * (1.0 - c.consistency);
-    }
+    lifted.score = fit.score;
+    lifted.intrinsic = Intrinsic(fit.sigma);
+    lifted.converged = fit.converged;
+    std::ostringstream origin;
+    origin << "2D line from " << angle * 180.0 / M_PI << " deg";
+    lifted.origin = origin.str();
+    std::optional<Candidate> refined =
+        RefinedIn3d(lifted.normal, lifted.offset, lifted.origin, iterations);
+    out.push_back(std::move(lifted));
+    if (refined) out.push_back(std::move(*refined));
+    return out;
   }
-  const Candidate& best = *best_of();
-  SymmetryResult result;
-  result.normal = best.normal;
-  result.offset = best.offset;
-  result.sigma = best.sigma;
-  result.confidence = best.confidence;
-  result.score = best.score;
-  result.status.converged = best.converged;
-  result.status.iterations = iterations;
-  result.status.residual = best.total;
-  std::ostringstream message;
-  message << "plane2d: " << best.origin << ", score " << best.score << ", intrinsic distortion "
-          << best.intrinsic;
-  if (G.size() > 0) message << ", spectral consistency " << best.consistency;
-  result.status.message = message.str();
-  return result;
+
+  // A sign-flip self map lifted to a plane in 3D, scored like the other candidates by the plane's
+  // fit in 3D, after its refinement in 3D: the sign-flip self map is coarse (nearest neighbours
+  // in a few eigenfunctions); the lifted plane refined in 3D gives the same symmetry's self map
+  // point by point where the 3D embedding has it, and another symmetry, which the criterion then
+  // weighs, where not.
+  void AddSignFlipCandidate(const SignFlipCandidate& flip, double sizeG) {
+    Candidate c;
+    c.sigma = flip.sigma;
+    c.confidence = SymmetryConfidence(flip.residual, flip.sigma, sizeG);
+    if (!FitReflection(P_, flip.sigma, c.confidence, &c.normal, &c.offset)) return;
+    c.score = EvaluateReflection(P_, index3_, c.normal, c.offset, options_.search).score;
+    if (!std::isfinite(c.score)) return;
+    c.intrinsic = Intrinsic(flip.sigma);
+    std::ostringstream origin;
+    origin << "sign flip of eigenfunctions";
+    for (int j = 0; j < G_.cols(); ++j) {
+      if (flip.pattern >> j & 1u) origin << " " << j + 1;
+    }
+    c.origin = origin.str();
+    std::optional<Candidate> refined = RefinedIn3d(c.normal, c.offset, c.origin, &iterations_);
+    if (refined) Consider(std::move(*refined));
+    Consider(std::move(c));
+  }
+
+  void Consider(Candidate c) {
+    c.total = c.score + options_.intrinsic_weight * c.intrinsic;
+    if (std::isfinite(c.total)) candidates_.push_back(std::move(c));
+  }
+
+  // The candidate of the lowest total (the first on ties).
+  Candidate& Best() {
+    return *std::min_element(
+        candidates_.begin(), candidates_.end(),
+        [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+  }
+
+  const Plane2dOptions& options_;
+  const Eigen::MatrixXd& G_;
+  const Eigen::VectorXd& evals_;
+  const Eigen::MatrixXd Dss_;  // #S x #S
+  const Eigen::MatrixXd X_;    // #S x 2
+  const KnnIndex index2_;
+  const Eigen::Vector2d centroid_;
+  const Eigen::MatrixXd P_;  // #S x 3
+  const KnnIndex index3_;
+  const double size2_, size3_;
+  std::vector<Candidate> candidates_;
+  int iterations_ = 0;
+};
+
+}  // namespace
+
+SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
+                                     const Eigen::MatrixXd& Y, const Plane2dOptions& options,
+                                     const Eigen::MatrixXd& G, const Eigen::VectorXd& evals) {
+  CheckPlane2dInputs(samples, Y, options, G, evals);
+  Plane2dSearch search(D, samples, Y, options, G, evals);
+  search.AddLineCandidates();
+  if (options.candidates_3d) search.AddSearch3dCandidate();
+  search.AddSignFlipCandidatesIfInconsistent();
+  return search.Result();
 }
 
 }  // namespace symembed
