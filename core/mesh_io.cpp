@@ -72,6 +72,18 @@ void AppendColorBytes(const Eigen::MatrixX3d& colors, int i, std::string* out) {
   }
 }
 
+// One line "3 a b c" per face, 0-based (the face lines of OFF and PLY).
+void AppendCountedFaces(const Surface& s, std::string* out) {
+  for (int f = 0; f < s.NumFaces(); ++f) {
+    out->push_back('3');
+    for (int k = 0; k < 3; ++k) {
+      out->push_back(' ');
+      AppendInt(s.F(f, k), out);
+    }
+    out->push_back('\n');
+  }
+}
+
 std::string FormatOff(const Surface& s, const Eigen::MatrixX3d* colors) {
   std::string out = colors ? "COFF\n" : "OFF\n";
   AppendInt(s.NumVertices(), &out);
@@ -86,14 +98,7 @@ std::string FormatOff(const Surface& s, const Eigen::MatrixX3d* colors) {
     }
     out += '\n';
   }
-  for (int f = 0; f < s.NumFaces(); ++f) {
-    out += '3';
-    for (int k = 0; k < 3; ++k) {
-      out += ' ';
-      AppendInt(s.F(f, k), &out);
-    }
-    out += '\n';
-  }
+  AppendCountedFaces(s, &out);
   return out;
 }
 
@@ -132,14 +137,7 @@ std::string FormatPly(const Surface& s, const Eigen::MatrixX3d* colors) {
     if (colors) AppendColorBytes(*colors, i, &out);
     out += '\n';
   }
-  for (int f = 0; f < s.NumFaces(); ++f) {
-    out += '3';
-    for (int k = 0; k < 3; ++k) {
-      out += ' ';
-      AppendInt(s.F(f, k), &out);
-    }
-    out += '\n';
-  }
+  AppendCountedFaces(s, &out);
   return out;
 }
 
