@@ -1,7 +1,6 @@
 #include "registry/product_needs.h"
 
 #include <algorithm>
-#include <set>
 
 #include "core/errors.h"
 

@@ -34,10 +34,6 @@ class ShapeProducts {
     const auto it = values_.find(key.Id());
     return it == values_.end() ? nullptr : std::any_cast<T>(it->second.get());
   }
-  template <typename T>
-  void Put(const ProductKey<T>& key, T value) {
-    PutAny(key.Id(), std::make_shared<const std::any>(std::move(value)));
-  }
   // Shares a value (products are immutable once computed).
   void PutAny(const std::string& id, std::shared_ptr<const std::any> value) {
     values_[id] = std::move(value);

@@ -4,7 +4,6 @@
 #include "stages/register.h"
 
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "core/spectral.h"
@@ -143,11 +142,9 @@ class DiscreteRefine : public RefineStage {
       samples = SamplesOrAll(pair.source, source);
       target_samples = SamplesOrAll(pair.target, target);
     }
-    const std::optional<WksProducts> source_products = ProductsOf(pair.source);
-    const std::optional<WksProducts> target_products = ProductsOf(pair.target);
     DiscreteOptResult r = DiscreteOpt(source, target, initial_map, samples, target_samples,
-                                      options_, source_products ? &*source_products : nullptr,
-                                      target_products ? &*target_products : nullptr);
+                                      options_, pair.source.products.Find(ProductsKey()),
+                                      pair.target.products.Find(ProductsKey()));
     r.status.message += BasisNote(computed);
     return MatchResult{std::move(r.map), std::move(r.status)};
   }
@@ -161,13 +158,6 @@ class DiscreteRefine : public RefineStage {
   std::vector<int> SamplesOrAll(const ShapeData& shape, const LaplaceBasis& basis) const {
     std::vector<int> ids = Samples(shape, basis, sample_count_);
     return ids.empty() ? MatchableTargets(basis.mass) : ids;
-  }
-
-  // The descriptor products of a shape for k_end, if it holds them.
-  std::optional<WksProducts> ProductsOf(const ShapeData& shape) const {
-    const WksProducts* products = shape.products.Find(ProductsKey());
-    if (products == nullptr) return std::nullopt;
-    return *products;
   }
 
   DiscreteOptOptions options_;
