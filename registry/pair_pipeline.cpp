@@ -110,8 +110,14 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   start = std::chrono::steady_clock::now();
   // The normals of both embedded surfaces, once per pair (the oracle below rotates the target's).
   const EmbeddedPoints source_points = EmbeddedShape(a), target_points = EmbeddedShape(b);
-  MatchResult matched =
-      pipeline.matching->Run(source_points, Rotated(target_points, rotations[out.flip.chosen]));
+  // The source's points as the matching stage compares them with the target rotated by R.
+  EmbeddedPoints moved;
+  auto aligned = [&](const EmbeddedPoints& rotated_target) -> const EmbeddedPoints& {
+    return pipeline.matching->Align(input, source_points, rotated_target, &moved) ? moved
+                                                                                   : source_points;
+  };
+  const EmbeddedPoints chosen_target = Rotated(target_points, rotations[out.flip.chosen]);
+  MatchResult matched = pipeline.matching->Run(aligned(chosen_target), chosen_target);
   out.times.push_back({"matching", Since(start), false});
   counters->Executed("matching");
   CheckMap(matched, a.surface.NumVertices(), nb, "matching");
@@ -134,22 +140,26 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
 
   if (ground_truth && !ground_truth->source_ids.empty() && mean_error) {
     start = std::chrono::steady_clock::now();
-    EmbeddedPoints points;
-    points.Y.resize(ground_truth->source_ids.size(), 3);
-    points.N.resize(ground_truth->source_ids.size(), 3);
-    for (size_t i = 0; i < ground_truth->source_ids.size(); ++i) {
-      const int v = ground_truth->source_ids[i];
+    for (int v : ground_truth->source_ids) {
       if (v < 0 || v >= static_cast<int>(source.nearest_kept.size())) {
         throw InvalidInputError("ground truth names source vertex " + std::to_string(v) +
                                 " of a mesh with " + std::to_string(source.nearest_kept.size()) +
                                 " vertices");
       }
-      points.Y.row(i) = source_points.Y.row(source.nearest_kept[v]);
-      points.N.row(i) = source_points.N.row(source.nearest_kept[v]);
     }
     double best = std::numeric_limits<double>::infinity();
     for (int c = 0; c < 4; ++c) {
-      MatchResult m = pipeline.matching->Run(points, Rotated(target_points, rotations[c]));
+      const EmbeddedPoints rotated_target = Rotated(target_points, rotations[c]);
+      const EmbeddedPoints& from = aligned(rotated_target);
+      EmbeddedPoints points;
+      points.Y.resize(ground_truth->source_ids.size(), 3);
+      points.N.resize(ground_truth->source_ids.size(), 3);
+      for (size_t i = 0; i < ground_truth->source_ids.size(); ++i) {
+        const int v = source.nearest_kept[ground_truth->source_ids[i]];
+        points.Y.row(i) = from.Y.row(v);
+        points.N.row(i) = from.N.row(v);
+      }
+      MatchResult m = pipeline.matching->Run(points, rotated_target);
       CheckMap(m, static_cast<int>(points.Y.rows()), nb, "matching");
       std::vector<int> predicted(m.map.size());
       for (size_t i = 0; i < m.map.size(); ++i) predicted[i] = b.input_ids[m.map[i]];

@@ -102,6 +102,14 @@ class MatchingStage : public PairStage {
  public:
   // source: points of the source embedding; target: the target embedding, already rotated.
   virtual MatchResult Run(const EmbeddedPoints& source, const EmbeddedPoints& target) const = 0;
+  // The source's points of every vertex moved towards the target before Run (pair: the two
+  // shapes; source, target: as for Run, every vertex). Returns false, leaving *moved alone, for a
+  // stage that matches the points as they are (the default).
+  virtual bool Align(const PairInput& pair, const EmbeddedPoints& source,
+                     const EmbeddedPoints& target, EmbeddedPoints* moved) const {
+    (void)pair, (void)source, (void)target, (void)moved;
+    return false;
+  }
 };
 
 class RefineStage : public PairStage {
