@@ -1,5 +1,6 @@
 #include "registry/pair_pipeline.h"
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <limits>
@@ -110,14 +111,20 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   start = std::chrono::steady_clock::now();
   // The normals of both embedded surfaces, once per pair (the oracle below rotates the target's).
   const EmbeddedPoints source_points = EmbeddedShape(a), target_points = EmbeddedShape(b);
-  // The source's points as the matching stage compares them with the target rotated by R.
-  EmbeddedPoints moved;
-  auto aligned = [&](const EmbeddedPoints& rotated_target) -> const EmbeddedPoints& {
-    return pipeline.matching->Align(input, source_points, rotated_target, &moved) ? moved
-                                                                                   : source_points;
+  // Per candidate, the source's points as the matching stage compares them with the target so
+  // rotated (its Align), once each: the oracle below reuses the chosen candidate's.
+  std::array<EmbeddedPoints, 4> moved;
+  std::array<int, 4> alignment{};  // 0: not computed, 1: moved[c], 2: the points as they are
+  auto aligned = [&](int c, const EmbeddedPoints& rotated_target) -> const EmbeddedPoints& {
+    if (alignment[c] == 0) {
+      alignment[c] =
+          pipeline.matching->Align(input, source_points, rotated_target, &moved[c]) ? 1 : 2;
+    }
+    return alignment[c] == 1 ? moved[c] : source_points;
   };
   const EmbeddedPoints chosen_target = Rotated(target_points, rotations[out.flip.chosen]);
-  MatchResult matched = pipeline.matching->Run(aligned(chosen_target), chosen_target);
+  MatchResult matched =
+      pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
   out.times.push_back({"matching", Since(start), false});
   counters->Executed("matching");
   CheckMap(matched, a.surface.NumVertices(), nb, "matching");
@@ -150,7 +157,7 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     double best = std::numeric_limits<double>::infinity();
     for (int c = 0; c < 4; ++c) {
       const EmbeddedPoints rotated_target = Rotated(target_points, rotations[c]);
-      const EmbeddedPoints& from = aligned(rotated_target);
+      const EmbeddedPoints& from = aligned(c, rotated_target);
       EmbeddedPoints points;
       points.Y.resize(ground_truth->source_ids.size(), 3);
       points.N.resize(ground_truth->source_ids.size(), 3);

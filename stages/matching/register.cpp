@@ -1,6 +1,9 @@
 // The matching stages: thin adapters around MatchNearest / MatchNearestScaled.
 #include <memory>
 
+#include "core/laplacian.h"
+#include "registry/product_needs.h"
+#include "stages/matching/deformed.h"
 #include "stages/matching/nearest.h"
 #include "stages/register.h"
 
@@ -31,6 +34,33 @@ class NearestScaledStage : public MatchingStage {
   ScaledIcpOptions options_;
 };
 
+class DeformedStage : public MatchingStage {
+ public:
+  explicit DeformedStage(DeformOptions options) : options_(options) {}
+  ShapeNeeds Needs() const override {
+    ShapeNeeds needs;
+    needs.basis = options_.k_end;
+    return needs;
+  }
+  bool Align(const PairInput& pair, const EmbeddedPoints& source, const EmbeddedPoints& target,
+             EmbeddedPoints* moved) const override {
+    LaplaceBasis basis;
+    ShapeBasis(pair.source, options_.k_end, &basis);
+    DeformResult d = DeformSource(source, pair.source.surface.F, basis, pair.source.samples,
+                                  target, pair.target.samples, options_);
+    moved->N = options_.normal_weight > 0.0 ? VertexNormals(d.Y, pair.source.surface.F)
+                                            : source.N;
+    moved->Y = std::move(d.Y);
+    return true;
+  }
+  MatchResult Run(const EmbeddedPoints& source, const EmbeddedPoints& target) const override {
+    return MatchNearest(source, target, options_.normal_weight, options_.threads);
+  }
+
+ private:
+  DeformOptions options_;
+};
+
 }  // namespace
 
 void RegisterMatchingStages(Registry& registry) {
@@ -54,6 +84,23 @@ void RegisterMatchingStages(Registry& registry) {
                  std::string error;
                  if (!s.IsValid(&error)) o.Fail("", error);
                  return std::make_unique<NearestScaledStage>(s);
+               });
+  registry.Add("matching", "deformed",
+               "the source embedding bent onto the target's by a deformation smooth along the "
+               "source surface (non-rigid ICP in its Laplace-Beltrami basis), then nearest neighbour",
+               [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 DeformOptions d;
+                 d.k_start = o.GetInt("k_start", d.k_start, 1, 1000);
+                 d.k_end = o.GetInt("k_end", d.k_end, 1, 1000);
+                 d.step = o.GetInt("step", d.step, 1, 1000);
+                 d.iterations = o.GetInt("iterations", d.iterations, 1, 1000);
+                 d.smoothness = o.GetDouble("smoothness", d.smoothness, 0.0);
+                 d.samples = o.GetInt("samples", d.samples, 1, 1000000);
+                 d.normal_weight = o.GetDouble("normal_weight", d.normal_weight, 0.0);
+                 d.threads = o.GetInt("threads", 1, 0, 256);
+                 std::string error;
+                 if (!d.IsValid(&error)) o.Fail("", error);
+                 return std::make_unique<DeformedStage>(d);
                });
 }
 

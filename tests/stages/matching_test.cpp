@@ -6,7 +6,10 @@
 #include "core/errors.h"
 #include "core/laplacian.h"
 #include "core/primitives.h"
+#include "registry/product_needs.h"
 #include "registry/registry.h"
+#include "core/spectral.h"
+#include "stages/matching/deformed.h"
 #include "stages/matching/nearest.h"
 #include "tests/test_util.h"
 
@@ -87,6 +90,91 @@ TEST(NearestMatching, NormalsKeepTheSidesOfAThinPart) {
     EXPECT_NE(std::string(e.what()).find("source normals"), std::string::npos) << e.what();
   }
   EXPECT_THROW(MatchNearest(source, target, -1.0, 1), ConfigError);
+}
+
+// The pose difference the embeddings of two poses keep: the figure with its arms held out
+// against the same figure with the arms lowered and the legs spread (vertex ids unchanged, so
+// the truth is the identity). Nearest neighbours send the ends of the arms elsewhere; the
+// deformation smooth along the source follows the limbs.
+TEST(DeformedMatching, FollowsAPoseChangeThatNearestMisses) {
+  const Surface source = testing::SymmetricFigure(2);
+  const Surface target = testing::PosedSymmetricFigure(2, 0.6, 0.25);
+  const EmbeddedPoints s{source.V, VertexNormals(source)}, t{target.V, VertexNormals(target)};
+  LaplaceBasisOptions basis_options;
+  basis_options.k = 30;
+  const LaplaceBasis basis = ComputeLaplaceBasis(source, basis_options);
+  std::vector<int> samples_s, samples_t;
+  for (int i = 0; i < source.NumVertices(); i += 2) samples_s.push_back(i);
+  for (int i = 1; i < target.NumVertices(); i += 2) samples_t.push_back(i);
+  auto mean_error = [&](const MatchResult& r) {
+    double sum = 0.0;
+    for (int i = 0; i < source.NumVertices(); ++i) sum += (target.V.row(r.map[i]) - target.V.row(i)).norm();
+    return sum / source.NumVertices();
+  };
+  DeformOptions options;
+  options.k_end = 30;
+  const DeformResult d = DeformSource(s, source.F, basis, samples_s, t, samples_t, options);
+  EXPECT_LT(d.residual_after, 0.25 * d.residual_before);
+  const double nearest = mean_error(MatchNearest(s, t, options.normal_weight, 1));
+  const double deformed =
+      mean_error(MatchNearest({d.Y, VertexNormals(d.Y, source.F)}, t, options.normal_weight, 1));
+  EXPECT_LT(deformed, 0.5 * nearest) << "nearest " << nearest << ", deformed " << deformed;
+
+  // More smoothness moves the source less.
+  options.smoothness = 10.0;
+  const DeformResult stiff = DeformSource(s, source.F, basis, samples_s, t, samples_t, options);
+  EXPECT_GT(stiff.residual_after, d.residual_after);
+
+  options.k_end = 31;  // more than the basis holds
+  EXPECT_THROW(DeformSource(s, source.F, basis, samples_s, t, samples_t, options),
+               InvalidInputError);
+  options.k_end = 30;
+  options.smoothness = -1.0;
+  EXPECT_THROW(DeformSource(s, source.F, basis, samples_s, t, samples_t, options), ConfigError);
+}
+
+// The registered stage reads the source's basis (its declared need) and samples from the pair.
+TEST(DeformedMatching, RegisteredStageAlignsThroughThePair) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  auto stage = registry.CreateAs<MatchingStage>(
+      "matching", YAML::Load("{type: deformed, k_end: 24, samples: 400}"), "t.yaml",
+      "pipeline.matching");
+  EXPECT_EQ(stage->Needs().basis, 24);
+  ShapeData source, target;
+  source.name = "source";
+  target.name = "target";
+  source.surface = testing::SymmetricFigure(2);
+  target.surface = testing::PosedSymmetricFigure(2, 0.6, 0.25);
+  for (ShapeData* shape : {&source, &target}) {
+    shape->Y = shape->surface.V;
+    for (int i = 0; i < shape->surface.NumVertices(); i += 3) shape->samples.push_back(i);
+    ComputeNeeds(stage->Needs(), shape);
+  }
+  const PairInput pair{source, target};
+  const EmbeddedPoints s{source.Y, VertexNormals(source.surface)};
+  const EmbeddedPoints t{target.Y, VertexNormals(target.surface)};
+  EmbeddedPoints moved;
+  ASSERT_TRUE(stage->Align(pair, s, t, &moved));
+  ASSERT_EQ(moved.Y.rows(), s.Y.rows());
+  ASSERT_EQ(moved.N.rows(), s.Y.rows());
+  auto correct = [&](const MatchResult& r) {
+    int n = 0;
+    for (int i = 0; i < source.surface.NumVertices(); ++i) {
+      n += (target.surface.V.row(r.map[i]) - target.surface.V.row(i)).norm() < 0.1;
+    }
+    return n;
+  };
+  EXPECT_GT(correct(stage->Run(moved, t)), correct(stage->Run(s, t)));
+  // Without the basis it needs, the error names the shape.
+  ShapeData bare = source;
+  bare.basis = LaplaceBasis{};
+  try {
+    stage->Align(PairInput{bare, target}, s, t, &moved);
+    FAIL() << "expected InvalidInputError";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("source"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Matching, RegisteredStagesRun) {
