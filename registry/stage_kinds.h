@@ -28,7 +28,7 @@ inline constexpr StageKind kPipelineStageKinds[] = {
     {"symmetry", StageScope::kShape, "plane2d"},
     {"symmetrize", StageScope::kShape, "ceres"},
     {"flip", StageScope::kPair, "extrinsic"},
-    {"matching", StageScope::kPair, "nearest"},
+    {"matching", StageScope::kPair, "deformed"},
     {"refine", StageScope::kPair, "none"},
 };
 

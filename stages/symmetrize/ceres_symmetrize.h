@@ -36,10 +36,11 @@
 namespace symembed {
 
 struct CeresSymmetrizeOptions {
-  // Weight of the symmetry term relative to the stress term. Moderate by default: sigma is not
-  // a bijection, and a strong pull onto shared mirror samples distorts the shape (on synthetic
-  // humanoid pairs, weight 1 gave lower map errors than 3 or 10).
-  double symmetry_weight = 1.0;
+  // Weight of the symmetry term relative to the stress term. Strong by default: what the
+  // embedding keeps of an asymmetric pose (one arm raised, the head turned) differs between two
+  // poses of a body, and pulling each embedding onto its mirror image removes it, at the price
+  // of some distortion where sigma is not a bijection (docs/analysis.md compares 1, 3 and 10).
+  double symmetry_weight = 10.0;
   // Weight keeping self-symmetric samples (sigma(i) = i) on the plane (mirror_neighbors = 1).
   double plane_weight = 10.0;
   // Weight pulling samples to their unsymmetrized positions (0: off).

@@ -90,6 +90,7 @@ Registry FakeRegistry() {
   r.Add("symmetrize", "none", "d", Factory<FakeSymmetrize>());
   r.Add("flip", "extrinsic", "d", Factory<FakeFlip>());
   r.Add("matching", "nearest", "d", Factory<FakeMatching>());
+  r.Add("matching", "deformed", "d", Factory<FakeMatching>());
   r.Add("refine", "none", "d", Factory<FakeRefine>());
   return r;
 }

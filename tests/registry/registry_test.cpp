@@ -48,6 +48,7 @@ TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {
       "geodesics/dijkstra",
       "geodesics/fast_marching",
       "geodesics/heat",
+      "matching/deformed",
       "matching/nearest",
       "matching/nearest_scaled",
       "preprocess/standard",

@@ -22,7 +22,8 @@ std::unique_ptr<T> MakeStageAs(const Registry& r, const std::string& kind,
 // ShapeData of `surface` (name, samples, embedding, symmetry, canonical Y) with every stage at
 // its defaults but the symmetry stage, given by its YAML. Throws what a stage throws.
 inline ShapeData RunDefaultShapeStages(const std::string& name, const Surface& surface,
-                                       const std::string& symmetry = "{type: plane2d}") {
+                                       const std::string& symmetry = "{type: plane2d}",
+                                       const std::string& symmetrize = "{type: ceres}") {
   Registry r;
   RegisterBuiltinStages(r);
   ShapeData shape;
@@ -39,7 +40,7 @@ inline ShapeData RunDefaultShapeStages(const std::string& name, const Surface& s
   const SymmetryInput input{surface, shape.samples, D, shape.embedding};
   shape.symmetry = MakeStageAs<SymmetryStage>(r, "symmetry", symmetry)->Run(input);
   shape.Y = CanonicalFrame(
-      MakeStageAs<SymmetrizeStage>(r, "symmetrize", "{type: ceres}")->Run(input, shape.symmetry).Y);
+      MakeStageAs<SymmetrizeStage>(r, "symmetrize", symmetrize)->Run(input, shape.symmetry).Y);
   return shape;
 }
 

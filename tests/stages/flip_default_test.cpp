@@ -1,8 +1,9 @@
 // The flip stage's default (the refined_maps term alone) against its former default (curvature,
 // descriptor and orientation terms with the refined front-back decision) on a non-isometric
 // pair of the generator: humanoid poses 0 and 8 with bones stretched and thickened (factors in
-// [0.85, 1.15]), each run through the per-shape stages' defaults. The features of the former
-// terms change with the body's proportions and choose the rotation turned by pi about the
+// [0.85, 1.15]), each run through the per-shape stages' defaults but a symmetrization of
+// weight 1 (a strong one settles this pair's front and back for either scorer). The features of
+// the former terms change with the body's proportions and choose the rotation turned by pi about the
 // vertical axis, which maps the front onto the back; the refined maps' distortion and curvature
 // disagreement keep the right one.
 #include <gtest/gtest.h>
@@ -17,14 +18,18 @@
 namespace symembed {
 namespace {
 
+constexpr char kSymmetrize[] = "{type: ceres, symmetry_weight: 1}";
+
 TEST(FlipDefault, RefinedMapsKeepTheFrontOfAStretchedHumanoidWhereTheFormerTermsDoNot) {
   SynthOptions o;
   o.poses = 10;
   o.nonisometric = 0.15;
   o.seed = 1;
   const SynthClass cls = GenerateClass(FigureKind::kHumanoid, o);
-  ShapeData source = testing::RunDefaultShapeStages("humanoid0", cls.shapes[0].shape.surface);
-  ShapeData target = testing::RunDefaultShapeStages("humanoid8", cls.shapes[8].shape.surface);
+  ShapeData source = testing::RunDefaultShapeStages("humanoid0", cls.shapes[0].shape.surface,
+                                                     "{type: plane2d}", kSymmetrize);
+  ShapeData target = testing::RunDefaultShapeStages("humanoid8", cls.shapes[8].shape.surface,
+                                                     "{type: plane2d}", kSymmetrize);
   // Ground truth: the generator's rest vertex ids.
   const std::vector<int> of_rest =
       testing::VertexOfRest(cls.shapes[8].shape, cls.rest.surface.NumVertices());
