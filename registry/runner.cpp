@@ -17,6 +17,19 @@ namespace fs = std::filesystem;
 namespace symembed {
 namespace {
 
+// The lines of a YAML text that are not comments.
+std::string WithoutComments(const std::string& text) {
+  std::string out;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    if (text.compare(start, 1, "#") != 0) out.append(text, start, end - start).push_back('\n');
+    start = end + 1;
+  }
+  return out;
+}
+
 double Since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -71,8 +84,10 @@ class VariantRun {
     const std::string resolved = ResolvedConfigYaml(config_, variant_, pipeline_);
     if (options_.resume) {
       // Records made under other settings must not be mixed into this run's outputs.
+      // The leading comment names the config file by the path it was given; the same config
+      // named by another path (relative, absolute) resumes.
       auto previous = ReadFileBytes(VariantConfigPath(dir_));
-      if (previous && *previous != resolved) {
+      if (previous && WithoutComments(*previous) != WithoutComments(resolved)) {
         throw ConfigError(dir_ +
                           "/config.yaml: the resolved config differs from the one of the "
                           "run being resumed; run without --resume (or into another --out)");

@@ -53,9 +53,10 @@ struct RunResult {
 
 RunResult RunConfig(const std::string& config_text, const std::string& out,
                     const std::string& cache, RunOptions options = {},
-                    TestEvaluation* evaluation = nullptr) {
+                    TestEvaluation* evaluation = nullptr,
+                    const std::string& file = "test.yaml") {
   const Registry registry = TestRegistry();
-  const ExperimentConfig config = ParseExperimentConfig(config_text, "test.yaml", registry);
+  const ExperimentConfig config = ParseExperimentConfig(config_text, file, registry);
   options.out_dir = out;
   options.cache_dir = cache;
   options.quiet = true;
@@ -319,6 +320,9 @@ TEST(Runner, ResumeRefusesAChangedConfig) {
   resume.resume = true;
   const std::string changed = config + "variants: []\n";
   EXPECT_NO_THROW(RunConfig(changed, tmp.File("out"), tmp.File("cache"), resume));
+  // The same config named by another path (scripts pass absolute ones) resumes.
+  EXPECT_NO_THROW(RunConfig(config, tmp.File("out"), tmp.File("cache"), resume, nullptr,
+                            "/abs/path/to/test.yaml"));
   std::string other = config;
   other.replace(other.find("count: 6"), 8, "count: 7");
   EXPECT_THROW(RunConfig(other, tmp.File("out"), tmp.File("cache"), resume), ConfigError);
