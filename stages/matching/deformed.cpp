@@ -90,9 +90,8 @@ DeformResult DeformSource(const EmbeddedPoints& source, const Eigen::MatrixX3i& 
   const KnnIndex target_index(target_lifted);
 
   DeformResult result;
-  result.coefficients = Eigen::MatrixX3d::Zero(K, 3);
   result.Y = source.Y;
-  Eigen::MatrixX3d N = source.N;
+  result.N = source.N;
   std::vector<int> sizes;
   for (int k = options.k_start; k < options.k_end; k += options.step) sizes.push_back(k);
   sizes.push_back(options.k_end);
@@ -100,7 +99,7 @@ DeformResult DeformSource(const EmbeddedPoints& source, const Eigen::MatrixX3i& 
   for (int k : sizes) {
     for (int it = 0; it < options.iterations; ++it) {
       // Correspondences both ways on the samples: (source vertex, target vertex).
-      const Eigen::MatrixXd source_lifted = Lifted(result.Y, N, S, w);
+      const Eigen::MatrixXd source_lifted = Lifted(result.Y, result.N, S, w);
       std::vector<int> src, tgt;
       const std::vector<int> fwd = target_index.Nearest(source_lifted, nullptr, 1);
       for (size_t i = 0; i < S.size(); ++i) {
@@ -133,10 +132,8 @@ DeformResult DeformSource(const EmbeddedPoints& source, const Eigen::MatrixX3i& 
       // The constant eigenfunction has lambda ~ 0; a tiny ridge keeps H positive definite.
       H.diagonal().array() += 1e-12 * H.diagonal().maxCoeff();
       const Eigen::MatrixX3d D = H.ldlt().solve(A.transpose() * weight.asDiagonal() * B);
-      result.coefficients.setZero();
-      result.coefficients.topRows(k) = D;
       result.Y = source.Y + Phi.leftCols(k) * D;
-      if (with_normals) N = VertexNormals(result.Y, F);
+      if (with_normals) result.N = VertexNormals(result.Y, F);
     }
   }
   return result;

@@ -47,7 +47,9 @@ struct DeformOptions {
 
 struct DeformResult {
   Eigen::MatrixX3d Y;            // #Vs x 3 moved source embedding
-  Eigen::MatrixX3d coefficients; // k_end x 3 (D)
+  // #Vs x 3 unit normals of the moved surface (Y on F); the source's normals when
+  // normal_weight is 0 (the fit then does not use them).
+  Eigen::MatrixX3d N;
   double residual_before = 0.0;  // mean squared correspondence distance, first iteration
   double residual_after = 0.0;   // the same, last iteration
 };

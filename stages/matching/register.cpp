@@ -1,7 +1,6 @@
 // The matching stages: thin adapters around MatchNearest / MatchNearestScaled.
 #include <memory>
 
-#include "core/laplacian.h"
 #include "registry/product_needs.h"
 #include "stages/matching/deformed.h"
 #include "stages/matching/nearest.h"
@@ -48,9 +47,8 @@ class DeformedStage : public MatchingStage {
     ShapeBasis(pair.source, options_.k_end, &basis);
     DeformResult d = DeformSource(source, pair.source.surface.F, basis, pair.source.samples,
                                   target, pair.target.samples, options_);
-    moved->N = options_.normal_weight > 0.0 ? VertexNormals(d.Y, pair.source.surface.F)
-                                            : source.N;
     moved->Y = std::move(d.Y);
+    moved->N = std::move(d.N);
     return true;
   }
   MatchResult Run(const EmbeddedPoints& source, const EmbeddedPoints& target) const override {
