@@ -131,7 +131,8 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   out.matching_status = matched.status;
 
   start = std::chrono::steady_clock::now();
-  MatchResult refined = pipeline.refine->Run(input, matched.map);
+  MatchResult refined = pipeline.refine->Run(
+      RefineInput{input, matched.map, &aligned(out.flip.chosen, chosen_target), &chosen_target});
   out.times.push_back({"refine", Since(start), false});
   counters->Executed("refine");
   CheckMap(refined, a.surface.NumVertices(), nb, "refine");

@@ -112,9 +112,24 @@ class MatchingStage : public PairStage {
   }
 };
 
+// What a refine stage starts from: the two shapes, the matching stage's map, and the embedded
+// points it matched (every vertex: the source's as the matching stage's Align moved them, the
+// target's turned by the chosen rotation), in one frame where a vertex and its image lie close.
+// The points are null when the caller has no embedding (a map from elsewhere).
+struct RefineInput {
+  const PairInput& pair;
+  const std::vector<int>& initial_map;  // #V_source: target vertex of each source vertex
+  const EmbeddedPoints* source_points = nullptr;
+  const EmbeddedPoints* target_points = nullptr;
+};
+
 class RefineStage : public PairStage {
  public:
-  virtual MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const = 0;
+  virtual MatchResult Run(const RefineInput& input) const = 0;
+  // A map refined without embedded points.
+  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const {
+    return Run(RefineInput{pair, initial_map});
+  }
 };
 
 }  // namespace symembed

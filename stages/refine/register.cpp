@@ -59,7 +59,9 @@ std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis, int 
 
 class NoRefine : public RefineStage {
  public:
-  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
+  MatchResult Run(const RefineInput& input) const override {
+    const PairInput& pair = input.pair;
+    const std::vector<int>& initial_map = input.initial_map;
     CheckPointMap(initial_map, pair.source.surface.NumVertices(),
                   pair.target.surface.NumVertices());
     MatchResult result;
@@ -76,7 +78,9 @@ class ZoomOutRefine : public RefineStage {
 
   ShapeNeeds Needs() const override { return BasisNeeds(options_.k_end); }
 
-  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
+  MatchResult Run(const RefineInput& input) const override {
+    const PairInput& pair = input.pair;
+    const std::vector<int>& initial_map = input.initial_map;
     bool computed = false;
     const LaplaceBasis source = RefineBasis(pair.source, options_.k_end, &computed);
     const LaplaceBasis target = RefineBasis(pair.target, options_.k_end, &computed);
@@ -101,7 +105,9 @@ class IcpRefine : public RefineStage {
 
   ShapeNeeds Needs() const override { return BasisNeeds(options_.k); }
 
-  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
+  MatchResult Run(const RefineInput& input) const override {
+    const PairInput& pair = input.pair;
+    const std::vector<int>& initial_map = input.initial_map;
     bool computed = false;
     const LaplaceBasis source = RefineBasis(pair.source, options_.k, &computed);
     const LaplaceBasis target = RefineBasis(pair.target, options_.k, &computed);
@@ -133,7 +139,9 @@ class DiscreteRefine : public RefineStage {
     return needs;
   }
 
-  MatchResult Run(const PairInput& pair, const std::vector<int>& initial_map) const override {
+  MatchResult Run(const RefineInput& input) const override {
+    const PairInput& pair = input.pair;
+    const std::vector<int>& initial_map = input.initial_map;
     bool computed = false;
     const LaplaceBasis source = RefineBasis(pair.source, options_.k_end, &computed);
     const LaplaceBasis target = RefineBasis(pair.target, options_.k_end, &computed);

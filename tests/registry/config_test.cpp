@@ -53,7 +53,7 @@ struct FakeMatching : MatchingStage {
   MatchResult Run(const EmbeddedPoints&, const EmbeddedPoints&) const override { return {}; }
 };
 struct FakeRefine : RefineStage {
-  MatchResult Run(const PairInput&, const std::vector<int>&) const override { return {}; }
+  MatchResult Run(const RefineInput&) const override { return {}; }
 };
 
 Registry FakeRegistry() {

@@ -247,10 +247,10 @@ class TestMatching : public MatchingStage {
 class TestRefine : public RefineStage {
  public:
   explicit TestRefine(bool mirror) : mirror_(mirror) {}
-  MatchResult Run(const PairInput&, const std::vector<int>& map) const override {
+  MatchResult Run(const RefineInput& input) const override {
     Count("refine");
     MatchResult r;
-    r.map = map;
+    r.map = input.initial_map;
     if (mirror_) {
       for (int& t : r.map) t = GridMirror(t);
     }
