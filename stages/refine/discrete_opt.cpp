@@ -24,11 +24,11 @@ bool DiscreteOptOptions::IsValid(std::string* error) const {
   } else if (descriptors < 1) {
     out << "descriptors must be >= 1, got " << descriptors;
   } else if (!(w.orthogonality >= 0 && w.bijectivity >= 0 && w.proper >= 0 && w.laplacian >= 0 &&
-               w.descriptor >= 0)) {
+               w.descriptor >= 0 && w.embedding >= 0)) {
     out << "weights must be >= 0";
   } else if (!(w.orthogonality + w.bijectivity + w.proper + w.laplacian > 0)) {
-    // The descriptor term alone does not depend on the functional maps: the iterations would
-    // repeat one query.
+    // The descriptor and embedding terms alone do not depend on the functional maps: the
+    // iterations would repeat one query.
     out << "one of the weights orthogonality, bijectivity, proper, laplacian must be > 0";
   }
   if (out.str().empty()) return true;
@@ -54,6 +54,8 @@ struct Side {
   std::vector<int> candidates;
   Eigen::MatrixXd candidate_rows;  // basis rows of `candidates`, k_end columns
   std::vector<int> candidate_row;  // per vertex: its row in candidate_rows, or -1
+  Eigen::MatrixXd points;          // embedding term: points of `active`, or empty
+  Eigen::MatrixXd candidate_points;  // embedding term: points of `candidates`, or empty
 
   // The basis rows (first k columns) at vertex ids of this shape.
   Eigen::MatrixXd RowsAt(const std::vector<int>& ids, int k) const {
@@ -67,7 +69,7 @@ struct Side {
 };
 
 Side MakeSide(const LaplaceBasis& basis, const std::vector<int>& samples, int k_end,
-              bool sample_candidates, const char* which) {
+              bool sample_candidates, const Eigen::MatrixXd* points, const char* which) {
   Side side;
   side.basis = &basis;
   const int n = basis.NumVertices();
@@ -94,6 +96,10 @@ Side MakeSide(const LaplaceBasis& basis, const std::vector<int>& samples, int k_
   for (size_t r = 0; r < side.candidates.size(); ++r) {
     side.candidate_row[side.candidates[r]] = static_cast<int>(r);
   }
+  if (points != nullptr) {
+    side.points = BasisRows(*points, side.active);
+    side.candidate_points = BasisRows(*points, side.candidates);
+  }
   return side;
 }
 
@@ -105,6 +111,8 @@ struct DirectionMaps {
   const Eigen::VectorXd* lambda_y;
   const Eigen::MatrixXd* A_x;  // descriptor coefficients, k_end rows (first k used)
   const Eigen::MatrixXd* A_y;
+  const Eigen::MatrixXd* Z_x;  // embedding term: points at the query rows
+  const Eigen::MatrixXd* Z_y;  // embedding term: points at the candidates
 };
 
 // The stacked embeddings of the terms of positive weight for queries X and candidates Y (basis
@@ -124,6 +132,7 @@ TermRows Stacked(const BasisRef& X, const BasisRef& Y, const DirectionMaps& m,
   add(w.proper, [&] { return ProperRows(X, Y, *m.C_xy); });
   add(w.laplacian, [&] { return LaplacianRows(X, Y, *m.lambda_x, *m.lambda_y, *m.C_xy); });
   add(w.descriptor, [&] { return DescriptorRows(X, Y, m.A_x->topRows(k), m.A_y->topRows(k)); });
+  add(w.embedding, [&] { return EmbeddingRows(*m.Z_x, *m.Z_y); });
   return StackTerms(terms, weights);
 }
 
@@ -157,7 +166,7 @@ void Descriptors(const LaplaceBasis& source, const LaplaceBasis& target, int k_e
 void CheckDiscreteOptInputs(const LaplaceBasis& source, const LaplaceBasis& target,
                             const std::vector<int>& initial_map, const std::vector<int>& samples,
                             const std::vector<int>& target_samples,
-                            const DiscreteOptOptions& options) {
+                            const DiscreteOptOptions& options, const DiscreteOptPoints* points) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("discrete: " + error);
   const int k_end = options.k_end;
@@ -171,6 +180,20 @@ void CheckDiscreteOptInputs(const LaplaceBasis& source, const LaplaceBasis& targ
     throw InvalidInputError("discrete: give samples of both shapes or of neither");
   }
   CheckPointMap(initial_map, source.NumVertices(), target.NumVertices());
+  if (options.weights.embedding > 0.0) {
+    if (points == nullptr) {
+      throw InvalidInputError("discrete: the embedding term needs the embedded points of the pair");
+    }
+    if (points->source.rows() != source.NumVertices() ||
+        points->target.rows() != target.NumVertices() ||
+        points->source.cols() != points->target.cols()) {
+      std::ostringstream out;
+      out << "discrete: embedded points " << points->source.rows() << " x " << points->source.cols()
+          << " and " << points->target.rows() << " x " << points->target.cols() << " for shapes of "
+          << source.NumVertices() << " and " << target.NumVertices() << " vertices";
+      throw InvalidInputError(out.str());
+    }
+  }
 }
 
 // The status message: the schedule, the samples, the weights, and per basis size the energy
@@ -184,7 +207,7 @@ std::string DiscreteOptMessage(const DiscreteOptResult& result, const DiscreteOp
   if (sampled) message << " on " << source_active << " / " << target_active << " samples";
   message << "; weights orthogonality " << w.orthogonality << " bijectivity " << w.bijectivity
           << " proper " << w.proper << " laplacian " << w.laplacian << " descriptor "
-          << w.descriptor;
+          << w.descriptor << " embedding " << w.embedding;
   message.precision(3);
   message << "; changed " << result.changed << "/" << ns
           << "; per k: energy per point, ||C12^T C12 - I||^2/k, ||C12 C21 - I||^2/k:";
@@ -201,13 +224,16 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
                               const std::vector<int>& initial_map, const std::vector<int>& samples,
                               const std::vector<int>& target_samples,
                               const DiscreteOptOptions& options, const WksProducts* source_products,
-                              const WksProducts* target_products) {
-  CheckDiscreteOptInputs(source, target, initial_map, samples, target_samples, options);
+                              const WksProducts* target_products, const DiscreteOptPoints* points) {
+  CheckDiscreteOptInputs(source, target, initial_map, samples, target_samples, options, points);
   const int ns = source.NumVertices(), k_end = options.k_end;
   const bool sampled = !samples.empty();
-  const Side S = MakeSide(source, samples, k_end, options.sample_candidates, "source");
-  const Side T = MakeSide(target, target_samples, k_end, options.sample_candidates, "target");
   const DiscreteOptWeights& w = options.weights;
+  const bool embedded = w.embedding > 0.0;
+  const Side S = MakeSide(source, samples, k_end, options.sample_candidates,
+                          embedded ? &points->source : nullptr, "source");
+  const Side T = MakeSide(target, target_samples, k_end, options.sample_candidates,
+                          embedded ? &points->target : nullptr, "target");
   Eigen::MatrixXd A_s, A_t;
   if (w.descriptor > 0.0) {
     Descriptors(source, target, k_end, options.descriptors, source_products, target_products, &A_s,
@@ -247,8 +273,10 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
     result.bijectivity.push_back(BijectivityDefect(C12, C21));
     const bool last = it + 1 == sizes.size();
     if (last && sampled && options.dense_result) break;  // the dense query below
-    const DirectionMaps forward{&C12, &C21, &lambda_s, &lambda_t, &A_s, &A_t};
-    const DirectionMaps backward{&C21, &C12, &lambda_t, &lambda_s, &A_t, &A_s};
+    const DirectionMaps forward{&C12, &C21, &lambda_s, &lambda_t,
+                                &A_s, &A_t, &S.points, &T.candidate_points};
+    const DirectionMaps backward{&C21, &C12, &lambda_t, &lambda_s,
+                                 &A_t, &A_s, &T.points, &S.candidate_points};
     double energy = 0.0;
     t12 = Query(Stacked(S.rows.leftCols(k), T.candidate_rows.leftCols(k), forward, w), T.candidates,
                 S.weights, &energy);
@@ -260,7 +288,12 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
   if (sampled && options.dense_result) {
     // Every source vertex onto every target vertex with area, with the last functional maps.
     const std::vector<int> all_targets = MatchableTargets(target.mass);
-    const DirectionMaps forward{&C12, &C21, &lambda_s, &lambda_t, &A_s, &A_t};
+    Eigen::MatrixXd Z_s, Z_t;
+    if (embedded) {
+      Z_s = points->source;
+      Z_t = BasisRows(points->target, all_targets);
+    }
+    const DirectionMaps forward{&C12, &C21, &lambda_s, &lambda_t, &A_s, &A_t, &Z_s, &Z_t};
     double energy = 0.0;
     result.map = Query(Stacked(source.evecs.leftCols(k_end),
                                BasisRows(target.evecs, all_targets, k_end), forward, w),

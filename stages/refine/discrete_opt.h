@@ -8,8 +8,9 @@
 // k_end, as in ZoomOut) the two functional maps are fitted to the point maps by least squares,
 // then each point map is set to the exact minimiser, for those functional maps, of the weighted
 // sum of the terms of discrete_terms.h (orthogonality, bijectivity through the other
-// direction's map, properness, Laplacian commutativity, descriptor preservation): one
-// nearest-neighbour query in the stacked embeddings. The bijectivity term ties the two
+// direction's map, properness, Laplacian commutativity, descriptor preservation, and the
+// embedding term that keeps each point near its image in the pipeline's aligned embeddings):
+// one nearest-neighbour query in the stacked embeddings. The bijectivity term ties the two
 // directions together, which keeps the map close to a bijection where ZoomOut, one direction
 // alone, lets many source points collapse onto one target region on non-isometric pairs.
 //
@@ -36,6 +37,8 @@ struct DiscreteOptWeights {
   double proper = 1.0;
   double laplacian = 1.0;
   double descriptor = 1.0;
+  // Needs the pair's embedded points (DiscreteOptPoints); the refine stage's default is 100.
+  double embedding = 0.0;
 };
 
 struct DiscreteOptOptions {
@@ -52,6 +55,13 @@ struct DiscreteOptOptions {
   bool dense_result = true;
 
   bool IsValid(std::string* error) const;
+};
+
+// The embedding term's points of every vertex of both shapes in one frame (#Vs x d, #Vt x d):
+// the pipeline's embeddings, the source's moved onto the target's by the matching stage.
+struct DiscreteOptPoints {
+  Eigen::MatrixXd source;
+  Eigen::MatrixXd target;
 };
 
 struct DiscreteOptResult {
@@ -72,13 +82,15 @@ struct DiscreteOptResult {
 // InvalidInputError for inconsistent inputs.
 // source_products, target_products (optional): each shape's DiscreteWksProducts for k_end,
 // which depend on the shape alone (the refine stage prepares them per shape); computed here when
-// null.
+// null. points: the embedding term's (required when its weight is positive; rows must match
+// the vertex counts).
 DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& target,
                               const std::vector<int>& initial_map, const std::vector<int>& samples,
                               const std::vector<int>& target_samples,
                               const DiscreteOptOptions& options,
                               const WksProducts* source_products = nullptr,
-                              const WksProducts* target_products = nullptr);
+                              const WksProducts* target_products = nullptr,
+                              const DiscreteOptPoints* points = nullptr);
 
 // What the descriptor term needs of one shape, whatever the pair: the wave kernel signature
 // products (stages/flip/descriptor_map.h) of the first k_end eigenpairs.

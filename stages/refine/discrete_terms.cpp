@@ -55,6 +55,13 @@ TermRows DescriptorRows(const BasisRef& X, const BasisRef& Y, const Eigen::Matri
   return {X * A_x, Y * A_y};
 }
 
+TermRows EmbeddingRows(const Eigen::MatrixXd& Z_x, const Eigen::MatrixXd& Z_y) {
+  SYMEMBED_CHECK(Z_x.cols() == Z_y.cols(), "embedding term: points of " << Z_x.cols() << " and "
+                                                                        << Z_y.cols()
+                                                                        << " coordinates");
+  return {Z_x, Z_y};
+}
+
 void ScaledEigenvalues(const Eigen::VectorXd& evals_x, const Eigen::VectorXd& evals_y, int k,
                        Eigen::VectorXd* lambda_x, Eigen::VectorXd* lambda_y) {
   if (k < 1 || evals_x.size() < k || evals_y.size() < k) {

@@ -20,11 +20,15 @@
 //   proper         E = || Pi Phi_y - Phi_x C_xy ||^2          (C_xy = Phi_x^+ Pi Phi_y)
 //   Laplacian      E = || Pi Phi_y L_y C_xy^T - Phi_x L_x ||^2 (C_xy L_y = L_x C_xy)
 //   descriptors    E = || Pi Phi_y A_y - Phi_x A_x ||^2       (C_xy A_y = A_x)
+//   embedding      E = || Pi Z_y - Z_x ||^2                   (a point lands near itself)
 // with L_x, L_y the diagonal matrices of the first k eigenvalues of each shape (both divided by
 // one scale, ScaledEigenvalues) and A_x, A_y descriptor coefficients in the bases (k x q). Each
 // norm is summed over the rows of X with a weight per row (the lumped areas, or ones on a
 // sample). The rows of X and Y passed to a term are the basis at the query points and at the
-// candidate points (any subsets of the shapes' vertices), first k columns.
+// candidate points (any subsets of the shapes' vertices), first k columns. The embedding term
+// does not depend on the functional maps: Z_x, Z_y are the points of both shapes in one frame
+// where a point and its image lie close (the pipeline's aligned embeddings), which anchors the
+// map to where the matching stage put each region while the spectral terms sharpen it.
 #pragma once
 
 #include <Eigen/Core>
@@ -51,6 +55,9 @@ TermRows LaplacianRows(const BasisRef& X, const BasisRef& Y, const Eigen::Vector
 // A_x, A_y: descriptor coefficients, k x q each.
 TermRows DescriptorRows(const BasisRef& X, const BasisRef& Y, const Eigen::MatrixXd& A_x,
                         const Eigen::MatrixXd& A_y);
+
+// Z_x, Z_y: the points' coordinates at the query points and at the candidates (d columns each).
+TermRows EmbeddingRows(const Eigen::MatrixXd& Z_x, const Eigen::MatrixXd& Z_y);
 
 // The first k eigenvalues of two shapes divided by one scale, the mean of their k-th
 // eigenvalues, so that the commutativity term compares the two spectra on one footing and its

@@ -150,10 +150,21 @@ class DiscreteRefine : public RefineStage {
       samples = SamplesOrAll(pair.source, source);
       target_samples = SamplesOrAll(pair.target, target);
     }
-    DiscreteOptResult r = DiscreteOpt(source, target, initial_map, samples, target_samples,
-                                      options_, pair.source.products.Find(ProductsKey()),
-                                      pair.target.products.Find(ProductsKey()));
+    // The embedding term reads the points the matching stage compared; a map refined without
+    // them (from elsewhere) goes without the term, and the message says so.
+    DiscreteOptOptions options = options_;
+    DiscreteOptPoints points;
+    const bool embedded = input.source_points != nullptr && input.target_points != nullptr;
+    if (embedded) points = {input.source_points->Y, input.target_points->Y};
+    if (!embedded) options.weights.embedding = 0.0;
+    DiscreteOptResult r =
+        DiscreteOpt(source, target, initial_map, samples, target_samples, options,
+                    pair.source.products.Find(ProductsKey()),
+                    pair.target.products.Find(ProductsKey()), embedded ? &points : nullptr);
     r.status.message += BasisNote(computed);
+    if (!embedded && options_.weights.embedding > 0.0) {
+      r.status.message += " (embedding term off: no embedded points)";
+    }
     return MatchResult{std::move(r.map), std::move(r.status)};
   }
 
@@ -191,6 +202,10 @@ void CheckSampleCount(OptionReader& reader, const std::string& key, int count, i
 // Samples of each shape the zoomout stage iterates on unless the config says otherwise (k_end is
 // at most 1,000, so they determine the last functional map).
 constexpr int kDefaultSamples = 1000;
+
+// Weight of the discrete stage's embedding term (DiscreteOptWeights::embedding, whose default 0
+// suits callers without embedded points).
+constexpr double kDefaultEmbeddingWeight = 100.0;
 
 }  // namespace
 
@@ -247,6 +262,12 @@ void RegisterRefineStages(Registry& registry) {
         weights.proper = w.GetDouble("proper", weights.proper, 0.0);
         weights.laplacian = w.GetDouble("laplacian", weights.laplacian, 0.0);
         weights.descriptor = w.GetDouble("descriptor", weights.descriptor, 0.0);
+        // The stage anchors the map to the matching stage's aligned embeddings by default:
+        // on a pair that is far from isometric the spectral terms alone move whole regions
+        // away from where the embedding put them. The embedding is in units of the unit-area
+        // surface: at weight 100 a point 0.1 away from its image costs 1, a unit of each
+        // spectral term (whose eigenfunctions have unit norm).
+        weights.embedding = w.GetDouble("embedding", kDefaultEmbeddingWeight, 0.0);
         w.Finish();
         reader.AdoptChild("weights", w);
         const int sample_count = reader.GetInt("sample_count", kDefaultSamples, 0);
