@@ -10,13 +10,17 @@
 //   BM_NearestKernel/<isa>/<k>    the brute-force kernel alone (nearest_kernel.h) on the same
 //                                  rows, each instruction-set build (AVX2 skipped without it)
 //   BM_Refine/<variant>            RefineStage::Run per pair; counter `error`: mean Euclidean
-//                                  error / sqrt(area) after refinement (`error_before`: before)
+//                                  error / sqrt(area) after refinement (`error_before`: before).
+//                                  The embedded points (the discrete stage's embedding term) are
+//                                  each shape's vertex coordinates in units of the unit-area
+//                                  surface, which the twisted copy keeps close
 //
 // When the TOSCA data is present (testing::DataRoot()), BM_RefineTosca/<variant> times the same
 // variants on cat0 -> cat1 after standard preprocessing (ground truth not used: the map to
 // refine is the nearest vertex in the unit-area coordinates, timing only).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <random>
@@ -39,6 +43,7 @@ struct BenchPair {
   ShapeData source, target;
   std::vector<int> truth;  // empty when unknown
   std::vector<int> initial;
+  EmbeddedPoints source_points, target_points;  // vertex coordinates / sqrt(area)
 };
 
 double MeanError(const BenchPair& p, const std::vector<int>& map) {
@@ -68,8 +73,11 @@ std::vector<int> Perturbed(const Surface& t, const std::vector<int>& truth, unsi
   return map;
 }
 
-// Bases for the largest k any variant uses, so every variant reads its leading eigenpairs.
+// Bases for the largest k any variant uses, so every variant reads its leading eigenpairs; and
+// the embedded points.
 void Prepare(BenchPair* p) {
+  p->source_points.Y = p->source.surface.V / std::sqrt(TotalArea(p->source.surface));
+  p->target_points.Y = p->target.surface.V / std::sqrt(TotalArea(p->target.surface));
   ShapeNeeds needs;
   needs.basis = 120;
   ComputeNeeds(needs, &p->source);
@@ -191,7 +199,8 @@ void BM_Refine(benchmark::State& state, const BenchPair* pair, const std::string
   ComputeNeeds(stage->Needs(), &target);
   MatchResult r;
   for (auto _ : state) {
-    r = stage->Run({source, target}, pair->initial);
+    r = stage->Run(RefineInput{{source, target}, pair->initial, &pair->source_points,
+                               &pair->target_points});
     benchmark::DoNotOptimize(r.map.data());
   }
   state.counters["vertices"] = pair->source.surface.NumVertices();
@@ -217,6 +226,7 @@ const std::vector<std::pair<std::string, std::string>>& Variants() {
        "extra_k_starts: [10, 15]}"},
       {"zoomout", "{type: zoomout}"},
       {"discrete", "{type: discrete}"},
+      {"discrete_no_embedding", "{type: discrete, weights: {embedding: 0}}"},
       {"discrete_vertices", "{type: discrete, candidates: vertices}"},
   };
   return variants;
