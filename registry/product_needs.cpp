@@ -47,4 +47,12 @@ void ShapeBasis(const ShapeData& shape, int k, LaplaceBasis* out) {
   }
 }
 
+const LaplaceBasis& ShapeBasisWithAtLeast(const ShapeData& shape, int k) {
+  if (shape.basis.NumEigenpairs() < k) {
+    LaplaceBasis unused;
+    ShapeBasis(shape, k, &unused);  // throws, naming the shape
+  }
+  return shape.basis;
+}
+
 }  // namespace symembed

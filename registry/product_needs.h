@@ -76,5 +76,8 @@ void ComputeNeeds(const ShapeNeeds& needs, ShapeData* shape);
 // The first k eigenpairs of shape.basis into *out (LeadingEigenpairs). Throws InvalidInputError
 // naming the shape when it holds fewer.
 void ShapeBasis(const ShapeData& shape, int k, LaplaceBasis* out);
+// shape.basis itself, for a reader of its first k eigenpairs that takes no copy (it may hold
+// more). Throws as ShapeBasis when it holds fewer.
+const LaplaceBasis& ShapeBasisWithAtLeast(const ShapeData& shape, int k);
 
 }  // namespace symembed

@@ -43,8 +43,8 @@ class DeformedStage : public MatchingStage {
   }
   bool Align(const PairInput& pair, const EmbeddedPoints& source, const EmbeddedPoints& target,
              EmbeddedPoints* moved) const override {
-    LaplaceBasis basis;
-    ShapeBasis(pair.source, options_.k_end, &basis);
+    // DeformSource reads the first k_end eigenpairs of the basis it is given.
+    const LaplaceBasis& basis = ShapeBasisWithAtLeast(pair.source, options_.k_end);
     DeformResult d = DeformSource(source, pair.source.surface.F, basis, pair.source.samples,
                                   target, pair.target.samples, options_);
     moved->Y = std::move(d.Y);

@@ -89,6 +89,9 @@ TEST(ComputeNeeds, ComputesTheBasisAndEachProductOnceAndTypesThem) {
   ShapeBasis(shape, 10, &basis);
   EXPECT_EQ(basis.evecs, evecs);
   EXPECT_THROW(ShapeBasis(shape, 11, &basis), InvalidInputError);
+  EXPECT_EQ(&ShapeBasisWithAtLeast(shape, 10), &shape.basis);
+  EXPECT_EQ(&ShapeBasisWithAtLeast(shape, 4), &shape.basis);
+  EXPECT_THROW(ShapeBasisWithAtLeast(shape, 11), InvalidInputError);
 }
 
 TEST(ComputeNeeds, AProductOfABasisOfAnotherSizeIsComputedFromThatBasis) {
