@@ -231,6 +231,15 @@ TEST_F(DiscreteOptTest, WithoutDenseResultOnlyTheSamplesMove) {
   EXPECT_THROW(DiscreteOpt(s, t, noisy, samples, {}, options), InvalidInputError);
   EXPECT_THROW(DiscreteOpt(s, t, noisy, {0, s.NumVertices()}, target_samples, options),
                InvalidInputError);
+  // The embedding term without points, or with points that do not match the shapes.
+  options.weights.embedding = 1.0;
+  EXPECT_THROW(DiscreteOpt(s, t, noisy, samples, target_samples, options), InvalidInputError);
+  const DiscreteOptPoints short_points{Eigen::MatrixXd::Zero(s.NumVertices(), 3),
+                                       Eigen::MatrixXd::Zero(t.NumVertices() - 1, 3)};
+  EXPECT_THROW(
+      DiscreteOpt(s, t, noisy, samples, target_samples, options, nullptr, nullptr, &short_points),
+      InvalidInputError);
+  options.weights.embedding = 0.0;
   options.k_end = 61;
   EXPECT_THROW(DiscreteOpt(s, t, noisy, samples, target_samples, options), InvalidInputError);
 }
