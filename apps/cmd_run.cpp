@@ -87,6 +87,9 @@ ArgParser RunParser() {
   parser.Option("cache", "per-shape cache folder ('' disables it)", "results/.cache");
   parser.Switch("quiet", "no progress on stderr");
   parser.Switch("no-report", "do not write the HTML report (OUT/report; see symembed report)");
+  parser.Switch("write-embeddings",
+                "also write each shape's canonical embedding (symmetrized, in its frame, on the "
+                "preprocessed faces) as OUT/<variant>/embeddings/NAME.off");
   parser.Repeated("set",
                   "override dotted.path=value in the base and every variant "
                   "(e.g. --set evaluation.geodesics=fast_marching)");
@@ -104,6 +107,7 @@ RunOptions RunOptionsOf(const ArgParser& parser) {
   options.variant = parser.Get("variant");
   options.resume = parser.Flag("resume");
   options.quiet = parser.Flag("quiet");
+  options.write_embeddings = parser.Flag("write-embeddings");
   options.cache_dir = parser.Get("cache");
   try {
     options.shard_split = ParseShardSplit(parser.Get("shard-by"));
@@ -112,7 +116,7 @@ RunOptions RunOptionsOf(const ArgParser& parser) {
   }
   options.shapes_only = parser.Flag("shapes-only");
   if (options.shapes_only) {
-    for (const char* name : {"out", "resume"}) {
+    for (const char* name : {"out", "resume", "write-embeddings"}) {
       if (parser.Given(name))
         throw UsageError{std::string("--shapes-only writes no outputs: --") + name +
                          " does not apply"};

@@ -80,6 +80,11 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
       for (const fs::path& file : FilesWithExtension(dir + "/shapes", ".rec")) {
         CopyIfPresent(file, ShapeRecordPath(results.dir, file.stem().string()));
       }
+      // Shards run with --write-embeddings (the files are the same in every shard that wrote one).
+      for (const fs::path& file : FilesWithExtension(dir + "/embeddings", ".off")) {
+        fs::create_directories(results.dir + "/embeddings");
+        CopyIfPresent(file, results.dir + "/embeddings/" + file.filename().string());
+      }
       if (auto text = ReadFileBytes(dir + "/failures.csv")) {
         for (Failure& f : ParseFailuresCsv(*text, dir + "/failures.csv")) {
           failures.insert(std::move(f));

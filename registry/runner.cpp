@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/map_io.h"
+#include "core/mesh_io.h"
 #include "core/parallel.h"
 #include "registry/files.h"
 #include "registry/progress.h"
@@ -169,6 +170,12 @@ class VariantRun {
     return {names.begin(), names.end()};
   }
 
+  void WriteEmbedding(const ShapeOutcome& outcome) const {
+    const std::string dir = dir_ + "/embeddings";
+    fs::create_directories(dir);
+    SaveMesh(dir + "/" + outcome.name + ".off", Surface{outcome.data->Y, outcome.data->surface.F});
+  }
+
   // Computes (or loads) the shapes `order`. A full run keeps them for its pairs and writes
   // their records; a shapes-only run only leaves them in the cache and reports each.
   void ComputeShapes(const std::vector<std::string>& order) {
@@ -191,6 +198,7 @@ class VariantRun {
             } else {
               ShapeRecord record{outcome->name, outcome->times, outcome->report};
               WriteFileAtomically(ShapeRecordPath(dir_, outcome->name), FormatShapeRecord(record));
+              if (options_.write_embeddings) WriteEmbedding(*outcome);
               outcomes[i] = std::move(outcome);
             }
             std::lock_guard<std::mutex> lock(mutex_);

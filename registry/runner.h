@@ -106,6 +106,10 @@ struct RunOptions {
                      const std::vector<std::string>& computed)>
       on_shape;
   bool quiet = false;
+  // Also write each shape's canonical embedding, the surface the matching stage compares (the
+  // symmetrized embedding in its canonical frame, on the preprocessed faces), as
+  // OUT/<variant>/embeddings/NAME.off: to look at the symmetry plane and the frame of a shape.
+  bool write_embeddings = false;
   MeshLoader load_mesh;  // reads a mesh file (core/mesh_io.h LoadSurface)
 };
 

@@ -112,6 +112,27 @@ TEST(Runner, WritesMapsRecordsAndSummaries) {
   EXPECT_EQ(ReadText(tmp.File("out/variants.txt")), "base\n");
 }
 
+// --write-embeddings: each shape's canonical embedding on its faces, loadable as a mesh; none
+// without it.
+TEST(Runner, WritesTheCanonicalEmbeddingsWhenAsked) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 3);
+  EXPECT_TRUE(RunConfig(config, tmp.File("plain"), tmp.File("cache")).stats.ok());
+  EXPECT_FALSE(fs::exists(tmp.File("plain/base/embeddings")));
+  RunOptions options;
+  options.write_embeddings = true;
+  EXPECT_TRUE(RunConfig(config, tmp.File("out"), tmp.File("cache"), options).stats.ok());
+  for (const char* name : {"s0", "s1", "s2"}) {
+    const std::string path = tmp.File("out/base/embeddings/") + name + ".off";
+    ASSERT_TRUE(fs::exists(path)) << path;
+    const Surface embedded = ReadOff(path);
+    const Surface input = ReadOff(tmp.File("data/shapes/") + name + ".off");
+    EXPECT_EQ(embedded.NumVertices(), input.NumVertices()) << name;
+    EXPECT_EQ(embedded.F, input.F) << name;
+    EXPECT_TRUE(embedded.V.allFinite()) << name;
+  }
+}
+
 TEST(Runner, SecondIdenticalRunRecomputesNothing) {
   TempDir tmp;
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
