@@ -1,5 +1,6 @@
 #include "registry/shape_pipeline.h"
 
+#include <algorithm>
 #include <any>
 #include <chrono>
 #include <filesystem>
@@ -186,6 +187,30 @@ double SymmetryGroundTruthError(const Eigen::MatrixX3d& Y, const std::vector<int
   return sum / lines / size;
 }
 
+double SelfMapDisplacement(const ShapeData& data) {
+  const std::vector<int>& sigma = data.symmetry.sigma;
+  const Eigen::MatrixXd& Y = data.embedding.Y;
+  if (sigma.size() != data.samples.size() || sigma.empty()) return -1.0;
+  Eigen::MatrixXd P(data.samples.size(), Y.cols());
+  for (size_t i = 0; i < data.samples.size(); ++i) P.row(i) = Y.row(data.samples[i]);
+  const double size = RmsRadius(P);
+  if (!(size > 0.0)) return -1.0;
+  double sum = 0.0;
+  for (size_t i = 0; i < sigma.size(); ++i) {
+    if (sigma[i] < 0 || sigma[i] >= P.rows()) return -1.0;
+    sum += (P.row(i) - P.row(sigma[i])).norm();
+  }
+  return sum / sigma.size() / size;
+}
+
+double CanonicalXSpread(const Eigen::MatrixX3d& Y) {
+  if (Y.rows() < 2) return -1.0;
+  const Eigen::RowVector3d sd =
+      ((Y.rowwise() - Y.colwise().mean()).colwise().squaredNorm() / (Y.rows() - 1)).cwiseSqrt();
+  const double other = std::min(sd(1), sd(2));
+  return other > 0.0 ? sd(0) / other : -1.0;
+}
+
 namespace {
 
 // The per-shape measures of shapes.csv: what the sampling, embedding, symmetry, symmetrize and
@@ -203,6 +228,8 @@ void AddShapeMeasures(const SamplingResult& sampling, const SymmetrizeResult& sy
   out->report.push_back(
       {"symmetrize_iterations", static_cast<double>(symmetrized.status.iterations)});
   out->report.push_back({"frame_axis_ratio", axis_ratio});
+  out->report.push_back({"self_map_displacement", SelfMapDisplacement(data)});
+  out->report.push_back({"canonical_x_spread", CanonicalXSpread(data.Y)});
   if (!out->ground_truth.sym_ids.empty()) {
     // The shape's lines against themselves: target_sym_ids are the symmetric partners, in
     // preprocessed ids like the pairs' ground truth (lines of removed vertices dropped).

@@ -94,6 +94,19 @@ void InputToKept(const Eigen::MatrixX3d& input_V, const std::vector<int>& input_
 double SymmetryGroundTruthError(const Eigen::MatrixX3d& Y, const std::vector<int>& ids,
                                 const std::vector<int>& sym_ids);
 
+// How far the symmetry stage's self map moves the samples: the mean distance in data.embedding
+// (before symmetrization) between each sample and its image under data.symmetry.sigma, over the
+// samples' RMS radius. A left-right self map moves the limbs and flanks across the body; one
+// near the identity moves each sample to a neighbour, near 0. Returns -1 without a valid self
+// map of the samples.
+double SelfMapDisplacement(const ShapeData& data);
+
+// The canonical embedding's spread across its symmetry plane: the standard deviation of Y along
+// x over the smaller of those along y and z. A body whose sides the symmetrization pressed
+// together (a self map that pairs samples on one side) is thin along x. Returns -1 for fewer
+// than 2 rows or no spread along y or z.
+double CanonicalXSpread(const Eigen::MatrixX3d& Y);
+
 // The YAML text of a stage's resolved options (hashed into cache keys), without the options
 // that cannot change a result (`threads`), so that they do not invalidate cached outputs.
 std::string OptionsText(const Stage& stage);

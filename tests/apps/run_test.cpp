@@ -366,7 +366,8 @@ TEST_F(RunCommandTest, StagesPreparingBasesOfDifferentSizesShareTheLargerOne) {
 }
 
 // shapes.csv: one row per shape with its report, including how well the symmetric embedding
-// matches the dataset's symmetric ground truth. The synthetic poses are mirror-symmetric, and
+// matches the dataset's symmetric ground truth and how far the symmetry's self map moves the
+// samples. The synthetic poses are mirror-symmetric, and
 // with the left-right plane found (plane2d; this fixture's fast plane3d on 80 samples finds it
 // on none of these small humanoids) each mirrored point lands near its partner.
 TEST_F(RunCommandTest, ShapesCsvHasEveryShapeAndTheSymmetryAgainstGroundTruth) {
@@ -380,6 +381,10 @@ TEST_F(RunCommandTest, ShapesCsvHasEveryShapeAndTheSymmetryAgainstGroundTruth) {
   ASSERT_EQ(columns.front(), "shape");
   const auto at = std::find(columns.begin(), columns.end(), "symmetry_gt_error");
   ASSERT_NE(at, columns.end()) << header;
+  // The left-right self map moves the limbs across the body, far from the identity.
+  const auto moved = std::find(columns.begin(), columns.end(), "self_map_displacement");
+  ASSERT_NE(moved, columns.end()) << header;
+  ASSERT_NE(std::find(columns.begin(), columns.end(), "canonical_x_spread"), columns.end());
   int rows = 0;
   for (std::string line; std::getline(csv, line); ++rows) {
     std::vector<std::string> values;
@@ -389,6 +394,7 @@ TEST_F(RunCommandTest, ShapesCsvHasEveryShapeAndTheSymmetryAgainstGroundTruth) {
     const double error = std::stod(values[at - columns.begin()]);
     EXPECT_GE(error, 0.0) << line;
     EXPECT_LT(error, 0.1) << line;
+    EXPECT_GT(std::stod(values[moved - columns.begin()]), 0.3) << line;
   }
   EXPECT_EQ(rows, 5);
 }

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "core/procrustes.h"
 #include "registry/config.h"
 #include "registry/merge.h"
 #include "registry/shape_pipeline.h"
@@ -44,6 +45,35 @@ TEST(SymmetryGroundTruthError, ZeroForTheTrueMirrorLargeForAnotherPlaneAndMinusO
   // Lines without both ids are skipped; none left gives -1.
   EXPECT_NEAR(SymmetryGroundTruthError(Y, {0, -1}, {1, 3}), 0.0, 1e-12);
   EXPECT_EQ(SymmetryGroundTruthError(Y, {-1, 2}, {1, -1}), -1.0);
+}
+
+// The self map of MirroredPairs' points (partners swapped, points on the plane fixed) moves
+// them across the plane; the identity moves nothing; an invalid map gives -1.
+TEST(SelfMapDisplacement, LargeForTheMirrorZeroForTheIdentity) {
+  std::vector<int> a, b;
+  ShapeData data;
+  data.embedding.Y = MirroredPairs(&a, &b);
+  data.samples = {0, 1, 2, 3, 4, 5, 6, 7};
+  data.symmetry.sigma = {1, 0, 3, 2, 5, 4, 6, 7};
+  const Eigen::MatrixXd& P = data.embedding.Y;
+  const double size = RmsRadius(P);
+  const double expected = (2 * 2.0 + 2 * 4.0 + 2 * 1.0) / 8 / size;
+  EXPECT_NEAR(SelfMapDisplacement(data), expected, 1e-12);
+  data.symmetry.sigma = data.samples;
+  EXPECT_EQ(SelfMapDisplacement(data), 0.0);
+  data.symmetry.sigma = {1, 0};
+  EXPECT_EQ(SelfMapDisplacement(data), -1.0);
+}
+
+// A body pressed into its plane is thin along x; a round one is not.
+TEST(CanonicalXSpread, SmallForABodyPressedIntoItsPlane) {
+  std::vector<int> a, b;
+  Eigen::MatrixX3d Y = MirroredPairs(&a, &b);
+  const double spread = CanonicalXSpread(Y);
+  EXPECT_GT(spread, 0.5);
+  Y.col(0) *= 0.05;
+  EXPECT_NEAR(CanonicalXSpread(Y), 0.05 * spread, 1e-12);
+  EXPECT_EQ(CanonicalXSpread(Eigen::MatrixX3d::Zero(1, 3)), -1.0);
 }
 
 struct RunResult {
