@@ -28,6 +28,8 @@ bool Plane2dOptions::IsValid(std::string* error) const {
     out << "refine_3d_iterations must be >= 0, got " << refine_3d_iterations;
   else if (num_directions < 0) out << "num_directions must be >= 0, got " << num_directions;
   else if (threads < 0) out << "threads must be >= 0, got " << threads;
+  else if (!(min_self_map_displacement >= 0.0))
+    out << "min_self_map_displacement must be >= 0, got " << min_self_map_displacement;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -53,7 +55,7 @@ struct Candidate {
   double offset = 0.0;
   std::vector<int> sigma;
   Eigen::VectorXd confidence;
-  double score = 0.0, intrinsic = 0.0, consistency = 1.0;
+  double score = 0.0, intrinsic = 0.0, consistency = 1.0, displacement = 0.0;
   double total = std::numeric_limits<double>::infinity();
   bool converged = true;
   std::string origin;
@@ -178,6 +180,7 @@ class Plane2dSearch {
     message << "plane2d: " << best.origin << ", score " << best.score
             << ", intrinsic distortion " << best.intrinsic;
     if (G_.size() > 0) message << ", spectral consistency " << best.consistency;
+    message << ", self map displacement " << best.displacement;
     result.status.message = message.str();
     return result;
   }
@@ -277,14 +280,38 @@ class Plane2dSearch {
 
   void Consider(Candidate c) {
     c.total = c.score + options_.intrinsic_weight * c.intrinsic;
+    c.displacement = Displacement(c.sigma);
     if (std::isfinite(c.total)) candidates_.push_back(std::move(c));
   }
 
-  // The candidate of the lowest total (the first on ties).
+  // Mean distance in the 3D embedding between each sample and its image, over the RMS radius.
+  double Displacement(const std::vector<int>& sigma) const {
+    if (sigma.size() != static_cast<size_t>(P_.rows()) || !(size3_ > 0.0)) return 0.0;
+    double sum = 0.0;
+    int count = 0;
+    for (size_t i = 0; i < sigma.size(); ++i) {
+      if (sigma[i] < 0 || sigma[i] >= P_.rows()) continue;
+      sum += (P_.row(i) - P_.row(sigma[i])).norm();
+      ++count;
+    }
+    return count > 0 ? sum / count / size3_ : 0.0;
+  }
+
+  // The candidate of the lowest total (the first on ties) among those whose self map moves the
+  // samples at least min_self_map_displacement, or among all when none does.
   Candidate& Best() {
-    return *std::min_element(
-        candidates_.begin(), candidates_.end(),
-        [](const Candidate& a, const Candidate& b) { return a.total < b.total; });
+    const double bound = options_.min_self_map_displacement;
+    const bool any_moves = std::any_of(candidates_.begin(), candidates_.end(),
+                                       [&](const Candidate& c) { return c.displacement >= bound; });
+    return *std::min_element(candidates_.begin(), candidates_.end(),
+                             [&](const Candidate& a, const Candidate& b) {
+                               if (any_moves) {
+                                 const bool a_moves = a.displacement >= bound;
+                                 const bool b_moves = b.displacement >= bound;
+                                 if (a_moves != b_moves) return a_moves;
+                               }
+                               return a.total < b.total;
+                             });
   }
 
   const Plane2dOptions& options_;

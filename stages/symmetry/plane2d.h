@@ -62,6 +62,12 @@ struct Plane2dOptions {
   int num_directions = 32;
   // Spectral candidates and check (step 5).
   SpectralSymmetryOptions spectral;
+  // Candidates whose self map moves the samples less than this (the mean distance in the 3D
+  // embedding between a sample and its image over the samples' RMS radius, as
+  // `self_map_displacement` of shapes.csv) lose to every candidate that moves them more; 0: off.
+  // A self map near the identity pairs samples on one side of the body, and the symmetrization
+  // then presses the body into the plane.
+  double min_self_map_displacement = 0.0;
   // Threads of the 2D embedding's SMACOF and of the refinement of the line directions and of the
   // 3D candidates (0: all cores). The result does not depend on it.
   int threads = 0;

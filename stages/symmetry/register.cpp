@@ -58,6 +58,8 @@ void RegisterSymmetryStages(Registry& registry) {
                  p.intrinsic_pairs = o.GetInt("intrinsic_pairs", p.intrinsic_pairs, 1);
                  p.seed = o.GetInt("seed", p.seed);
                  p.smacof_iterations = o.GetInt("smacof_iterations", p.smacof_iterations, 0);
+                 p.min_self_map_displacement = o.GetDouble("min_self_map_displacement",
+                                                           p.min_self_map_displacement, 0.0, 10.0);
                  p.refine_3d_iterations =
                      o.GetInt("refine_3d_iterations", p.refine_3d_iterations, 0);
                  p.candidates_3d = o.GetBool("candidates_3d", p.candidates_3d);

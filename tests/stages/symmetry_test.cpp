@@ -188,6 +188,31 @@ TEST(Plane2d, TheResultDoesNotDependOnTheThreads) {
               DetectSymmetryPlane3d(D, samples, Y, three3));
 }
 
+// The figure with one arm removed, pressed flat along its front-back axis (z scaled by 0.02):
+// besides its left-right near-symmetry it has an exact one across its thickness, whose self map
+// sends each point to its counterpart on the other face, near the identity (as on SMAL animals
+// whose symmetrized embedding came out flat). With min_self_map_displacement the stage chooses
+// the left-right one, whose self map moves the limbs across the body.
+TEST(Plane2d, ASelfMapNearTheIdentityLosesToOneThatMovesTheSamples) {
+  std::vector<int> mirror;
+  Surface figure = testing::SymmetricFigure(1, false, &mirror);
+  figure.V.col(2) *= 0.02;
+  const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
+  const std::vector<int> samples = AllVertices(figure.NumVertices());
+  const Eigen::MatrixXd D = EuclideanDistances(Y, samples);
+  const SymmetryResult plain = DetectSymmetryPlane2d(D, samples, Y, Plane2dOptions{});
+  // Without the bound the exact symmetry across the thickness beats the left-right one, which
+  // the missing arm makes inexact: the failure.
+  EXPECT_LT(AngleDeg(plain.normal, kRotation.col(2)), 1.0) << plain.status.message;
+  Plane2dOptions options;
+  options.min_self_map_displacement = 0.3;
+  const SymmetryResult r = DetectSymmetryPlane2d(D, samples, Y, options);
+  EXPECT_LT(AngleDeg(r.normal, kRotation.col(0)), 1.0) << r.status.message;
+  EXPECT_NE(r.status.message.find("self map displacement"), std::string::npos);
+  options.min_self_map_displacement = -1.0;
+  EXPECT_THROW(DetectSymmetryPlane2d(D, samples, Y, options), ConfigError);
+}
+
 TEST(Plane3d, RegisteredStageRunsAndRejectsBadOptions) {
   Registry registry;
   RegisterBuiltinStages(registry);
