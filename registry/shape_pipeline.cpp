@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <any>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <type_traits>
 
 #include "core/canonical_frame.h"
 #include "core/errors.h"
+#include "core/mesh_graph.h"
 #include "core/procrustes.h"
 #include "core/spectral.h"
 #include "registry/hash.h"
@@ -187,6 +189,45 @@ double SymmetryGroundTruthError(const Eigen::MatrixX3d& Y, const std::vector<int
   return sum / lines / size;
 }
 
+double GroundTruthGeodesicAsymmetry(const Surface& surface, const std::vector<int>& ids,
+                                    const std::vector<int>& sym_ids, int max_lines) {
+  SYMEMBED_CHECK(ids.size() == sym_ids.size(), "ground truth lines differ in length");
+  const int n = surface.NumVertices();
+  std::vector<int> valid;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    if (ids[i] < 0 || sym_ids[i] < 0) continue;
+    SYMEMBED_CHECK(ids[i] < n && sym_ids[i] < n, "ground truth id out of range");
+    valid.push_back(static_cast<int>(i));
+  }
+  if (max_lines < 2 || valid.size() < 2) return -1.0;
+  // Evenly spaced lines: the ground truth's own order, whatever it is, decides nothing else.
+  const size_t count = std::min(valid.size(), static_cast<size_t>(max_lines));
+  std::vector<int> a(count), b(count);
+  for (size_t k = 0; k < count; ++k) {
+    const int line = valid[k * valid.size() / count];
+    a[k] = ids[line];
+    b[k] = sym_ids[line];
+  }
+  const MeshGraph graph = BuildMeshGraph(surface);
+  DijkstraWorkspace<double> workspace;
+  std::vector<double> from_a(n), from_b(n);
+  double sum = 0.0, largest = 0.0;
+  long pairs = 0;
+  for (size_t i = 0; i < count; ++i) {
+    Dijkstra(graph, a[i], from_a.data(), &workspace);
+    Dijkstra(graph, b[i], from_b.data(), &workspace);
+    for (size_t j = i + 1; j < count; ++j) {
+      const double da = from_a[a[j]], db = from_b[b[j]];
+      if (!std::isfinite(da) || !std::isfinite(db)) continue;
+      sum += std::abs(da - db);
+      largest = std::max(largest, da);
+      ++pairs;
+    }
+  }
+  if (pairs == 0 || !(largest > 0.0)) return -1.0;
+  return sum / pairs / largest;
+}
+
 double SelfMapDisplacement(const ShapeData& data) {
   const std::vector<int>& sigma = data.symmetry.sigma;
   const Eigen::MatrixXd& Y = data.embedding.Y;
@@ -237,6 +278,9 @@ void AddShapeMeasures(const SamplingResult& sampling, const SymmetrizeResult& sy
         ToPreprocessedIds(PairLines(out->ground_truth, out->ground_truth), *out, *out);
     const double error = SymmetryGroundTruthError(data.Y, self.source_ids, self.target_sym_ids);
     if (error >= 0.0) out->report.push_back({"symmetry_gt_error", error});
+    const double asymmetry =
+        GroundTruthGeodesicAsymmetry(data.surface, self.source_ids, self.target_sym_ids);
+    if (asymmetry >= 0.0) out->report.push_back({"gt_geodesic_asymmetry", asymmetry});
   }
 }
 

@@ -94,6 +94,17 @@ void InputToKept(const Eigen::MatrixX3d& input_V, const std::vector<int>& input_
 double SymmetryGroundTruthError(const Eigen::MatrixX3d& Y, const std::vector<int>& ids,
                                 const std::vector<int>& sym_ids);
 
+// How far the surface's own geodesics are from symmetric under the ground-truth symmetry,
+// which bounds how well any symmetry plane of its embedding can do: over up to `max_lines` of
+// the lines (a_i, b_i) with both ids (evenly spread over them), the mean over pairs of lines of
+// |d(a_i, a_j) - d(b_i, b_j)| divided by the largest d(a_i, a_j), d the edge-graph distance of
+// `surface` (ids are its vertex ids). About 0 for an intrinsically symmetric surface; a pose
+// that stretches or compresses one side more than the other raises it. Pairs whose distance is
+// infinite on either side (different components) are skipped. Returns -1 with fewer than two
+// usable lines.
+double GroundTruthGeodesicAsymmetry(const Surface& surface, const std::vector<int>& ids,
+                                    const std::vector<int>& sym_ids, int max_lines = 64);
+
 // How far the symmetry stage's self map moves the samples: the mean distance in data.embedding
 // (before symmetrization) between each sample and its image under data.symmetry.sigma, over the
 // samples' RMS radius. A left-right self map moves the limbs and flanks across the body; one

@@ -385,6 +385,9 @@ TEST_F(RunCommandTest, ShapesCsvHasEveryShapeAndTheSymmetryAgainstGroundTruth) {
   const auto moved = std::find(columns.begin(), columns.end(), "self_map_displacement");
   ASSERT_NE(moved, columns.end()) << header;
   ASSERT_NE(std::find(columns.begin(), columns.end(), "canonical_x_spread"), columns.end());
+  // The poses are mirror images of themselves, so their own distances are near symmetric.
+  const auto own = std::find(columns.begin(), columns.end(), "gt_geodesic_asymmetry");
+  ASSERT_NE(own, columns.end()) << header;
   int rows = 0;
   for (std::string line; std::getline(csv, line); ++rows) {
     std::vector<std::string> values;
@@ -395,6 +398,8 @@ TEST_F(RunCommandTest, ShapesCsvHasEveryShapeAndTheSymmetryAgainstGroundTruth) {
     EXPECT_GE(error, 0.0) << line;
     EXPECT_LT(error, 0.1) << line;
     EXPECT_GT(std::stod(values[moved - columns.begin()]), 0.3) << line;
+    EXPECT_GE(std::stod(values[own - columns.begin()]), 0.0) << line;
+    EXPECT_LT(std::stod(values[own - columns.begin()]), 0.02) << line;
   }
   EXPECT_EQ(rows, 5);
 }

@@ -47,6 +47,60 @@ TEST(SymmetryGroundTruthError, ZeroForTheTrueMirrorLargeForAnotherPlaneAndMinusO
   EXPECT_EQ(SymmetryGroundTruthError(Y, {-1, 2}, {1, -1}), -1.0);
 }
 
+// A flat strip of (2m+1) x rows vertices, x = -m..m, triangulated so that its edge graph is
+// mirror-symmetric across x = 0; (*mirror)[v] is the vertex at v's mirror position.
+Surface MirroredStrip(int m, int rows, std::vector<int>* mirror) {
+  const int cols = 2 * m + 1;
+  auto id = [&](int c, int r) { return r * cols + (c + m); };
+  Surface s;
+  s.V.resize(cols * rows, 3);
+  mirror->assign(cols * rows, -1);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = -m; c <= m; ++c) {
+      s.V.row(id(c, r)) << c, r, 0.0;
+      (*mirror)[id(c, r)] = id(-c, r);
+    }
+  }
+  std::vector<Eigen::Vector3i> faces;
+  for (int r = 0; r + 1 < rows; ++r) {
+    for (int c = -m; c < m; ++c) {
+      if (c >= 0) {
+        faces.emplace_back(id(c, r), id(c + 1, r), id(c + 1, r + 1));
+        faces.emplace_back(id(c, r), id(c + 1, r + 1), id(c, r + 1));
+      } else {
+        faces.emplace_back(id(c, r), id(c + 1, r), id(c, r + 1));
+        faces.emplace_back(id(c + 1, r), id(c + 1, r + 1), id(c, r + 1));
+      }
+    }
+  }
+  s.F.resize(static_cast<int>(faces.size()), 3);
+  for (size_t f = 0; f < faces.size(); ++f) s.F.row(static_cast<int>(f)) = faces[f].transpose();
+  return s;
+}
+
+// A surface whose edge graph is mirror-symmetric has symmetric distances; stretching one half
+// (as a pose that stretches one side of a body) makes them asymmetric, more so the more it is
+// stretched. Too few lines give -1.
+TEST(GroundTruthGeodesicAsymmetry, ZeroForASymmetricSurfaceGrowingWithAOneSidedStretch) {
+  std::vector<int> mirror;
+  Surface strip = MirroredStrip(6, 9, &mirror);
+  std::vector<int> ids(mirror.size());
+  for (size_t v = 0; v < ids.size(); ++v) ids[v] = static_cast<int>(v);
+  EXPECT_NEAR(GroundTruthGeodesicAsymmetry(strip, ids, mirror), 0.0, 1e-12);
+  double previous = 0.0;
+  for (double stretch : {1.2, 1.6}) {
+    Surface stretched = strip;
+    for (int v = 0; v < stretched.NumVertices(); ++v) {
+      if (stretched.V(v, 0) > 0.0) stretched.V(v, 0) *= stretch;
+    }
+    const double asymmetry = GroundTruthGeodesicAsymmetry(stretched, ids, mirror);
+    EXPECT_GT(asymmetry, previous + 0.01) << stretch;
+    previous = asymmetry;
+  }
+  EXPECT_EQ(GroundTruthGeodesicAsymmetry(strip, {0, -1}, {5, 3}), -1.0);
+  EXPECT_EQ(GroundTruthGeodesicAsymmetry(strip, ids, mirror, 1), -1.0);
+}
+
 // The self map of MirroredPairs' points (partners swapped, points on the plane fixed) moves
 // them across the plane; the identity moves nothing; an invalid map gives -1.
 TEST(SelfMapDisplacement, LargeForTheMirrorZeroForTheIdentity) {
