@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <sstream>
 
 #include "core/laplacian.h"
 #include "registry/hash.h"
@@ -90,22 +91,47 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
                         const Pipeline& pipeline, const InputGroundTruth* ground_truth,
                         const MeanErrorFunction& mean_error, StageCounters* counters) {
   PairOutcome out;
-  const ShapeData& a = *source.data;
-  const ShapeData& b = *target.data;
-  const int nb = b.surface.NumVertices();
-
   PreprocessedGroundTruth truth_pre;
   if (ground_truth) truth_pre = ToPreprocessedIds(*ground_truth, source, target);
-  const PairInput input{a, b, ground_truth ? &truth_pre : nullptr};
 
+  // With a second plane hypothesis for either shape, the flip stage scores every combination
+  // of planes and the pair goes on with the one whose chosen rotation scores lowest (the first
+  // plane on ties): which of a shape's planes holds is told by the partner's frame.
   auto start = std::chrono::steady_clock::now();
-  out.flip = pipeline.flip->Run(input);
-  out.times.push_back({"flip", Since(start), false});
-  counters->Executed("flip");
-  if (out.flip.chosen < 0 || out.flip.chosen > 3) {
-    throw SolverError("flip scorer chose candidate " + std::to_string(out.flip.chosen) +
-                      " outside [0, 3]");
+  const ShapeData* a_ptr = nullptr;
+  const ShapeData* b_ptr = nullptr;
+  std::string chosen_planes;
+  std::ostringstream planes;  // each combination's score of its chosen rotation
+  for (const ShapeData* sa : {source.data.get(), source.alternative.get()}) {
+    for (const ShapeData* sb : {target.data.get(), target.alternative.get()}) {
+      if (!sa || !sb) continue;
+      FlipResult flip =
+          pipeline.flip->Run(PairInput{*sa, *sb, ground_truth ? &truth_pre : nullptr});
+      counters->Executed("flip");
+      if (flip.chosen < 0 || flip.chosen > 3) {
+        throw SolverError("flip scorer chose candidate " + std::to_string(flip.chosen) +
+                          " outside [0, 3]");
+      }
+      const std::string name = std::string(sa == source.data.get() ? "first" : "second") + "/" +
+                               (sb == target.data.get() ? "first" : "second");
+      planes << (planes.tellp() > 0 ? ", " : "") << name << " " << flip.scores[flip.chosen];
+      if (!a_ptr || flip.scores[flip.chosen] < out.flip.scores[out.flip.chosen]) {
+        out.flip = std::move(flip);
+        a_ptr = sa;
+        b_ptr = sb;
+        chosen_planes = name;
+      }
+    }
   }
+  if (source.alternative || target.alternative) {
+    out.flip.status.message +=
+        "; planes (source/target): " + planes.str() + "; chosen " + chosen_planes;
+  }
+  out.times.push_back({"flip", Since(start), false});
+  const ShapeData& a = *a_ptr;
+  const ShapeData& b = *b_ptr;
+  const int nb = b.surface.NumVertices();
+  const PairInput input{a, b, ground_truth ? &truth_pre : nullptr};
   const auto rotations = CandidateRotations();
 
   start = std::chrono::steady_clock::now();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 #include "core/canonical_frame.h"
@@ -448,6 +449,26 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
             SymmetryInput{data->surface, data->samples, D(), data->embedding}, data->symmetry);
       },
       &out.times);
+  // The second plane hypothesis and the embedding symmetrized about it, keyed like the first.
+  const uint64_t alt_sym_key = Hasher(sym_key).AddString("second plane").Digest();
+  const uint64_t alt_symz_key = Hasher(symz_key).AddString("second plane").Digest();
+  const SymmetryResult second = Cached<SymmetryResult>(
+      context, "symmetry_second", alt_sym_key,
+      [&] {
+        return pipeline.symmetry->RunAlternative(
+            SymmetryInput{data->surface, data->samples, D(), data->embedding}, data->symmetry);
+      },
+      &out.times);
+  std::optional<SymmetrizeResult> second_symmetrized;
+  if (!second.sigma.empty()) {
+    second_symmetrized = Cached<SymmetrizeResult>(
+        context, "symmetrize_second", alt_symz_key,
+        [&] {
+          return pipeline.symmetrize->Run(
+              SymmetryInput{data->surface, data->samples, D(), data->embedding}, second);
+        },
+        &out.times);
+  }
   distances.reset();
 
   start = std::chrono::steady_clock::now();
@@ -457,7 +478,17 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
 
   AddShapeMeasures(sampling, symmetrized, axis_ratio, *data, &out);
 
+  out.report.push_back({"second_plane", second_symmetrized ? 1.0 : 0.0});
   out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, symz_key}, data.get(), &out);
+  if (second_symmetrized) {
+    auto alternative = std::make_shared<ShapeData>(*data);
+    alternative->symmetry = second;
+    alternative->Y = CanonicalFrame(second_symmetrized->Y, nullptr, nullptr, nullptr);
+    const uint64_t alt_key =
+        PrepareNeeds(pipeline, context, {pre_key, samp_key, alt_symz_key}, alternative.get(), &out);
+    out.key = Hasher(out.key).AddU64(alt_key).Digest();
+    out.alternative = std::move(alternative);
+  }
   out.data = std::move(data);
   return out;
 }

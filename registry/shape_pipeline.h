@@ -62,12 +62,15 @@ struct ShapeOutcome {
   std::string name;
   Surface input;                      // as loaded, input vertex ids
   std::shared_ptr<ShapeData> data;    // with what the per-pair stages need (basis, products)
+  // The shape under the symmetry stage's second plane hypothesis (SymmetryStage::RunAlternative),
+  // or null: each pair takes whichever of data and alternative its flip stage scores better.
+  std::shared_ptr<ShapeData> alternative;
   std::vector<int> kept_of_input;     // #V_input: preprocessed id of each input vertex, -1: removed
   std::vector<int> nearest_kept;      // #V_input: preprocessed id of the nearest kept vertex
   ShapeGroundTruth ground_truth;      // input ids (empty when the dataset has none)
   std::vector<StageTime> times;
   Report report;                      // preprocess report, then stage measures
-  uint64_t key = 0;                   // cache key of `data` (all stages, basis and products)
+  uint64_t key = 0;  // cache key of `data` and `alternative` (all stages, basis and products)
 };
 
 struct ShapeContext {

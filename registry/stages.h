@@ -70,6 +70,15 @@ struct SymmetryInput {
 class SymmetryStage : public Stage {
  public:
   virtual SymmetryResult Run(const SymmetryInput& input) const = 0;
+  // A second plane hypothesis when `chosen` (Run's result) is doubtful: the runner keeps the
+  // shape under both, and each pair takes the one whose chosen rotation its flip stage scores
+  // lower. An empty sigma means none (the default).
+  virtual SymmetryResult RunAlternative(const SymmetryInput& input,
+                                        const SymmetryResult& chosen) const {
+    (void)input;
+    (void)chosen;
+    return SymmetryResult{};
+  }
 };
 
 class SymmetrizeStage : public Stage {

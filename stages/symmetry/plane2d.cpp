@@ -30,6 +30,8 @@ bool Plane2dOptions::IsValid(std::string* error) const {
   else if (threads < 0) out << "threads must be >= 0, got " << threads;
   else if (!(min_self_map_displacement >= 0.0))
     out << "min_self_map_displacement must be >= 0, got " << min_self_map_displacement;
+  else if (!(second_plane_below >= 0.0))
+    out << "second_plane_below must be >= 0, got " << second_plane_below;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -91,6 +93,20 @@ Eigen::MatrixXd SamplePoints(const Eigen::MatrixXd& Y, const std::vector<int>& s
     P.row(i) = Y.row(samples[i]);
   }
   return P;
+}
+
+// Mean distance between each row of P and its image's under sigma, over size (0 when sigma does
+// not match P or size is not positive; entries outside P are skipped).
+double Displacement(const Eigen::MatrixXd& P, const std::vector<int>& sigma, double size) {
+  if (sigma.size() != static_cast<size_t>(P.rows()) || !(size > 0.0)) return 0.0;
+  double sum = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < sigma.size(); ++i) {
+    if (sigma[i] < 0 || sigma[i] >= P.rows()) continue;
+    sum += (P.row(i) - P.row(sigma[i])).norm();
+    ++count;
+  }
+  return count > 0 ? sum / count / size : 0.0;
 }
 
 // One detection: the samples in 2D (X) and in the 3D embedding (P), and the candidates found.
@@ -280,21 +296,8 @@ class Plane2dSearch {
 
   void Consider(Candidate c) {
     c.total = c.score + options_.intrinsic_weight * c.intrinsic;
-    c.displacement = Displacement(c.sigma);
+    c.displacement = Displacement(P_, c.sigma, size3_);
     if (std::isfinite(c.total)) candidates_.push_back(std::move(c));
-  }
-
-  // Mean distance in the 3D embedding between each sample and its image, over the RMS radius.
-  double Displacement(const std::vector<int>& sigma) const {
-    if (sigma.size() != static_cast<size_t>(P_.rows()) || !(size3_ > 0.0)) return 0.0;
-    double sum = 0.0;
-    int count = 0;
-    for (size_t i = 0; i < sigma.size(); ++i) {
-      if (sigma[i] < 0 || sigma[i] >= P_.rows()) continue;
-      sum += (P_.row(i) - P_.row(sigma[i])).norm();
-      ++count;
-    }
-    return count > 0 ? sum / count / size3_ : 0.0;
   }
 
   // The candidate of the lowest total (the first on ties) among those whose self map moves the
@@ -329,6 +332,16 @@ class Plane2dSearch {
 };
 
 }  // namespace
+
+double SampleSelfMapDisplacement(const Eigen::MatrixXd& Y, const std::vector<int>& samples,
+                                 const std::vector<int>& sigma) {
+  if (sigma.size() != samples.size()) {
+    throw InvalidInputError("symmetry plane2d: a self map of " + std::to_string(sigma.size()) +
+                            " entries for " + std::to_string(samples.size()) + " samples");
+  }
+  const Eigen::MatrixXd P = SamplePoints(Y, samples);
+  return Displacement(P, sigma, RmsRadius(P));
+}
 
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
                                      const Eigen::MatrixXd& Y, const Plane2dOptions& options,

@@ -68,6 +68,11 @@ struct Plane2dOptions {
   // A self map near the identity pairs samples on one side of the body, and the symmetrization
   // then presses the body into the plane.
   double min_self_map_displacement = 0.0;
+  // When the chosen self map moves the samples less than this, the stage also proposes the best
+  // candidate that moves them at least this much as a second plane hypothesis (SymmetryStage::
+  // RunAlternative), and each pair chooses between the shape's two planes by its flip score;
+  // 0: off. Unlike min_self_map_displacement it decides nothing for the shape alone.
+  double second_plane_below = 0.0;
   // Threads of the 2D embedding's SMACOF and of the refinement of the line directions and of the
   // 3D candidates (0: all cores). The result does not depend on it.
   int threads = 0;
@@ -85,6 +90,12 @@ Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations
 // own). Returns the plane in the coordinates of Y, the sample self map, per-sample
 // confidence and the score of the chosen candidate (in its space). Throws InvalidInputError on
 // inconsistent shapes, ConfigError on invalid options.
+// The mean distance between each sample's point in Y (#V x 3) and its image's under sigma (#S,
+// sample indices), over the samples' RMS radius: how far the self map moves the samples. Throws
+// InvalidInputError when sigma does not match the samples.
+double SampleSelfMapDisplacement(const Eigen::MatrixXd& Y, const std::vector<int>& samples,
+                                 const std::vector<int>& sigma);
+
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
                                      const Eigen::MatrixXd& Y, const Plane2dOptions& options,
                                      const Eigen::MatrixXd& G = Eigen::MatrixXd(),

@@ -1,7 +1,9 @@
 // The symmetry stages: thin adapters around DetectSymmetryPlane2d / DetectSymmetryPlane3d.
+#include "stages/register.h"
+
+#include <algorithm>
 #include <memory>
 
-#include "stages/register.h"
 #include "stages/symmetry/plane2d.h"
 #include "stages/symmetry/plane3d.h"
 
@@ -20,15 +22,33 @@ ReflectionSearchOptions ReadSearchOptions(OptionReader& o) {
 class Plane2dStage : public SymmetryStage {
  public:
   explicit Plane2dStage(Plane2dOptions options) : options_(options) {}
-  SymmetryResult Run(const SymmetryInput& in) const override {
-    const int k = options_.spectral.num_eigenfunctions;
-    Eigen::VectorXd evals;
-    const Eigen::MatrixXd G =
-        k > 0 ? SampleSpectralCoordinates(in.surface, in.samples, k, &evals) : Eigen::MatrixXd();
-    return DetectSymmetryPlane2d(in.D, in.samples, in.embedding.Y, options_, G, evals);
+  SymmetryResult Run(const SymmetryInput& in) const override { return Detect(in, options_); }
+
+  // Below second_plane_below, the best candidate that moves the samples at least that much.
+  SymmetryResult RunAlternative(const SymmetryInput& in,
+                                const SymmetryResult& chosen) const override {
+    const double bound = options_.second_plane_below;
+    if (!(bound > 0.0) || chosen.sigma.empty() ||
+        SampleSelfMapDisplacement(in.embedding.Y, in.samples, chosen.sigma) >= bound) {
+      return SymmetryResult{};
+    }
+    Plane2dOptions options = options_;
+    options.min_self_map_displacement = std::max(options.min_self_map_displacement, bound);
+    SymmetryResult second = Detect(in, options);
+    if (second.sigma == chosen.sigma) return SymmetryResult{};
+    second.status.message = "second plane: " + second.status.message;
+    return second;
   }
 
  private:
+  static SymmetryResult Detect(const SymmetryInput& in, const Plane2dOptions& options) {
+    const int k = options.spectral.num_eigenfunctions;
+    Eigen::VectorXd evals;
+    const Eigen::MatrixXd G =
+        k > 0 ? SampleSpectralCoordinates(in.surface, in.samples, k, &evals) : Eigen::MatrixXd();
+    return DetectSymmetryPlane2d(in.D, in.samples, in.embedding.Y, options, G, evals);
+  }
+
   Plane2dOptions options_;
 };
 
@@ -60,6 +80,8 @@ void RegisterSymmetryStages(Registry& registry) {
                  p.smacof_iterations = o.GetInt("smacof_iterations", p.smacof_iterations, 0);
                  p.min_self_map_displacement = o.GetDouble("min_self_map_displacement",
                                                            p.min_self_map_displacement, 0.0, 10.0);
+                 p.second_plane_below =
+                     o.GetDouble("second_plane_below", p.second_plane_below, 0.0, 10.0);
                  p.refine_3d_iterations =
                      o.GetInt("refine_3d_iterations", p.refine_3d_iterations, 0);
                  p.candidates_3d = o.GetBool("candidates_3d", p.candidates_3d);

@@ -174,8 +174,10 @@ class TestEmbedding : public EmbeddingStage {
   double scale_;
 };
 
+// The identity self map; with `second`, also a second plane hypothesis (score 1 marks it).
 class TestSymmetry : public SymmetryStage {
  public:
+  explicit TestSymmetry(bool second = false) : second_(second) {}
   SymmetryResult Run(const SymmetryInput& in) const override {
     Count("symmetry");
     SymmetryResult r;
@@ -183,14 +185,26 @@ class TestSymmetry : public SymmetryStage {
     r.confidence = Eigen::VectorXd::Ones(in.samples.size());
     return r;
   }
+  SymmetryResult RunAlternative(const SymmetryInput& in, const SymmetryResult&) const override {
+    if (!second_) return SymmetryResult{};
+    Count("symmetry_second");
+    SymmetryResult r = Run(in);
+    r.score = 1.0;
+    return r;
+  }
+
+ private:
+  bool second_;
 };
 
+// The embedding as it is; about the second plane (TestSymmetry's), mirrored in x.
 class TestSymmetrize : public SymmetrizeStage {
  public:
-  SymmetrizeResult Run(const SymmetryInput& in, const SymmetryResult&) const override {
+  SymmetrizeResult Run(const SymmetryInput& in, const SymmetryResult& symmetry) const override {
     Count("symmetrize");
     SymmetrizeResult r;
     r.Y = in.embedding.Y;
+    if (symmetry.score == 1.0) r.Y.col(0) = -r.Y.col(0);
     return r;
   }
 };
@@ -219,6 +233,11 @@ class TestFlip : public FlipStage {
     ProductOf(pair.source, FeatureKey());
     FlipResult r;
     r.chosen = choose_;
+    // Lower with the source's second plane, higher with the target's: of the combinations of
+    // TestSymmetry's planes, source second / target first scores lowest.
+    r.scores.fill(1.0);
+    r.scores[choose_] = 1.0 - (pair.source.symmetry.score == 1.0 ? 0.5 : 0.0) +
+                        (pair.target.symmetry.score == 1.0 ? 0.25 : 0.0);
     r.status.message = "test flip chose " + std::to_string(choose_);
     return r;
   }
@@ -279,7 +298,8 @@ inline Registry TestRegistry() {
   r.Add("embedding", "test", "scaled input", [](OptionReader& o) {
     return std::make_unique<TestEmbedding>(o.GetDouble("scale", 1.0));
   });
-  r.Add("symmetry", "test", "identity", Simple<TestSymmetry>());
+  r.Add("symmetry", "test", "identity",
+        [](OptionReader& o) { return std::make_unique<TestSymmetry>(o.GetBool("second", false)); });
   r.Add("symmetrize", "test", "identity", Simple<TestSymmetrize>());
   r.Add("flip", "test", "fixed", [](OptionReader& o) {
     return std::make_unique<TestFlip>(o.GetInt("choose", 0, 0, 3));
@@ -316,9 +336,9 @@ inline std::string WriteTestDataset(const std::string& root, int count,
          "evaluation: {geodesics: test}\n" + variants;
 }
 
-// Record: {"r":"source target chosen oracle mean"} (a JSON object, as the runner requires)
-// with mean the Euclidean error on the target input mesh; WriteVariant writes summary.txt,
-// WriteExperiment comparison.txt.
+// Record: {"r":"source target chosen oracle mean | flip message"} (a JSON object, as the runner
+// requires) with mean the Euclidean error on the target input mesh; WriteVariant writes
+// summary.txt, WriteExperiment comparison.txt.
 class TestEvaluation : public RunEvaluation {
  public:
   class Variant : public VariantEvaluation {
@@ -339,7 +359,7 @@ class TestEvaluation : public RunEvaluation {
       out.precision(17);
       out << "{\"r\":\"" << pair.source_info.name << " " << pair.target_info.name << " "
           << outcome.flip.chosen << " " << outcome.oracle << " " << MeanError(pair, predicted)
-          << "\"}\n";
+          << " | " << outcome.flip.status.message << "\"}\n";
       if (pair.source_info.name == fail_source) *failure = "evaluation refused " + fail_source;
       return out.str();
     }
@@ -357,7 +377,7 @@ class TestEvaluation : public RunEvaluation {
     if (!(in >> p.source >> p.target)) throw InvalidInputError(where + ": not a test record");
     return p;
   }
-  // "source target chosen oracle mean" of a record.
+  // "source target chosen oracle mean | flip message" of a record.
   static std::string RecordBody(const std::string& record) {
     const size_t start = record.find("\"r\":\"");
     const size_t end = start == std::string::npos ? start : record.find('"', start + 5);

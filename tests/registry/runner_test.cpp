@@ -217,6 +217,37 @@ TEST(Runner, WritesTheCanonicalEmbeddingsWhenAsked) {
   }
 }
 
+// A symmetry stage with a second plane hypothesis: each shape is kept under both planes, the
+// flip stage scores every combination of a pair's planes, and the pair goes on with the lowest
+// (here the source's second plane, whose embedding is mirrored in x, with the target's first:
+// the map becomes the grid's mirror); shapes.csv says which shapes have one.
+TEST(Runner, APairTakesTheCombinationOfPlanesItsFlipStageScoresLowest) {
+  TempDir tmp;
+  std::string config = WriteTestDataset(tmp.File("data"), 3);
+  const RunResult plain = RunConfig(config, tmp.File("plain"), tmp.File("cache"));
+  ASSERT_TRUE(plain.stats.ok());
+  EXPECT_EQ(Get(plain.calls, "flip"), 6);
+  EXPECT_EQ(Get(plain.calls, "symmetry_second"), 0);
+  const std::string from = "symmetry: {type: test}";
+  config.replace(config.find(from), from.size(), "symmetry: {type: test, second: true}");
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  ASSERT_TRUE(run.stats.ok());
+  EXPECT_EQ(Get(run.calls, "symmetry_second"), 3);
+  EXPECT_EQ(Get(run.calls, "flip"), 6 * 4);
+  const std::string identity = ReadText(tmp.File("plain/base/maps/s0_s1.map"));
+  EXPECT_EQ(identity.substr(0, 6), "1\n2\n3\n");
+  EXPECT_NE(ReadText(tmp.File("out/base/maps/s0_s1.map")), identity);
+  const std::string record =
+      TestEvaluation::RecordBody(ReadText(tmp.File("out/base/pairs/s0_s1.rec")));
+  EXPECT_NE(record.find("planes (source/target): first/first 1, first/second 1.25, second/first "
+                        "0.5, second/second 0.75; chosen second/first"),
+            std::string::npos)
+      << record;
+  const std::string shapes = ReadText(tmp.File("out/base/shapes.csv"));
+  EXPECT_NE(shapes.find("second_plane"), std::string::npos) << shapes;
+  EXPECT_NE(ReadText(tmp.File("plain/base/shapes.csv")).find("second_plane"), std::string::npos);
+}
+
 TEST(Runner, SecondIdenticalRunRecomputesNothing) {
   TempDir tmp;
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
@@ -470,7 +501,8 @@ TEST(Runner, ShapesOnlyShardsThenTargetShardsComputeEachShapeOnceAndEqualASingle
     shapes.on_shape = [&](const std::string& shape, const std::string& variant,
                           const std::vector<std::string>& stages) {
       if (variant == "base") {
-        EXPECT_EQ(stages.size(), 7u) << shape;  // preprocess ... symmetrize, the flip's product
+        // preprocess ... symmetrize, the second plane (none here), the flip's product
+        EXPECT_EQ(stages.size(), 8u) << shape;
         ++computed[shape];
       }
     };

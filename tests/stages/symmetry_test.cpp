@@ -230,5 +230,39 @@ TEST(Plane3d, RegisteredStageRunsAndRejectsBadOptions) {
                ConfigError);
 }
 
+// The registered plane2d stage on the figure with one arm removed, pressed flat (z * 0.02): its
+// choice is the plane across the thickness, whose self map moves the samples little; with
+// second_plane_below it also proposes the left-right plane as a second hypothesis (the pair
+// then chooses), and without the option, or for a choice that moves the samples enough, none.
+TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  auto make = [&](const std::string& yaml) {
+    return registry.CreateAs<SymmetryStage>("symmetry", YAML::Load(yaml), "t.yaml",
+                                            "pipeline.symmetry");
+  };
+  std::vector<int> mirror;
+  Surface figure = testing::SymmetricFigure(1, false, &mirror);
+  figure.V.col(2) *= 0.02;
+  const std::vector<int> samples = AllVertices(figure.NumVertices());
+  EmbeddingResult embedding;
+  embedding.Y = figure.V;
+  const Eigen::MatrixXd D = EuclideanDistances(figure.V, samples);
+  const SymmetryInput input{figure, samples, D, embedding};
+  const auto stage = make("{type: plane2d, second_plane_below: 0.3}");
+  const SymmetryResult first = stage->Run(input);
+  EXPECT_LT(AngleDeg(first.normal, Eigen::Vector3d::UnitZ()), 1.0) << first.status.message;
+  EXPECT_LT(SampleSelfMapDisplacement(figure.V, samples, first.sigma), 0.3);
+  const SymmetryResult second = stage->RunAlternative(input, first);
+  ASSERT_EQ(second.sigma.size(), samples.size()) << second.status.message;
+  EXPECT_LT(AngleDeg(second.normal, Eigen::Vector3d::UnitX()), 1.0) << second.status.message;
+  EXPECT_GE(SampleSelfMapDisplacement(figure.V, samples, second.sigma), 0.3);
+  EXPECT_EQ(second.status.message.rfind("second plane: ", 0), 0u) << second.status.message;
+  // The option off (the default), or a chosen plane that moves the samples enough: none.
+  EXPECT_TRUE(make("{type: plane2d}")->RunAlternative(input, first).sigma.empty());
+  EXPECT_TRUE(stage->RunAlternative(input, second).sigma.empty());
+  EXPECT_THROW(make("{type: plane2d, second_plane_below: -1}"), ConfigError);
+}
+
 }  // namespace
 }  // namespace symembed
