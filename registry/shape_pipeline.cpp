@@ -442,14 +442,17 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
             SymmetryInput{data->surface, data->samples, D(), data->embedding});
       },
       &out.times);
-  const SymmetrizeResult symmetrized = Cached<SymmetrizeResult>(
-      context, "symmetrize", symz_key,
-      [&] {
-        return pipeline.symmetrize->Run(
-            SymmetryInput{data->surface, data->samples, D(), data->embedding}, data->symmetry);
-      },
-      &out.times);
-  // The second plane hypothesis and the embedding symmetrized about it, keyed like the first.
+  // The embedding symmetrized about a plane; the second plane's keyed like the first.
+  auto symmetrize = [&](const char* name, uint64_t key, const SymmetryResult& symmetry) {
+    return Cached<SymmetrizeResult>(
+        context, name, key,
+        [&] {
+          return pipeline.symmetrize->Run(
+              SymmetryInput{data->surface, data->samples, D(), data->embedding}, symmetry);
+        },
+        &out.times);
+  };
+  const SymmetrizeResult symmetrized = symmetrize("symmetrize", symz_key, data->symmetry);
   const uint64_t alt_sym_key = Hasher(sym_key).AddString("second plane").Digest();
   const uint64_t alt_symz_key = Hasher(symz_key).AddString("second plane").Digest();
   const SymmetryResult second = Cached<SymmetryResult>(
@@ -461,13 +464,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
       &out.times);
   std::optional<SymmetrizeResult> second_symmetrized;
   if (!second.sigma.empty()) {
-    second_symmetrized = Cached<SymmetrizeResult>(
-        context, "symmetrize_second", alt_symz_key,
-        [&] {
-          return pipeline.symmetrize->Run(
-              SymmetryInput{data->surface, data->samples, D(), data->embedding}, second);
-        },
-        &out.times);
+    second_symmetrized = symmetrize("symmetrize_second", alt_symz_key, second);
   }
   distances.reset();
 
