@@ -51,4 +51,16 @@ int ProcrustesReflection(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
   return FitProcrustes(X, Y).det_sign;
 }
 
+double SelfMapDisplacement(const Eigen::MatrixXd& P, const std::vector<int>& sigma) {
+  if (sigma.empty() || sigma.size() != static_cast<size_t>(P.rows())) return -1.0;
+  const double size = RmsRadius(P);
+  if (!(size > 0.0)) return -1.0;
+  double sum = 0.0;
+  for (size_t i = 0; i < sigma.size(); ++i) {
+    if (sigma[i] < 0 || sigma[i] >= P.rows()) return -1.0;
+    sum += (P.row(i) - P.row(sigma[i])).norm();
+  }
+  return sum / sigma.size() / size;
+}
+
 }  // namespace symembed

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <vector>
 
 namespace symembed {
 
@@ -18,6 +19,11 @@ double RmsRadius(const Eigen::MatrixBase<Derived>& P) {
   const Eigen::Matrix<double, 1, Derived::ColsAtCompileTime> c = P.colwise().mean();
   return std::sqrt((P.rowwise() - c).rowwise().squaredNorm().mean());
 }
+
+// The mean distance between each row of P (points as rows) and the row sigma names as its image,
+// over RmsRadius(P): how far a self map of the point set moves its points, scale-free. -1 when
+// sigma does not give every row an image among P's rows or P has no extent.
+double SelfMapDisplacement(const Eigen::MatrixXd& P, const std::vector<int>& sigma);
 
 struct ProcrustesOptions {
   // Allow improper orthogonal matrices (det -1). When false, R is a proper rotation.

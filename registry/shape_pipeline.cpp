@@ -230,19 +230,11 @@ double GroundTruthGeodesicAsymmetry(const Surface& surface, const std::vector<in
 }
 
 double SelfMapDisplacement(const ShapeData& data) {
-  const std::vector<int>& sigma = data.symmetry.sigma;
   const Eigen::MatrixXd& Y = data.embedding.Y;
-  if (sigma.size() != data.samples.size() || sigma.empty()) return -1.0;
+  if (data.symmetry.sigma.size() != data.samples.size()) return -1.0;
   Eigen::MatrixXd P(data.samples.size(), Y.cols());
   for (size_t i = 0; i < data.samples.size(); ++i) P.row(i) = Y.row(data.samples[i]);
-  const double size = RmsRadius(P);
-  if (!(size > 0.0)) return -1.0;
-  double sum = 0.0;
-  for (size_t i = 0; i < sigma.size(); ++i) {
-    if (sigma[i] < 0 || sigma[i] >= P.rows()) return -1.0;
-    sum += (P.row(i) - P.row(sigma[i])).norm();
-  }
-  return sum / sigma.size() / size;
+  return SelfMapDisplacement(P, data.symmetry.sigma);
 }
 
 double CanonicalXSpread(const Eigen::MatrixX3d& Y) {

@@ -95,20 +95,6 @@ Eigen::MatrixXd SamplePoints(const Eigen::MatrixXd& Y, const std::vector<int>& s
   return P;
 }
 
-// Mean distance between each row of P and its image's under sigma, over size (0 when sigma does
-// not match P or size is not positive; entries outside P are skipped).
-double Displacement(const Eigen::MatrixXd& P, const std::vector<int>& sigma, double size) {
-  if (sigma.size() != static_cast<size_t>(P.rows()) || !(size > 0.0)) return 0.0;
-  double sum = 0.0;
-  int count = 0;
-  for (size_t i = 0; i < sigma.size(); ++i) {
-    if (sigma[i] < 0 || sigma[i] >= P.rows()) continue;
-    sum += (P.row(i) - P.row(sigma[i])).norm();
-    ++count;
-  }
-  return count > 0 ? sum / count / size : 0.0;
-}
-
 // One detection: the samples in 2D (X) and in the 3D embedding (P), and the candidates found.
 // Candidates are added in a fixed order (lines of the 2D embedding by angle, the 3D search, the
 // sign flips of the eigenfunctions), so the choice does not depend on the threads.
@@ -296,7 +282,7 @@ class Plane2dSearch {
 
   void Consider(Candidate c) {
     c.total = c.score + options_.intrinsic_weight * c.intrinsic;
-    c.displacement = Displacement(P_, c.sigma, size3_);
+    c.displacement = SelfMapDisplacement(P_, c.sigma);
     if (std::isfinite(c.total)) candidates_.push_back(std::move(c));
   }
 
@@ -339,8 +325,7 @@ double SampleSelfMapDisplacement(const Eigen::MatrixXd& Y, const std::vector<int
     throw InvalidInputError("symmetry plane2d: a self map of " + std::to_string(sigma.size()) +
                             " entries for " + std::to_string(samples.size()) + " samples");
   }
-  const Eigen::MatrixXd P = SamplePoints(Y, samples);
-  return Displacement(P, sigma, RmsRadius(P));
+  return SelfMapDisplacement(SamplePoints(Y, samples), sigma);
 }
 
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,

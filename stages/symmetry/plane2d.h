@@ -91,8 +91,9 @@ Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations
 // confidence and the score of the chosen candidate (in its space). Throws InvalidInputError on
 // inconsistent shapes, ConfigError on invalid options.
 // The mean distance between each sample's point in Y (#V x 3) and its image's under sigma (#S,
-// sample indices), over the samples' RMS radius: how far the self map moves the samples. Throws
-// InvalidInputError when sigma does not match the samples.
+// sample indices), over the samples' RMS radius: how far the self map moves the samples
+// (SelfMapDisplacement of core/procrustes.h). Throws InvalidInputError when sigma does not match
+// the samples or a sample id is out of range.
 double SampleSelfMapDisplacement(const Eigen::MatrixXd& Y, const std::vector<int>& samples,
                                  const std::vector<int>& sigma);
 

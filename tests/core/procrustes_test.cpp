@@ -72,5 +72,20 @@ TEST(Procrustes, RejectsMismatchedShapes) {
                InvalidInputError);
 }
 
+// Swapping two points of a square moves each by the side; the measure does not change with the
+// point set's scale, and is -1 for an image outside the set or a set without extent.
+TEST(SelfMapDisplacement, MeanMoveOverTheRmsRadiusScaleFree) {
+  Eigen::MatrixXd P(4, 2);
+  P << 0, 0, 1, 0, 1, 1, 0, 1;
+  const std::vector<int> swap = {1, 0, 2, 3};
+  const double expected = (1.0 + 1.0) / 4 / RmsRadius(P);
+  EXPECT_NEAR(SelfMapDisplacement(P, swap), expected, 1e-12);
+  EXPECT_NEAR(SelfMapDisplacement(Eigen::MatrixXd(3.0 * P), swap), expected, 1e-12);
+  EXPECT_EQ(SelfMapDisplacement(P, {0, 1, 2, 3}), 0.0);
+  EXPECT_EQ(SelfMapDisplacement(P, {1, 0, 2, 4}), -1.0);
+  EXPECT_EQ(SelfMapDisplacement(P, {1, 0}), -1.0);
+  EXPECT_EQ(SelfMapDisplacement(Eigen::MatrixXd::Ones(4, 2), swap), -1.0);
+}
+
 }  // namespace
 }  // namespace symembed
