@@ -72,7 +72,7 @@ struct Plane2dOptions {
   // candidate that moves them at least this much as a second plane hypothesis (SymmetryStage::
   // RunAlternative), and each pair chooses between the shape's two planes by its flip score;
   // 0: off. Unlike min_self_map_displacement it decides nothing for the shape alone.
-  double second_plane_below = 0.0;
+  double second_plane_below = 0.4;
   // Threads of the 2D embedding's SMACOF and of the refinement of the line directions and of the
   // 3D candidates (0: all cores). The result does not depend on it.
   int threads = 0;

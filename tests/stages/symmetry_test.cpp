@@ -232,8 +232,9 @@ TEST(Plane3d, RegisteredStageRunsAndRejectsBadOptions) {
 
 // The registered plane2d stage on the figure with one arm removed, pressed flat (z * 0.02): its
 // choice is the plane across the thickness, whose self map moves the samples little; with
-// second_plane_below it also proposes the left-right plane as a second hypothesis (the pair
-// then chooses), and without the option, or for a choice that moves the samples enough, none.
+// second_plane_below (default 0.4) it also proposes the left-right plane as a second hypothesis
+// (the pair then chooses), and with the option off, or for a choice that moves the samples
+// enough, none.
 TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
   Registry registry;
   RegisterBuiltinStages(registry);
@@ -258,8 +259,10 @@ TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
   EXPECT_LT(AngleDeg(second.normal, Eigen::Vector3d::UnitX()), 1.0) << second.status.message;
   EXPECT_GE(SampleSelfMapDisplacement(figure.V, samples, second.sigma), 0.3);
   EXPECT_EQ(second.status.message.rfind("second plane: ", 0), 0u) << second.status.message;
-  // The option off (the default), or a chosen plane that moves the samples enough: none.
-  EXPECT_TRUE(make("{type: plane2d}")->RunAlternative(input, first).sigma.empty());
+  // The default bound (0.4) proposes it too; the option off, or a chosen plane that moves the
+  // samples enough: none.
+  EXPECT_FALSE(make("{type: plane2d}")->RunAlternative(input, first).sigma.empty());
+  EXPECT_TRUE(make("{type: plane2d, second_plane_below: 0}")->RunAlternative(input, first).sigma.empty());
   EXPECT_TRUE(stage->RunAlternative(input, second).sigma.empty());
   EXPECT_THROW(make("{type: plane2d, second_plane_below: -1}"), ConfigError);
 }
