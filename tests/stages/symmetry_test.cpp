@@ -262,7 +262,8 @@ TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
   // The default bound (0.4) proposes it too; the option off, or a chosen plane that moves the
   // samples enough: none.
   EXPECT_FALSE(make("{type: plane2d}")->RunAlternative(input, first).sigma.empty());
-  EXPECT_TRUE(make("{type: plane2d, second_plane_below: 0}")->RunAlternative(input, first).sigma.empty());
+  EXPECT_TRUE(
+      make("{type: plane2d, second_plane_below: 0}")->RunAlternative(input, first).sigma.empty());
   EXPECT_TRUE(stage->RunAlternative(input, second).sigma.empty());
   EXPECT_THROW(make("{type: plane2d, second_plane_below: -1}"), ConfigError);
 }
