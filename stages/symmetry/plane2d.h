@@ -84,12 +84,6 @@ struct Plane2dOptions {
 // `threads` threads (0: all cores); its result does not depend on them.
 Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations, int threads);
 
-// D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
-// embedding; G: #S x K spectral coordinates of the samples (SampleSpectralCoordinates), or empty
-// to leave out step 5; evals: their K eigenvalues (or empty: each eigenfunction checked on its
-// own). Returns the plane in the coordinates of Y, the sample self map, per-sample
-// confidence and the score of the chosen candidate (in its space). Throws InvalidInputError on
-// inconsistent shapes, ConfigError on invalid options.
 // The mean distance between each sample's point in Y (#V x 3) and its image's under sigma (#S,
 // sample indices), over the samples' RMS radius: how far the self map moves the samples
 // (SelfMapDisplacement of core/procrustes.h). Throws InvalidInputError when sigma does not match
@@ -97,6 +91,12 @@ Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations
 double SampleSelfMapDisplacement(const Eigen::MatrixXd& Y, const std::vector<int>& samples,
                                  const std::vector<int>& sigma);
 
+// D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
+// embedding; G: #S x K spectral coordinates of the samples (SampleSpectralCoordinates), or empty
+// to leave out step 5; evals: their K eigenvalues (or empty: each eigenfunction checked on its
+// own). Returns the plane in the coordinates of Y, the sample self map, per-sample
+// confidence and the score of the chosen candidate (in its space). Throws InvalidInputError on
+// inconsistent shapes, ConfigError on invalid options.
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
                                      const Eigen::MatrixXd& Y, const Plane2dOptions& options,
                                      const Eigen::MatrixXd& G = Eigen::MatrixXd(),
