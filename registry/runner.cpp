@@ -192,6 +192,7 @@ class VariantRun {
             StageCounters shape_counters;
             ShapeContext context{&cache_, &shape_counters, options_.load_mesh};
             auto outcome = std::make_unique<ShapeOutcome>(ComputeShape(*shape, pipeline_, context));
+            const std::vector<std::string> warnings = outcome->warnings;
             counters_->Add(shape_counters);
             if (options_.shapes_only) {
               ReportShape(order[i], shape_counters);
@@ -203,6 +204,9 @@ class VariantRun {
             }
             std::lock_guard<std::mutex> lock(mutex_);
             ++stats_->shapes_computed;
+            for (const std::string& warning : warnings) {
+              stats_->warnings.push_back(shape->mesh_path + ": " + warning);
+            }
           } catch (const std::exception& e) {
             // Stages see a surface, not a file: name the file for the user.
             std::string message = e.what();

@@ -120,7 +120,9 @@ struct RunStats {
   int pairs_total = 0;            // pairs of the run (shard), all variants
   int pairs_skipped = 0;          // kept from an earlier run (--resume)
   int pairs_recomputed = 0;       // --resume: had a record that did not prove itself
-  std::vector<std::string> warnings;  // one per pair computed again, naming its record and why
+  // One per pair computed again, naming its record and why, and one per shape whose second plane
+  // hypothesis was dropped, naming its mesh.
+  std::vector<std::string> warnings;
   int pairs_done = 0;             // computed now
   std::vector<Failure> failures;  // this run's, all variants
   bool ok() const { return failures.empty(); }

@@ -447,16 +447,26 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   const SymmetrizeResult symmetrized = symmetrize("symmetrize", symz_key, data->symmetry);
   const uint64_t alt_sym_key = Hasher(sym_key).AddString("second plane").Digest();
   const uint64_t alt_symz_key = Hasher(symz_key).AddString("second plane").Digest();
-  const SymmetryResult second = Cached<SymmetryResult>(
-      context, "symmetry_second", alt_sym_key,
-      [&] {
-        return pipeline.symmetry->RunAlternative(
-            SymmetryInput{data->surface, data->samples, D(), data->embedding}, data->symmetry);
-      },
-      &out.times);
+  // The second plane is a hypothesis beside a plane that worked: when its search or its
+  // symmetrization fails on this shape, the shape goes on with the first plane alone.
+  SymmetryResult second;
   std::optional<SymmetrizeResult> second_symmetrized;
-  if (!second.sigma.empty()) {
-    second_symmetrized = symmetrize("symmetrize_second", alt_symz_key, second);
+  std::string second_failure;
+  try {
+    second = Cached<SymmetryResult>(
+        context, "symmetry_second", alt_sym_key,
+        [&] {
+          return pipeline.symmetry->RunAlternative(
+              SymmetryInput{data->surface, data->samples, D(), data->embedding}, data->symmetry);
+        },
+        &out.times);
+    if (!second.sigma.empty()) {
+      second_symmetrized = symmetrize("symmetrize_second", alt_symz_key, second);
+    }
+  } catch (const InvalidInputError& e) {
+    second_failure = e.what();
+  } catch (const SolverError& e) {
+    second_failure = e.what();
   }
   distances.reset();
 
@@ -467,17 +477,30 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
 
   AddShapeMeasures(sampling, symmetrized, axis_ratio, *data, &out);
 
-  out.report.push_back({"second_plane", second_symmetrized ? 1.0 : 0.0});
   out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, symz_key}, data.get(), &out);
-  if (second_symmetrized) {
-    auto alternative = std::make_shared<ShapeData>(*data);
-    alternative->symmetry = second;
-    alternative->Y = CanonicalFrame(second_symmetrized->Y, nullptr, nullptr, nullptr);
-    const uint64_t alt_key =
-        PrepareNeeds(pipeline, context, {pre_key, samp_key, alt_symz_key}, alternative.get(), &out);
-    out.key = Hasher(out.key).AddU64(alt_key).Digest();
-    out.alternative = std::move(alternative);
+  if (second_symmetrized && second_failure.empty()) {
+    try {
+      auto alternative = std::make_shared<ShapeData>(*data);
+      alternative->symmetry = second;
+      alternative->Y = CanonicalFrame(second_symmetrized->Y, nullptr, nullptr, nullptr);
+      const uint64_t alt_key = PrepareNeeds(pipeline, context, {pre_key, samp_key, alt_symz_key},
+                                            alternative.get(), &out);
+      out.key = Hasher(out.key).AddU64(alt_key).Digest();
+      out.alternative = std::move(alternative);
+    } catch (const InvalidInputError& e) {
+      second_failure = e.what();
+    } catch (const SolverError& e) {
+      second_failure = e.what();
+    }
   }
+  if (!second_failure.empty()) {
+    out.warnings.push_back(
+        "second plane hypothesis dropped (the shape goes on with its first "
+        "plane): " +
+        second_failure);
+  }
+  out.report.push_back(
+      {"second_plane", !second_failure.empty() ? -1.0 : (out.alternative ? 1.0 : 0.0)});
   out.data = std::move(data);
   return out;
 }

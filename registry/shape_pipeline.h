@@ -70,6 +70,8 @@ struct ShapeOutcome {
   ShapeGroundTruth ground_truth;      // input ids (empty when the dataset has none)
   std::vector<StageTime> times;
   Report report;                      // preprocess report, then stage measures
+  // What went wrong without failing the shape (a second plane hypothesis dropped), one line each.
+  std::vector<std::string> warnings;
   uint64_t key = 0;  // cache key of `data` and `alternative` (all stages, basis and products)
 };
 

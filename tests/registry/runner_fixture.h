@@ -174,10 +174,12 @@ class TestEmbedding : public EmbeddingStage {
   double scale_;
 };
 
-// The identity self map; with `second`, also a second plane hypothesis (score 1 marks it).
+// The identity self map; with `second`, also a second plane hypothesis (score 1 marks it; with
+// `second_fails`, score 2, which TestSymmetrize cannot symmetrize).
 class TestSymmetry : public SymmetryStage {
  public:
-  explicit TestSymmetry(bool second = false) : second_(second) {}
+  explicit TestSymmetry(bool second = false, bool second_fails = false)
+      : second_(second), second_fails_(second_fails) {}
   SymmetryResult Run(const SymmetryInput& in) const override {
     Count("symmetry");
     SymmetryResult r;
@@ -189,19 +191,21 @@ class TestSymmetry : public SymmetryStage {
     if (!second_) return SymmetryResult{};
     Count("symmetry_second");
     SymmetryResult r = Run(in);
-    r.score = 1.0;
+    r.score = second_fails_ ? 2.0 : 1.0;
     return r;
   }
 
  private:
-  bool second_;
+  bool second_, second_fails_;
 };
 
-// The embedding as it is; about the second plane (TestSymmetry's), mirrored in x.
+// The embedding as it is; about the second plane (TestSymmetry's), mirrored in x; about a plane
+// of score 2, a SolverError.
 class TestSymmetrize : public SymmetrizeStage {
  public:
   SymmetrizeResult Run(const SymmetryInput& in, const SymmetryResult& symmetry) const override {
     Count("symmetrize");
+    if (symmetry.score == 2.0) throw SolverError("test symmetrize: no solution about this plane");
     SymmetrizeResult r;
     r.Y = in.embedding.Y;
     if (symmetry.score == 1.0) r.Y.col(0) = -r.Y.col(0);
@@ -298,8 +302,10 @@ inline Registry TestRegistry() {
   r.Add("embedding", "test", "scaled input", [](OptionReader& o) {
     return std::make_unique<TestEmbedding>(o.GetDouble("scale", 1.0));
   });
-  r.Add("symmetry", "test", "identity",
-        [](OptionReader& o) { return std::make_unique<TestSymmetry>(o.GetBool("second", false)); });
+  r.Add("symmetry", "test", "identity", [](OptionReader& o) {
+    const bool second = o.GetBool("second", false);
+    return std::make_unique<TestSymmetry>(second, o.GetBool("second_fails", false));
+  });
   r.Add("symmetrize", "test", "identity", Simple<TestSymmetrize>());
   r.Add("flip", "test", "fixed", [](OptionReader& o) {
     return std::make_unique<TestFlip>(o.GetInt("choose", 0, 0, 3));

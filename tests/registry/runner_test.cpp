@@ -248,6 +248,33 @@ TEST(Runner, APairTakesTheCombinationOfPlanesItsFlipStageScoresLowest) {
   EXPECT_NE(ReadText(tmp.File("plain/base/shapes.csv")).find("second_plane"), std::string::npos);
 }
 
+// A second plane hypothesis whose symmetrization fails is dropped: the shapes go on with their
+// first planes (maps as without the hypothesis), nothing fails, the run warns naming each mesh,
+// and shapes.csv marks the shapes with -1.
+TEST(Runner, ASecondPlaneThatFailsIsDroppedAndTheShapeGoesOn) {
+  TempDir tmp;
+  std::string config = WriteTestDataset(tmp.File("data"), 3);
+  const RunResult plain = RunConfig(config, tmp.File("plain"), tmp.File("cache"));
+  ASSERT_TRUE(plain.stats.ok());
+  const std::string from = "symmetry: {type: test}";
+  config.replace(config.find(from), from.size(),
+                 "symmetry: {type: test, second: true, second_fails: true}");
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  ASSERT_TRUE(run.stats.ok());
+  EXPECT_EQ(run.stats.shapes_computed, 3);
+  EXPECT_EQ(Get(run.calls, "symmetry_second"), 3);
+  EXPECT_EQ(Get(run.calls, "flip"), 6);
+  EXPECT_EQ(ReadText(tmp.File("out/base/maps/s0_s1.map")),
+            ReadText(tmp.File("plain/base/maps/s0_s1.map")));
+  ASSERT_EQ(run.stats.warnings.size(), 3u);
+  for (const std::string& warning : run.stats.warnings) {
+    EXPECT_NE(warning.find(".off: second plane hypothesis dropped"), std::string::npos) << warning;
+    EXPECT_NE(warning.find("no solution about this plane"), std::string::npos) << warning;
+  }
+  const std::string shapes = ReadText(tmp.File("out/base/shapes.csv"));
+  EXPECT_NE(shapes.find(",-1"), std::string::npos) << shapes;
+}
+
 TEST(Runner, SecondIdenticalRunRecomputesNothing) {
   TempDir tmp;
   const std::string config = WriteTestDataset(tmp.File("data"), 3);
