@@ -38,6 +38,20 @@ struct Distances {
   Eigen::MatrixXd D;  // #S x #V, float precision
 };
 
+// Runs step; returns why it failed when it threw what bad data can cause (InvalidInputError,
+// SolverError), else "". For optional work whose failure must not fail the shape.
+template <typename Step>
+std::string FailureOf(Step&& step) {
+  try {
+    step();
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  } catch (const SolverError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 void Write(ArchiveWriter& out, const Distances& d) { out.FloatMatrix(d.D); }
 void Read(ArchiveReader& in, Distances* d) { d->D = in.FloatMatrix(); }
 
@@ -451,8 +465,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   // symmetrization fails on this shape, the shape goes on with the first plane alone.
   SymmetryResult second;
   std::optional<SymmetrizeResult> second_symmetrized;
-  std::string second_failure;
-  try {
+  std::string second_failure = FailureOf([&] {
     second = Cached<SymmetryResult>(
         context, "symmetry_second", alt_sym_key,
         [&] {
@@ -463,11 +476,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
     if (!second.sigma.empty()) {
       second_symmetrized = symmetrize("symmetrize_second", alt_symz_key, second);
     }
-  } catch (const InvalidInputError& e) {
-    second_failure = e.what();
-  } catch (const SolverError& e) {
-    second_failure = e.what();
-  }
+  });
   distances.reset();
 
   start = std::chrono::steady_clock::now();
@@ -479,7 +488,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
 
   out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, symz_key}, data.get(), &out);
   if (second_symmetrized && second_failure.empty()) {
-    try {
+    second_failure = FailureOf([&] {
       auto alternative = std::make_shared<ShapeData>(*data);
       alternative->symmetry = second;
       alternative->Y = CanonicalFrame(second_symmetrized->Y, nullptr, nullptr, nullptr);
@@ -487,16 +496,11 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
                                             alternative.get(), &out);
       out.key = Hasher(out.key).AddU64(alt_key).Digest();
       out.alternative = std::move(alternative);
-    } catch (const InvalidInputError& e) {
-      second_failure = e.what();
-    } catch (const SolverError& e) {
-      second_failure = e.what();
-    }
+    });
   }
   if (!second_failure.empty()) {
     out.warnings.push_back(
-        "second plane hypothesis dropped (the shape goes on with its first "
-        "plane): " +
+        "second plane hypothesis dropped (the shape goes on with its first plane): " +
         second_failure);
   }
   out.report.push_back(
