@@ -192,7 +192,7 @@ class VariantRun {
             StageCounters shape_counters;
             ShapeContext context{&cache_, &shape_counters, options_.load_mesh};
             auto outcome = std::make_unique<ShapeOutcome>(ComputeShape(*shape, pipeline_, context));
-            const std::vector<std::string> warnings = outcome->warnings;
+            const std::vector<std::string> warnings = std::move(outcome->warnings);
             counters_->Add(shape_counters);
             if (options_.shapes_only) {
               ReportShape(order[i], shape_counters);
