@@ -52,6 +52,10 @@ int SynthCommand(const Args& args) {
   parser.Option("vertices", "approximate vertex count of the rest shape", "5000");
   parser.Option("seed", "random seed (same options and seed: byte-identical files)", "1");
   parser.Option("remesh", "decimate every pose independently to N vertices (0: off)", "0");
+  parser.Option("remesh-anisotropy",
+                "> 1: the remeshing's edges this many times shorter along a random direction per "
+                "pose than across it (needs --remesh)",
+                "1");
   parser.Option("nonisometric", "per-pose bone length/thickness factors in [1-R, 1+R] (0: off)", "0");
   parser.Option("noise", "normal noise amplitude, fraction of the mean edge length (0: off)", "0");
   parser.Option("partial", "fraction of poses with a hand, foot or head cut away (0: off)", "0");
@@ -67,6 +71,7 @@ int SynthCommand(const Args& args) {
   options.vertices = parser.GetInt("vertices");
   options.seed = parser.GetInt("seed");
   options.remesh = parser.GetInt("remesh");
+  options.remesh_anisotropy = ParseDouble(parser, "remesh-anisotropy");
   options.nonisometric = ParseDouble(parser, "nonisometric");
   options.noise = ParseDouble(parser, "noise");
   options.partial = ParseDouble(parser, "partial");

@@ -76,6 +76,7 @@ std::unique_ptr<SyntheticDataset> CreateSyntheticDataset(OptionReader& options) 
   g.vertices = options.GetInt("vertices", 5000, 100, 10000000);
   g.seed = options.GetInt("seed", 1, 0);
   g.remesh = options.GetInt("remesh", 0, 0);
+  g.remesh_anisotropy = options.GetDouble("remesh_anisotropy", 1.0, 1.0, 20.0);
   g.nonisometric = options.GetDouble("nonisometric", 0.0, 0.0, 0.49);
   g.noise = options.GetDouble("noise", 0.0, 0.0, 1.0);
   g.partial = options.GetDouble("partial", 0.0, 0.0, 1.0);

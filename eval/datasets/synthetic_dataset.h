@@ -2,9 +2,9 @@
 // generated in-process into a cache folder on first use, then read with the pairs_vts loader.
 //
 // Options: kinds (list of humanoid, quadruped; default [humanoid]), poses (8), vertices (5000),
-// seed (1), remesh (0), nonisometric (0), noise (0), partial (0), pairs (0) — the generator
-// options of `symembed synth` — and cache (default results/.cache/synthetic/<hash of the
-// generator options>, relative to the working directory), plus the restrictions classes,
+// seed (1), remesh (0), remesh_anisotropy (1), nonisometric (0), noise (0), partial (0), pairs (0)
+// — the generator options of `symembed synth` — and cache (default results/.cache/synthetic/<hash
+// of the generator options>, relative to the working directory), plus the restrictions classes,
 // max_pairs, pairs_file. A cache folder holds exactly one option set: it is written to a
 // temporary sibling and renamed into place, so concurrent users see it complete or not at all.
 #pragma once

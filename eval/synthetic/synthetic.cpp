@@ -33,6 +33,12 @@ bool SynthOptions::IsValid(std::string* error) const {
   if (seed < 0) return fail("seed: must be >= 0");
   if (remesh < 0) return fail("remesh: must be >= 0 (0 = off)");
   if (remesh > 0 && remesh < 50) return fail("remesh: a target below 50 vertices is degenerate");
+  if (!(remesh_anisotropy >= 1.0 && remesh_anisotropy <= 20.0)) {
+    return fail("remesh_anisotropy: must be in [1, 20]");
+  }
+  if (remesh_anisotropy > 1.0 && remesh == 0) {
+    return fail("remesh_anisotropy: needs remesh > 0 (the anisotropy is the remeshing's)");
+  }
   if (!(nonisometric >= 0.0 && nonisometric < 0.5)) return fail("nonisometric: must be in [0, 0.5)");
   if (!(noise >= 0.0 && noise <= 1.0)) return fail("noise: must be in [0, 1]");
   if (!(partial >= 0.0 && partial <= 1.0)) return fail("partial: must be in [0, 1]");
@@ -47,6 +53,12 @@ std::string SynthOptionsText(const SynthOptions& o) {
   char buffer[64];
   out << "]\nposes: " << o.poses << "\nvertices: " << o.vertices << "\nseed: " << o.seed
       << "\nremesh: " << o.remesh;
+  // Written only when set, so that the text (and the cache folders named by its hash) of every
+  // option set without it stays what it was.
+  if (o.remesh_anisotropy != 1.0) {
+    std::snprintf(buffer, sizeof buffer, "%.17g", o.remesh_anisotropy);
+    out << "\nremesh_anisotropy: " << buffer;
+  }
   std::snprintf(buffer, sizeof buffer, "%.17g", o.nonisometric);
   out << "\nnonisometric: " << buffer;
   std::snprintf(buffer, sizeof buffer, "%.17g", o.noise);
@@ -64,6 +76,14 @@ void Shuffle(std::vector<T>& items, SynthRandom& random) {
   for (int i = static_cast<int>(items.size()) - 1; i > 0; --i) {
     std::swap(items[i], items[random.Index(i + 1)]);
   }
+}
+
+// A unit vector uniform on the sphere.
+Eigen::Vector3d RandomUnitVector(uint32_t seed) {
+  SynthRandom random(seed);
+  const double z = random.Uniform(-1.0, 1.0), phi = random.Uniform(0.0, 2.0 * M_PI);
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return Eigen::Vector3d(r * std::cos(phi), r * std::sin(phi), z);
 }
 
 }  // namespace
@@ -108,9 +128,18 @@ SynthClass GenerateClass(FigureKind kind, const SynthOptions& options) {
       notes.push_back("cut " + rest.figure.bones[cut_bone[p]].name);
     }
     if (options.remesh > 0 && options.remesh < shape.shape.surface.NumVertices()) {
-      shape.shape = Remesh(shape.shape, options.remesh, DeriveSeed(seed, "remesh", k, p));
+      Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+      std::string anisotropic;
+      if (options.remesh_anisotropy > 1.0) {
+        direction = RandomUnitVector(DeriveSeed(seed, "remesh_direction", k, p));
+        std::ostringstream note;
+        note << ", anisotropy " << options.remesh_anisotropy;
+        anisotropic = note.str();
+      }
+      shape.shape = Remesh(shape.shape, options.remesh, DeriveSeed(seed, "remesh", k, p),
+                           options.remesh_anisotropy, direction);
       notes.push_back("remeshed to " + std::to_string(shape.shape.surface.NumVertices()) +
-                      " vertices");
+                      " vertices" + anisotropic);
     }
     if (options.noise > 0.0) {
       AddNormalNoise(&shape.shape.surface, options.noise, DeriveSeed(seed, "noise", k, p));

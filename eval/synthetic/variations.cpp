@@ -1,8 +1,10 @@
 #include "eval/synthetic/variations.h"
 
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <cmath>
 
 #include "core/errors.h"
 #include "core/laplacian.h"
@@ -13,7 +15,8 @@ namespace symembed {
 
 namespace {
 
-// Collapse priority: squared edge length times a per-vertex factor of the removed vertex.
+// Collapse priority: squared edge length, stretched by `anisotropy` along `direction`, times a
+// per-vertex factor of the removed vertex.
 template <class MeshT>
 class ModJitteredLengthT : public OpenMesh::Decimater::ModBaseT<MeshT> {
  public:
@@ -22,13 +25,21 @@ class ModJitteredLengthT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   explicit ModJitteredLengthT(MeshT& mesh) : Base(mesh, false) {}
 
   void set_factors(const std::vector<double>* factors) { factors_ = factors; }
+  void set_stretch(double anisotropy, const Eigen::Vector3d& direction) {
+    extra_ = anisotropy * anisotropy - 1.0;
+    direction_ = direction;
+  }
 
   float collapse_priority(const CollapseInfo& ci) override {
-    return static_cast<float>((ci.p0 - ci.p1).sqrnorm() * (*factors_)[ci.v0.idx()]);
+    const auto e = ci.p0 - ci.p1;
+    const double along = e[0] * direction_.x() + e[1] * direction_.y() + e[2] * direction_.z();
+    return static_cast<float>((e.sqrnorm() + extra_ * along * along) * (*factors_)[ci.v0.idx()]);
   }
 
  private:
   const std::vector<double>* factors_ = nullptr;
+  double extra_ = 0.0;  // anisotropy^2 - 1
+  Eigen::Vector3d direction_ = Eigen::Vector3d::UnitX();
 };
 
 // Drops faces listed as false in keep_face and vertices no kept face uses; renumbers.
@@ -89,8 +100,11 @@ TrackedSurface CutPart(const TrackedSurface& shape, const Eigen::MatrixXd& weigh
   return KeepFaces(shape, keep);
 }
 
-TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t seed) {
+TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t seed,
+                      double anisotropy, const Eigen::Vector3d& direction) {
   SYMEMBED_CHECK(target_vertices >= 4, "remesh target must be >= 4 vertices");
+  SYMEMBED_CHECK(anisotropy >= 1.0, "remesh anisotropy must be >= 1");
+  SYMEMBED_CHECK(std::abs(direction.norm() - 1.0) < 1e-9, "remesh direction must be a unit vector");
   int skipped = 0;
   TriMesh mesh = FromSurface(shape.surface, &skipped);
   SYMEMBED_CHECK(skipped == 0, "remesh input is not a manifold mesh");
@@ -110,7 +124,15 @@ TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t
   decimater.add(length);
   decimater.add(flipping);
   decimater.module(length).set_factors(&factors);
+  decimater.module(length).set_stretch(anisotropy, direction);
   decimater.module(flipping).set_max_normal_deviation(45.0);
+  // Elongated triangles are the point of an anisotropic remeshing, slivers are not: a collapse
+  // that leaves a triangle thinner than the anisotropy asks for is refused.
+  typename OpenMesh::Decimater::ModAspectRatioT<TriMesh>::Handle aspect;
+  if (anisotropy > 1.0) {
+    decimater.add(aspect);
+    decimater.module(aspect).set_aspect_ratio(static_cast<float>(3.0 * anisotropy));
+  }
   SYMEMBED_CHECK(decimater.initialize(), "decimater did not initialize");
   decimater.decimate_to(static_cast<size_t>(target_vertices));
   mesh.garbage_collection();

@@ -29,7 +29,13 @@ TrackedSurface CutPart(const TrackedSurface& shape, const Eigen::MatrixXd& weigh
 // is the squared edge length times a random factor in [0.5, 1.5) of the removed vertex (seeded),
 // so different seeds keep different vertices; a normal-flip guard (45 degrees) keeps faces from
 // folding. Returns fewer collapses than asked when no legal collapse is left.
-TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t seed);
+// With anisotropy a > 1 an edge's length is measured as if the shape were stretched by a along
+// the unit vector `direction`, so the edges along it are collapsed last: the result has edges
+// about a times shorter along the direction than across it, triangles elongated across it (an
+// anisotropic remeshing, as scanners and remeshing tools produce).
+TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t seed,
+                      double anisotropy = 1.0,
+                      const Eigen::Vector3d& direction = Eigen::Vector3d::UnitX());
 
 // Moves every vertex along its normal by amplitude * mean_edge_length * u, u uniform in
 // [-1, 1) (seeded, drawn in vertex order).

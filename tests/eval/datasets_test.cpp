@@ -431,6 +431,18 @@ TEST(SyntheticDataset, OnePoseCannotFormAPair) {
   }
 }
 
+TEST(SyntheticDataset, AnAnisotropicRemeshingNeedsARemeshing) {
+  try {
+    Create("{type: synthetic, remesh_anisotropy: 3}");
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("remesh_anisotropy: needs remesh > 0"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(Create("{type: synthetic, remesh: 500, remesh_anisotropy: 0.5}"), ConfigError);
+  EXPECT_NO_THROW(Create("{type: synthetic, remesh: 500, remesh_anisotropy: 3}"));
+}
+
 TEST(SyntheticDataset, GeneratesIntoTheCacheOnceAndReadsIt) {
   TempDir dir;
   const std::string yaml = "{type: synthetic, kinds: [humanoid, quadruped], poses: 3, vertices: 800, "

@@ -256,6 +256,51 @@ TEST_P(SyntheticKinds, RemeshedPosesKeepExactGroundTruth) {
   EXPECT_NE(kept[0], kept[1]);
 }
 
+// Mean |e . d| over mean |e x d| of the edges e of s: the edge extent along the unit vector d
+// against across it.
+double EdgeExtentRatio(const Surface& s, const Eigen::Vector3d& d) {
+  double along = 0.0, across = 0.0;
+  for (int f = 0; f < s.NumFaces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d e = s.V.row(s.F(f, (k + 1) % 3)) - s.V.row(s.F(f, k));
+      along += std::abs(e.dot(d));
+      across += e.cross(d).norm();
+    }
+  }
+  return along / across;
+}
+
+// An anisotropic remeshing keeps the edges along its direction short and those across it long,
+// with the ground truth exact and the surface closed; anisotropy 1 is the isotropic remeshing.
+TEST_P(SyntheticKinds, AnisotropicRemeshingShortensTheEdgesAlongItsDirection) {
+  SynthOptions o = Options(GetParam(), 1, 2000);
+  const TrackedSurface posed = GenerateClass(GetParam(), o).shapes[0].shape;
+  for (const Eigen::Vector3d& d :
+       {Eigen::Vector3d::UnitY().eval(), Eigen::Vector3d::UnitZ().eval()}) {
+    const TrackedSurface iso = Remesh(posed, 700, 5);
+    const TrackedSurface aniso = Remesh(posed, 700, 5, 4.0, d);
+    EXPECT_EQ(aniso.surface.NumVertices(), 700);
+    ExpectClosedGenusZero(aniso.surface, "anisotropic remeshing");
+    for (int v = 0; v < aniso.surface.NumVertices(); ++v) {
+      ASSERT_TRUE(aniso.surface.V.row(v) == posed.surface.V.row(aniso.rest_ids[v])) << v;
+    }
+    const double iso_ratio = EdgeExtentRatio(iso.surface, d);
+    const double aniso_ratio = EdgeExtentRatio(aniso.surface, d);
+    // Along the figures' long axes, 2,000 -> 700 vertices: 0.6-0.8 of the isotropic ratio.
+    EXPECT_LT(aniso_ratio, 0.9 * iso_ratio) << iso_ratio << " " << aniso_ratio;
+  }
+  // Through the generator: one random direction per pose, so the poses' meshings differ in kind.
+  o.poses = 2;
+  o.remesh = 700;
+  o.remesh_anisotropy = 4.0;
+  const SynthClass c = GenerateClass(GetParam(), o);
+  EXPECT_NE(c.shapes[0].note.find("anisotropy 4"), std::string::npos) << c.shapes[0].note;
+  EXPECT_EQ(c.shapes[1].shape.surface.NumVertices(), 700);
+  EXPECT_NE(SynthOptionsText(o).find("remesh_anisotropy: 4"), std::string::npos);
+  o.remesh_anisotropy = 1.0;
+  EXPECT_EQ(SynthOptionsText(o).find("remesh_anisotropy"), std::string::npos);
+}
+
 TEST_P(SyntheticKinds, PartialShapesLoseOnePartAndKeepExactGroundTruth) {
   SynthOptions o = Options(GetParam(), 4, 1500);
   const SynthClass full = GenerateClass(GetParam(), o);
@@ -395,6 +440,15 @@ TEST(Synthetic, InvalidOptionsAreRejected) {
   o.nonisometric = 0.7;
   EXPECT_FALSE(o.IsValid(&error));
   EXPECT_NE(error.find("nonisometric"), std::string::npos);
+  o = SynthOptions();
+  o.remesh_anisotropy = 3.0;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("needs remesh"), std::string::npos);
+  o.remesh = 500;
+  EXPECT_TRUE(o.IsValid(&error));
+  o.remesh_anisotropy = 0.5;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("remesh_anisotropy"), std::string::npos);
   o = SynthOptions();
   o.kinds = {};
   EXPECT_FALSE(o.IsValid(&error));
