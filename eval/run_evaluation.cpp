@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "eval/evaluator.h"
 #include "eval/report.h"
+#include "registry/hash.h"
 
 namespace symembed {
 namespace {
@@ -39,11 +40,29 @@ struct GroundTruthRunEvaluation::Shared {
   std::unique_ptr<GeodesicsStage> geodesics;
   std::unique_ptr<Evaluator> evaluator;
   std::mutex mutex;
-  std::map<std::string, std::unique_ptr<EvalShape>> targets;
+  std::map<std::string, std::unique_ptr<EvalShape>> targets;  // by TargetId
 
-  const EvalShape& Target(const ShapeOutcome& shape) {
+  // The evaluator keeps each target's distances under the id it is given, and the variants of
+  // one run may load different meshes under one name (a variant that remeshes the synthetic
+  // set): the id is the name with a digest of the input and preprocessed surfaces, so that only
+  // the same surface shares distances.
+  static std::string TargetId(const ShapeOutcome& shape) {
+    const Surface& s = shape.data->surface;
+    const std::vector<int>& ids = shape.data->input_ids;
+    Hasher h;
+    h.AddBytes(shape.input.V.data(), sizeof(double) * shape.input.V.size())
+        .AddBytes(shape.input.F.data(), sizeof(int) * shape.input.F.size())
+        .AddBytes(s.V.data(), sizeof(double) * s.V.size())
+        .AddBytes(s.F.data(), sizeof(int) * s.F.size())
+        .AddBytes(ids.data(), sizeof(int) * ids.size());
+    return shape.name + "@" + HexDigest(h.Digest());
+  }
+
+  // The target's id and the evaluator's view of it.
+  std::pair<std::string, const EvalShape*> Target(const ShapeOutcome& shape) {
+    std::string id = TargetId(shape);
     std::lock_guard<std::mutex> lock(mutex);
-    auto& slot = targets[shape.name];
+    auto& slot = targets[id];
     if (!slot) {
       PreprocessResult pre;
       pre.surface = shape.data->surface;
@@ -51,7 +70,7 @@ struct GroundTruthRunEvaluation::Shared {
       pre.scale = shape.data->scale;
       slot = std::make_unique<EvalShape>(MakeEvalShape(pre, shape.input));
     }
-    return *slot;
+    return {std::move(id), slot.get()};
   }
 };
 
@@ -68,23 +87,25 @@ class GroundTruthVariantEvaluation : public VariantEvaluation {
     std::vector<int> map(pair.source.input.NumVertices(), 0);
     for (size_t i = 0; i < predicted.size(); ++i)
       map[pair.ground_truth.source_ids[i]] = predicted[i];
-    return shared_->evaluator->MeanError(pair.target.name, shared_->Target(pair.target), map,
-                                         pair.ground_truth);
+    const auto [id, target] = shared_->Target(pair.target);
+    return shared_->evaluator->MeanError(id, *target, map, pair.ground_truth);
   }
 
   std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
                        std::string* failure) const override {
-    PairEvaluation evaluation = shared_->evaluator->Evaluate(
-        pair.source.name, pair.target.name, shared_->Target(pair.target), outcome.map,
-        pair.ground_truth, outcome.flip.chosen, outcome.oracle);
+    const auto [id, target] = shared_->Target(pair.target);
+    PairEvaluation evaluation =
+        shared_->evaluator->Evaluate(pair.source.name, id, *target, outcome.map, pair.ground_truth,
+                                     outcome.flip.chosen, outcome.oracle);
+    evaluation.target = pair.target.name;
     if (!evaluation.ok) {
       *failure = "evaluation: " + evaluation.message;
       return "";
     }
     if (!outcome.initial_map.empty()) {
-      const PairEvaluation initial = shared_->evaluator->Evaluate(
-          pair.source.name, pair.target.name, shared_->Target(pair.target), outcome.initial_map,
-          pair.ground_truth, outcome.flip.chosen, outcome.oracle);
+      const PairEvaluation initial =
+          shared_->evaluator->Evaluate(pair.source.name, id, *target, outcome.initial_map,
+                                       pair.ground_truth, outcome.flip.chosen, outcome.oracle);
       if (initial.ok) {
         evaluation.refined = true;
         evaluation.initial_mean_direct = initial.mean_direct;

@@ -49,7 +49,7 @@ EmbeddedPoints EmbeddedShape(const ShapeData& shape, const Eigen::Matrix3d& R) {
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
                  const InputGroundTruth& ground_truth) {
   Hasher h;
-  h.AddString("symembed-pair-cache-4").AddString(source.name).AddU64(source.key);
+  h.AddString("symembed-pair-cache-5").AddString(source.name).AddU64(source.key);
   h.AddString(target.name).AddU64(target.key);
   for (const Stage* stage : {static_cast<const Stage*>(pipeline.flip.get()),
                              static_cast<const Stage*>(pipeline.matching.get()),

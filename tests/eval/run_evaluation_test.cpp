@@ -77,6 +77,36 @@ TEST(RunEvaluation, VariantsWithTheSameEvaluationShareItsDistances) {
   EXPECT_EQ(two, one);
 }
 
+// A variant may load other meshes under the same names (a remeshed dataset): its errors are
+// measured on its own meshes, exactly as when it runs alone, not on distances another variant
+// left under the name.
+TEST(RunEvaluation, AVariantWithOtherMeshesUnderTheSameNamesIsEvaluatedOnItsOwn) {
+  TempDir tmp;
+  WriteTestDataset(tmp.File("other"), 3);
+  for (int k = 0; k < 3; ++k) {  // finer grids, bent the other way
+    Surface s = GridMesh(7, 5);
+    for (int i = 0; i < s.NumVertices(); ++i) s.V(i, 2) = -0.3 * (k + 1) * s.V(i, 1) * s.V(i, 1);
+    testing::WriteText(tmp.File("other/shapes/s" + std::to_string(k) + ".off"),
+                       testing::runner::OffText(s));
+  }
+  const std::string variants =
+      "variants:\n  - {name: other, set: {dataset.root: " + tmp.File("other") +
+      ", pipeline.flip.choose: 2}}\n";
+  const std::string config = WriteTestDataset(tmp.File("data"), 3, variants);
+  RunOptions alone;
+  alone.variant = "other";
+  EXPECT_TRUE(RunConfig(config, tmp.File("alone"), tmp.File("cache1"), alone).ok());
+  EXPECT_TRUE(RunConfig(config, tmp.File("both"), tmp.File("cache2")).ok());
+  const std::map<std::string, std::string> one = Outputs(tmp.File("alone/other"));
+  const std::map<std::string, std::string> two = Outputs(tmp.File("both/other"));
+  ASSERT_TRUE(one.count("pairs.csv"));
+  EXPECT_EQ(one.at("pairs.csv"), two.at("pairs.csv"));
+  EXPECT_EQ(one.at("summary.json"), two.at("summary.json"));
+  // The choice of candidate 2 maps each grid onto its mirror image: the errors are not 0, so
+  // the comparison above compares distances.
+  EXPECT_GT(ReadSummaryJson(tmp.File("both/other/summary.json")).mean_direct, 0.0);
+}
+
 TEST(RunEvaluation, ReportsWhenRefinementMovesAMapOntoTheMirroredSolution) {
   TempDir tmp;
   const std::string variants =
