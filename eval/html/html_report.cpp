@@ -181,7 +181,10 @@ class ReportWriter {
         for (const char* end : {"source", "target"}) {
           const std::string& name = row.Get(end).AsString();
           const DatasetShape* shape = v.index.Find(name);
-          if (shape && !wanted.count(name)) wanted[name] = {v.dataset.get(), shape};
+          if (shape && !wanted.count(name)) {
+            wanted[name] = {v.dataset.get(), shape};
+            mesh_paths_[name] = shape->mesh_path;
+          }
         }
       }
     }
@@ -252,6 +255,15 @@ class ReportWriter {
                                VariantConfigPath(v.variant.dir);
               return;
             }
+            // The page holds one mesh per shape name: a variant whose dataset has another mesh
+            // under the name (a remeshed synthetic set) would show its map on the wrong mesh.
+            const DatasetShape* own = v.index.Find(*name);
+            if (own && own->mesh_path != mesh_paths_.at(*name)) {
+              job.view.error = "the report shows one mesh per shape name, and this variant's " +
+                               *name + " (" + own->mesh_path + ") is another mesh than the one " +
+                               "shown (" + mesh_paths_.at(*name) + ")";
+              return;
+            }
           }
           const double max_error = v.data.Get("summary").Get("max_error").NumberOr(0.25);
           job.view = BuildPairView(shapes_.at(job.source), shapes_.at(job.target), v.maps,
@@ -312,6 +324,7 @@ class ReportWriter {
   fs::path dir_;
   int threads_;
   std::map<std::string, ShapeView> shapes_;
+  std::map<std::string, std::string> mesh_paths_;  // of the shapes_, by name
   int shapes_written_ = 0;
 };
 

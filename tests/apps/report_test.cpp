@@ -256,6 +256,30 @@ TEST_F(ReportTest, AnUnreadableMeshMakesItsPairsUnavailableNamingTheFile) {
   EXPECT_EQ(ReportJson(run + "/report").Get("variants").items().size(), 2u);
 }
 
+// The page holds one mesh per shape name: a variant whose dataset has another mesh under a name
+// (here a copy of the data elsewhere; in practice a remeshed variant) gets no views rather than
+// its maps drawn on the other variant's meshes.
+TEST_F(ReportTest, AVariantWithOtherMeshesUnderTheSameNamesGetsNoViews) {
+  const std::string run = CopyOfRun("other_meshes");
+  const std::string data = tmp_->File("data_other_meshes");
+  fs::remove_all(data);
+  fs::copy(tmp_->File("data"), data, fs::copy_options::recursive);
+  const std::string config = run + "/oracle/config.yaml";
+  std::string text = ReadText(config);
+  const std::string from = tmp_->File("data");
+  for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at)) {
+    text.replace(at, from.size(), data);
+    at += data.size();
+  }
+  WriteText(config, text);
+  const HtmlReportResult result = Report(run, run + "/report");
+  EXPECT_EQ(result.pairs_viewable, 6);     // base
+  EXPECT_EQ(result.pairs_unavailable, 6);  // oracle
+  bool said = false;
+  for (const std::string& w : result.warnings) said |= w.find("another mesh") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST_F(ReportTest, AMissingDatasetLeavesTheTablesAndSaysWhy) {
   const std::string run = CopyOfRun("no_data");
   for (const char* variant : {"base", "oracle"}) {
