@@ -227,6 +227,9 @@ class ReportWriter {
       size_t variant, row;
       std::string source, target;
       PairView view;
+      // Pairs unavailable for one reason of the variant's, whatever the shape, share one
+      // warning; empty: one warning per distinct error.
+      std::string warn_once;
     };
     std::vector<Job> jobs;
     for (size_t vi = 0; vi < variants.size(); ++vi) {
@@ -234,7 +237,7 @@ class ReportWriter {
       for (size_t r = 0; r < rows.size(); ++r) {
         if (rows[r].Get("status").AsString() != "ok") continue;
         jobs.push_back({vi, r, rows[r].Get("source").AsString(), rows[r].Get("target").AsString(),
-                        PairView()});
+                        PairView(), ""});
       }
     }
     fs::create_directories(dir_ / "pairs");
@@ -262,6 +265,7 @@ class ReportWriter {
               job.view.error = "the report shows one mesh per shape name, and this variant's " +
                                *name + " (" + own->mesh_path + ") is another mesh than the one " +
                                "shown (" + mesh_paths_.at(*name) + ")";
+              job.warn_once = "other meshes";
               return;
             }
           }
@@ -305,9 +309,13 @@ class ReportWriter {
           } else {
             row.Set("unavailable", JsonValue::String(view.error));
             ++result->pairs_unavailable;
+            const std::string& once = it->second->warn_once;
             const std::string warning = variants[vi].variant.name + ": " + source + " -> " +
-                                        row.Get("target").AsString() + ": " + view.error;
-            if (reported.insert(variants[vi].variant.name + "\n" + view.error).second) {
+                                        row.Get("target").AsString() + ": " + view.error +
+                                        (once.empty() ? "" : "; the same for its other pairs so");
+            if (reported
+                    .insert(variants[vi].variant.name + "\n" + (once.empty() ? view.error : once))
+                    .second) {
               result->warnings.push_back(warning);
             }
           }
