@@ -53,8 +53,8 @@ int SynthCommand(const Args& args) {
   parser.Option("seed", "random seed (same options and seed: byte-identical files)", "1");
   parser.Option("remesh", "decimate every pose independently to N vertices (0: off)", "0");
   parser.Option("remesh-anisotropy",
-                "> 1: the remeshing's edges this many times shorter along a random direction per "
-                "pose than across it (needs --remesh)",
+                "> 1: the remeshing measures edges this many times longer along a random direction "
+                "per pose, keeping the edges along it short (needs --remesh)",
                 "1");
   parser.Option("nonisometric", "per-pose bone length/thickness factors in [1-R, 1+R] (0: off)", "0");
   parser.Option("noise", "normal noise amplitude, fraction of the mean edge length (0: off)", "0");

@@ -31,8 +31,8 @@ struct SynthOptions {
   int vertices = 5000;       // approximate rest vertex count (see ChooseResolution), >= 100
   int seed = 1;              // >= 0
   int remesh = 0;            // > 0: decimate every pose independently to this many vertices
-  double remesh_anisotropy = 1.0;  // > 1: edges that many times shorter along a random
-                                   // direction per pose than across it (needs remesh > 0)
+  double remesh_anisotropy = 1.0;  // > 1: the remeshing measures edges this many times longer
+                                   // along a random direction per pose (needs remesh > 0)
   double nonisometric = 0.0; // > 0: per-pose bone length/thickness factors in [1-R, 1+R], < 0.5
   double noise = 0.0;        // > 0: normal noise amplitude as a fraction of the mean edge length
   double partial = 0.0;      // in [0, 1]: fraction of poses with a hand, foot or head cut away

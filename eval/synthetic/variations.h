@@ -31,8 +31,9 @@ TrackedSurface CutPart(const TrackedSurface& shape, const Eigen::MatrixXd& weigh
 // folding. Returns fewer collapses than asked when no legal collapse is left.
 // With anisotropy a > 1 an edge's length is measured as if the shape were stretched by a along
 // the unit vector `direction`, so the edges along it are collapsed last: the result has edges
-// about a times shorter along the direction than across it, triangles elongated across it (an
-// anisotropic remeshing, as scanners and remeshing tools produce).
+// shorter along the direction than across it, triangles elongated across it (an anisotropic
+// remeshing, as scanners and remeshing tools produce; less anisotropic than a, since collapses
+// only remove vertices), and no triangle of aspect ratio above 3 a.
 TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t seed,
                       double anisotropy = 1.0,
                       const Eigen::Vector3d& direction = Eigen::Vector3d::UnitX());
