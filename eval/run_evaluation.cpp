@@ -44,18 +44,10 @@ struct GroundTruthRunEvaluation::Shared {
 
   // The evaluator keeps each target's distances under the id it is given, and the variants of
   // one run may load different meshes under one name (a variant that remeshes the synthetic
-  // set): the id is the name with a digest of the input and preprocessed surfaces, so that only
-  // the same surface shares distances.
+  // set): the id is the name with the key of the shape's preprocessed surface (its mesh file's
+  // content and the preprocessing), so that only the same surface shares distances.
   static std::string TargetId(const ShapeOutcome& shape) {
-    const Surface& s = shape.data->surface;
-    const std::vector<int>& ids = shape.data->input_ids;
-    Hasher h;
-    h.AddBytes(shape.input.V.data(), sizeof(double) * shape.input.V.size())
-        .AddBytes(shape.input.F.data(), sizeof(int) * shape.input.F.size())
-        .AddBytes(s.V.data(), sizeof(double) * s.V.size())
-        .AddBytes(s.F.data(), sizeof(int) * s.F.size())
-        .AddBytes(ids.data(), sizeof(int) * ids.size());
-    return shape.name + "@" + HexDigest(h.Digest());
+    return shape.name + "@" + HexDigest(shape.surface_key);
   }
 
   // The target's id and the evaluator's view of it.

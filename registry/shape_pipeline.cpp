@@ -399,6 +399,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   out.ground_truth = pipeline.dataset->GroundTruth(shape, out.input.NumVertices());
 
   const ShapeStageKeys keys = ShapeStageKeysOf(shape.mesh_path, pipeline);
+  out.surface_key = keys.preprocess;
   const uint64_t pre_key = keys.preprocess, samp_key = keys.sampling, geo_key = keys.geodesics,
                  emb_key = keys.embedding, sym_key = keys.symmetry, symz_key = keys.symmetrize;
 

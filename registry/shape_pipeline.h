@@ -73,6 +73,9 @@ struct ShapeOutcome {
   // What went wrong without failing the shape (a second plane hypothesis dropped), one line each.
   std::vector<std::string> warnings;
   uint64_t key = 0;  // cache key of `data` and `alternative` (all stages, basis and products)
+  // Cache key of the preprocessed surface: the mesh file's content and the preprocessing
+  // options, so equal keys mean the same input and preprocessed surfaces (0: not computed).
+  uint64_t surface_key = 0;
 };
 
 struct ShapeContext {

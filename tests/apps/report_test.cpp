@@ -97,6 +97,25 @@ class ReportTest : public ::testing::Test {
     return dir;
   }
 
+  // A copy of the run's data at tmp_/NAME, with the configs of `variants` in `run` pointed at it.
+  std::string CopyOfDataFor(const std::string& run, const std::string& name,
+                            std::initializer_list<const char*> variants) {
+    const std::string data = tmp_->File(name);
+    fs::remove_all(data);
+    fs::copy(tmp_->File("data"), data, fs::copy_options::recursive);
+    const std::string from = tmp_->File("data");
+    for (const char* variant : variants) {
+      const std::string config = run + "/" + variant + "/config.yaml";
+      std::string text = ReadText(config);
+      for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at)) {
+        text.replace(at, from.size(), data);
+        at += data.size();
+      }
+      WriteText(config, text);
+    }
+    return data;
+  }
+
   HtmlReportResult Report(const std::string& results, const std::string& out) {
     Registry registry;
     RegisterBuiltinStages(registry);
@@ -228,20 +247,8 @@ TEST_F(ReportTest, AMapOfTheWrongLengthMakesOnlyItsPairUnavailable) {
 
 TEST_F(ReportTest, AnUnreadableMeshMakesItsPairsUnavailableNamingTheFile) {
   const std::string run = CopyOfRun("bad_mesh");
-  const std::string data = tmp_->File("data_bad_mesh");
-  fs::remove_all(data);
-  fs::copy(tmp_->File("data"), data, fs::copy_options::recursive);
-  // Point the run's configs at the copy, then truncate one mesh there.
-  for (const char* variant : {"base", "oracle"}) {
-    const std::string config = run + "/" + variant + "/config.yaml";
-    std::string text = ReadText(config);
-    const std::string from = tmp_->File("data");
-    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at)) {
-      text.replace(at, from.size(), data);
-      at += data.size();
-    }
-    WriteText(config, text);
-  }
+  // Point the run's configs at a copy of the data, then truncate one mesh there.
+  const std::string data = CopyOfDataFor(run, "data_bad_mesh", {"base", "oracle"});
   std::string mesh;
   for (const auto& e : fs::directory_iterator(data + "/shapes")) mesh = e.path().string();
   WriteText(mesh, "OFF\n3 1 0\n0 0 0\n");
@@ -261,17 +268,7 @@ TEST_F(ReportTest, AnUnreadableMeshMakesItsPairsUnavailableNamingTheFile) {
 // its maps drawn on the other variant's meshes.
 TEST_F(ReportTest, AVariantWithOtherMeshesUnderTheSameNamesGetsNoViews) {
   const std::string run = CopyOfRun("other_meshes");
-  const std::string data = tmp_->File("data_other_meshes");
-  fs::remove_all(data);
-  fs::copy(tmp_->File("data"), data, fs::copy_options::recursive);
-  const std::string config = run + "/oracle/config.yaml";
-  std::string text = ReadText(config);
-  const std::string from = tmp_->File("data");
-  for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at)) {
-    text.replace(at, from.size(), data);
-    at += data.size();
-  }
-  WriteText(config, text);
+  CopyOfDataFor(run, "data_other_meshes", {"oracle"});
   const HtmlReportResult result = Report(run, run + "/report");
   EXPECT_EQ(result.pairs_viewable, 6);     // base
   EXPECT_EQ(result.pairs_unavailable, 6);  // oracle

@@ -432,14 +432,11 @@ TEST(SyntheticDataset, OnePoseCannotFormAPair) {
 }
 
 TEST(SyntheticDataset, AnAnisotropicRemeshingNeedsARemeshing) {
-  try {
-    Create("{type: synthetic, remesh_anisotropy: 3}");
-    ADD_FAILURE() << "no error";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("remesh_anisotropy: needs remesh > 0"), std::string::npos)
-        << e.what();
-  }
-  EXPECT_THROW(Create("{type: synthetic, remesh: 500, remesh_anisotropy: 0.5}"), ConfigError);
+  ExpectError<ConfigError>([&] { Create("{type: synthetic, remesh_anisotropy: 3}"); },
+                           {"remesh_anisotropy: needs remesh > 0"});
+  ExpectError<ConfigError>(
+      [&] { Create("{type: synthetic, remesh: 500, remesh_anisotropy: 0.5}"); },
+      {"remesh_anisotropy"});
   EXPECT_NO_THROW(Create("{type: synthetic, remesh: 500, remesh_anisotropy: 3}"));
 }
 
