@@ -170,34 +170,33 @@ class ReportWriter {
  public:
   ReportWriter(const fs::path& dir, int threads) : dir_(dir), threads_(threads) {}
 
-  // Builds and writes the side file of every shape the variants' pairs name; returns the
-  // page's shape table.
+  // Builds and writes the side file of every mesh the variants' pairs name; returns the page's
+  // shape table, keyed by MeshKey.
   JsonValue WriteShapes(const std::vector<VariantInputs>& variants,
                         std::vector<std::string>* warnings) {
-    std::map<std::string, std::pair<const Dataset*, const DatasetShape*>> wanted;
+    std::map<std::string, std::pair<const Dataset*, const DatasetShape*>> wanted;  // by key
     for (const VariantInputs& v : variants) {
       if (!v.dataset) continue;
       for (const JsonValue& row : v.data.Get("pairs").items()) {
         for (const char* end : {"source", "target"}) {
-          const std::string& name = row.Get(end).AsString();
-          const DatasetShape* shape = v.index.Find(name);
-          if (shape && !wanted.count(name)) {
-            wanted[name] = {v.dataset.get(), shape};
-            mesh_paths_[name] = shape->mesh_path;
-          }
+          const DatasetShape* shape = v.index.Find(row.Get(end).AsString());
+          if (!shape) continue;
+          const std::string key = MeshKey(*shape);
+          if (!wanted.count(key)) wanted[key] = {v.dataset.get(), shape};
         }
       }
     }
-    std::vector<std::pair<const Dataset*, const DatasetShape*>> jobs;
-    for (const auto& [name, job] : wanted) jobs.push_back(job);
+    std::vector<std::pair<std::string, std::pair<const Dataset*, const DatasetShape*>>> jobs(
+        wanted.begin(), wanted.end());
     std::vector<ShapeView> views(jobs.size());
     fs::create_directories(dir_ / "shapes");
     ParallelFor(
         static_cast<int>(jobs.size()),
         [&](int i) {
-          views[i] = BuildShapeView(*jobs[i].first, *jobs[i].second);
+          const auto& [key, job] = jobs[i];
+          views[i] = BuildShapeView(*job.first, *job.second, key);
           if (views[i].error.empty()) {
-            WriteFile(dir_ / "shapes" / (SafeFileStem(views[i].name) + ".js"), views[i].script);
+            WriteFile(dir_ / "shapes" / (SafeFileStem(key) + ".js"), views[i].script);
             views[i].script.clear();  // written; only the ground truth and size are needed now
           }
         },
@@ -206,16 +205,17 @@ class ReportWriter {
     for (ShapeView& view : views) {
       JsonValue entry = JsonValue::Object();
       entry.Set("class", JsonValue::String(view.class_name));
+      if (view.key != view.name) entry.Set("name", JsonValue::String(view.name));
       if (view.error.empty()) {
         entry.Set("vertices", JsonValue::Number(view.vertices));
-        entry.Set("file", JsonValue::String("shapes/" + SafeFileStem(view.name) + ".js"));
+        entry.Set("file", JsonValue::String("shapes/" + SafeFileStem(view.key) + ".js"));
         ++shapes_written_;
       } else {
         entry.Set("unavailable", JsonValue::String(view.error));
         warnings->push_back("shape " + view.name + ": " + view.error);
       }
-      table.Set(view.name, entry);
-      shapes_[view.name] = std::move(view);
+      table.Set(view.key, entry);
+      shapes_[view.key] = std::move(view);
     }
     return table;
   }
@@ -226,10 +226,8 @@ class ReportWriter {
     struct Job {
       size_t variant, row;
       std::string source, target;
+      std::string source_key, target_key;  // of the meshes in shapes_ (MeshKey)
       PairView view;
-      // Pairs unavailable for one reason of the variant's, whatever the shape, share one
-      // warning; empty: one warning per distinct error.
-      std::string warn_once;
     };
     std::vector<Job> jobs;
     for (size_t vi = 0; vi < variants.size(); ++vi) {
@@ -237,7 +235,7 @@ class ReportWriter {
       for (size_t r = 0; r < rows.size(); ++r) {
         if (rows[r].Get("status").AsString() != "ok") continue;
         jobs.push_back({vi, r, rows[r].Get("source").AsString(), rows[r].Get("target").AsString(),
-                        PairView(), ""});
+                        "", "", PairView()});
       }
     }
     fs::create_directories(dir_ / "pairs");
@@ -252,25 +250,18 @@ class ReportWriter {
             job.view.error = v.reason;
             return;
           }
-          for (const std::string* name : {&job.source, &job.target}) {
-            if (!shapes_.count(*name)) {
+          for (auto [name, key] :
+               {std::pair{&job.source, &job.source_key}, std::pair{&job.target, &job.target_key}}) {
+            const DatasetShape* shape = v.index.Find(*name);
+            if (shape) *key = MeshKey(*shape);
+            if (!shape || !shapes_.count(*key)) {
               job.view.error = "shape " + *name + " is not in the dataset of " +
                                VariantConfigPath(v.variant.dir);
               return;
             }
-            // The page holds one mesh per shape name: a variant whose dataset has another mesh
-            // under the name (a remeshed synthetic set) would show its map on the wrong mesh.
-            const DatasetShape* own = v.index.Find(*name);
-            if (own && own->mesh_path != mesh_paths_.at(*name)) {
-              job.view.error = "the report shows one mesh per shape name, and this variant's " +
-                               *name + " (" + own->mesh_path + ") is another mesh than the one " +
-                               "shown (" + mesh_paths_.at(*name) + ")";
-              job.warn_once = "other meshes";
-              return;
-            }
           }
           const double max_error = v.data.Get("summary").Get("max_error").NumberOr(0.25);
-          job.view = BuildPairView(shapes_.at(job.source), shapes_.at(job.target), v.maps,
+          job.view = BuildPairView(shapes_.at(job.source_key), shapes_.at(job.target_key), v.maps,
                                    max_error > 0 ? max_error : 0.25);
           if (!job.view.error.empty()) return;
           job.view.key = SafeFileStem(job.view.key);
@@ -295,27 +286,32 @@ class ReportWriter {
       for (size_t r = 0; r < old_rows.size(); ++r) {
         JsonValue row = old_rows[r];
         const std::string source = row.Get("source").AsString();
-        const auto shape = shapes_.find(source);
+        const auto it = by_row.find({vi, r});
+        const Job* job = it != by_row.end() ? it->second : nullptr;
+        const auto shape = shapes_.find(job && !job->source_key.empty() ? job->source_key : source);
         row.Set("class",
                 JsonValue::String(shape != shapes_.end() && !shape->second.class_name.empty()
                                       ? shape->second.class_name
                                       : ClassFromName(source)));
-        const auto it = by_row.find({vi, r});
-        if (it != by_row.end()) {
-          const PairView& view = it->second->view;
+        if (job) {
+          const PairView& view = job->view;
           if (view.error.empty()) {
             row.Set("view", JsonValue::String(view.key));  // its file: pairs/KEY.js
+            // The meshes' ids in the shape table where they are not the names (another mesh
+            // under the same name in an earlier variant).
+            if (job->source_key != job->source) {
+              row.Set("source_shape", JsonValue::String(job->source_key));
+            }
+            if (job->target_key != job->target) {
+              row.Set("target_shape", JsonValue::String(job->target_key));
+            }
             ++result->pairs_viewable;
           } else {
             row.Set("unavailable", JsonValue::String(view.error));
             ++result->pairs_unavailable;
-            const std::string& once = it->second->warn_once;
             const std::string warning = variants[vi].variant.name + ": " + source + " -> " +
-                                        row.Get("target").AsString() + ": " + view.error +
-                                        (once.empty() ? "" : "; the same for its other pairs so");
-            if (reported
-                    .insert(variants[vi].variant.name + "\n" + (once.empty() ? view.error : once))
-                    .second) {
+                                        row.Get("target").AsString() + ": " + view.error;
+            if (reported.insert(variants[vi].variant.name + "\n" + view.error).second) {
               result->warnings.push_back(warning);
             }
           }
@@ -331,8 +327,19 @@ class ReportWriter {
  private:
   fs::path dir_;
   int threads_;
-  std::map<std::string, ShapeView> shapes_;
-  std::map<std::string, std::string> mesh_paths_;  // of the shapes_, by name
+  // The page's id of a mesh: the shape's name for the first mesh seen under the name, the name
+  // and a digest of the mesh file's path for another one (a variant that remeshes its shapes).
+  std::string MeshKey(const DatasetShape& shape) {
+    std::lock_guard<std::mutex> lock(keys_mutex_);
+    const auto [first, fresh] = first_mesh_.emplace(shape.name, shape.mesh_path);
+    if (fresh || first->second == shape.mesh_path) return shape.name;
+    return shape.name + "@" +
+           HexDigest(HashBytes(shape.mesh_path.data(), shape.mesh_path.size())).substr(0, 8);
+  }
+
+  std::map<std::string, ShapeView> shapes_;        // by MeshKey
+  std::map<std::string, std::string> first_mesh_;  // mesh path of the first mesh of each name
+  std::mutex keys_mutex_;
   int shapes_written_ = 0;
 };
 

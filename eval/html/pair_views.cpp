@@ -12,8 +12,10 @@
 
 namespace symembed {
 
-ShapeView BuildShapeView(const Dataset& dataset, const DatasetShape& shape) {
+ShapeView BuildShapeView(const Dataset& dataset, const DatasetShape& shape,
+                         const std::string& key) {
   ShapeView view;
+  view.key = key.empty() ? shape.name : key;
   view.name = shape.name;
   view.class_name = shape.class_name;
   Surface surface;
@@ -49,7 +51,7 @@ ShapeView BuildShapeView(const Dataset& dataset, const DatasetShape& shape) {
   }
   if (!view.truth.ids.empty()) payload.Set("gt", EncodeIds(view.truth.ids));
   if (!view.truth.sym_ids.empty()) payload.Set("gt_sym", EncodeIds(view.truth.sym_ids));
-  view.script = SideFileScript("shape", shape.name, payload);
+  view.script = SideFileScript("shape", view.key, payload);
   return view;
 }
 

@@ -12,13 +12,14 @@
 namespace symembed {
 
 struct ShapeView {
+  std::string key;  // the page's id of this mesh: the name, or the name and a digest of its path
   std::string name;
   std::string class_name;
   int vertices = 0;
   std::vector<int> faces;  // #F x 3 vertex ids, row-major (the map's coding needs them)
   ShapeGroundTruth truth;  // input ids; empty when the dataset has none for this shape
   std::string error;       // why the shape cannot be shown; empty when it can
-  std::string script;      // its side file text: symembedData("shape", name, payload)
+  std::string script;      // its side file text: symembedData("shape", key, payload)
 };
 
 // Reads the shape's mesh file and ground truth. payload: name, class, vertices, positions
@@ -26,7 +27,9 @@ struct ShapeView {
 // ground truth, gt and gt_sym (EncodeIds: the vertex of each ground-truth line, -1 where the
 // shape lacks it; gt_sym absent without a symmetric ground truth). Never throws: a mesh that
 // cannot be read sets `error` (naming the file); missing ground truth only leaves it out.
-ShapeView BuildShapeView(const Dataset& dataset, const DatasetShape& shape);
+// key: the page's id of the mesh (ShapeViewKey); empty: the shape's name.
+ShapeView BuildShapeView(const Dataset& dataset, const DatasetShape& shape,
+                         const std::string& key = "");
 
 // Where a variant's maps are: a run's maps/A_B.map (base 1) with pairs/A_B.rec records, or the
 // maps folder of `symembed eval` (its base; reverse: A_B.map maps B to A), without records.

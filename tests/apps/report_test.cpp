@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/errors.h"
+#include "core/map_io.h"
 #include "eval/html/html_report.h"
 #include "eval/html/report_data.h"
 #include "eval/json.h"
@@ -263,19 +264,80 @@ TEST_F(ReportTest, AnUnreadableMeshMakesItsPairsUnavailableNamingTheFile) {
   EXPECT_EQ(ReportJson(run + "/report").Get("variants").items().size(), 2u);
 }
 
-// The page holds one mesh per shape name: a variant whose dataset has another mesh under a name
-// (here a copy of the data elsewhere; in practice a remeshed variant) gets no views rather than
-// its maps drawn on the other variant's meshes.
-TEST_F(ReportTest, AVariantWithOtherMeshesUnderTheSameNamesGetsNoViews) {
+// A variant whose dataset has another mesh under a name (here a copy of the data elsewhere; in
+// practice a remeshed variant) gets its own entries in the shape table, and its pair rows name
+// them, so its maps are drawn on the meshes they map.
+TEST_F(ReportTest, AVariantWithOtherMeshesUnderTheSameNamesIsDrawnOnItsOwn) {
   const std::string run = CopyOfRun("other_meshes");
-  CopyOfDataFor(run, "data_other_meshes", {"oracle"});
+  const std::string data = CopyOfDataFor(run, "data_other_meshes", {"oracle"});
   const HtmlReportResult result = Report(run, run + "/report");
-  EXPECT_EQ(result.pairs_viewable, 6);     // base
-  EXPECT_EQ(result.pairs_unavailable, 6);  // oracle
-  // One warning for the variant, not one per shape.
-  int said = 0;
-  for (const std::string& w : result.warnings) said += w.find("another mesh") != std::string::npos;
-  EXPECT_EQ(said, 1);
+  EXPECT_EQ(result.pairs_viewable, 12);
+  EXPECT_EQ(result.pairs_unavailable, 0);
+  EXPECT_TRUE(result.warnings.empty());
+  const JsonValue report = ReportJson(run + "/report");
+  const JsonValue& shapes = report.Get("shapes");
+  EXPECT_EQ(shapes.members().size(), 8u);  // 4 names, 2 meshes each
+  const auto& variants = report.Get("variants").items();
+  ASSERT_EQ(variants.size(), 2u);
+  for (const JsonValue& pair : variants[0].Get("pairs").items()) {
+    EXPECT_FALSE(pair.Has("source_shape"));
+    EXPECT_FALSE(pair.Has("target_shape"));
+  }
+  for (const JsonValue& pair : variants[1].Get("pairs").items()) {
+    for (const char* end : {"source", "target"}) {
+      const std::string id = pair.Get(std::string(end) + "_shape").AsString();
+      const JsonValue& shape = shapes.Get(id);
+      EXPECT_EQ(shape.Get("name").AsString(), pair.Get(end).AsString()) << id;
+      // The side file holds the copy's mesh under the id.
+      const std::string side = ReadText(run + "/report/" + shape.Get("file").AsString());
+      EXPECT_NE(side.find("\"" + id + "\""), std::string::npos) << id;
+    }
+  }
+}
+
+// A remeshed variant: the page draws each variant's maps on its own meshes (vertex counts of the
+// shape entries and of the maps agree), whatever the order of the variants.
+TEST(ReportMeshes, ARemeshedVariantIsDrawnOnItsOwnMeshes) {
+  TempDir tmp;
+  WriteText(tmp.File("config.yaml"),
+            "name: remeshed\n"
+            "dataset: {format: synthetic, kinds: [humanoid], poses: 3, vertices: 600, seed: 3}\n"
+            "pipeline:\n"
+            "  sampling: {type: farthest_point, count: 80}\n"
+            "  symmetry: {type: plane3d}\n"
+            "  flip: {type: oracle}\n"
+            "evaluation: {geodesics: dijkstra}\n"
+            "variants:\n"
+            "  - {name: remeshed, set: {dataset.remesh: 400}}\n");
+  std::string log;
+  ASSERT_EQ(Symembed("run " + tmp.File("config.yaml") + " --quiet --jobs 2 --cache " +
+                         tmp.File("cache") + " --out " + tmp.File("run"),
+                     &log),
+            0)
+      << log;
+  EXPECT_EQ(log.find("another mesh"), std::string::npos) << log;
+  const JsonValue report = ReportJson(tmp.File("run/report"));
+  const JsonValue& shapes = report.Get("shapes");
+  EXPECT_EQ(shapes.members().size(), 6u);
+  const auto& variants = report.Get("variants").items();
+  ASSERT_EQ(variants.size(), 2u);
+  for (size_t vi = 0; vi < 2; ++vi) {
+    ASSERT_FALSE(variants[vi].Get("pairs").items().empty());
+    for (const JsonValue& pair : variants[vi].Get("pairs").items()) {
+      ASSERT_TRUE(pair.Get("view").IsString()) << variants[vi].Get("name").AsString();
+      const std::string id = pair.Has("source_shape") ? pair.Get("source_shape").AsString()
+                                                      : pair.Get("source").AsString();
+      EXPECT_EQ(pair.Has("source_shape"), vi == 1);
+      const int vertices = static_cast<int>(shapes.Get(id).Get("vertices").AsNumber());
+      if (vi == 0) EXPECT_GT(vertices, 500) << id;
+      if (vi == 1) EXPECT_LE(vertices, 400) << id;
+      // The variant's own map of the pair has one entry per vertex of the mesh drawn.
+      const std::string map =
+          tmp.File("run/" + variants[vi].Get("name").AsString() + "/maps/" +
+                   pair.Get("source").AsString() + "_" + pair.Get("target").AsString() + ".map");
+      EXPECT_EQ(static_cast<int>(ReadMapFile(map, 1, -1, -1).size()), vertices) << map;
+    }
+  }
 }
 
 TEST_F(ReportTest, AMissingDatasetLeavesTheTablesAndSaysWhy) {

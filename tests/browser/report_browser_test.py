@@ -10,7 +10,9 @@ messages on file descriptors 3 and 4, no network) and checks that
     filter the pairs whose flip class is not none;
   - a pair view (the base variant's worst pair) decodes the pair's map exactly (a checksum
     against maps/A_B.map) and draws: in a screenshot of its canvas each of the four panels has
-    mesh pixels (not the background) in many colours.
+    mesh pixels (not the background) in many colours;
+  - a second, small run whose variant remeshes the shapes (other meshes under the same names)
+    draws that variant's pair on its own meshes (the checksum of its map, which fits only them).
 Prints the time each page took to open. Exits 77 (ctest SKIP_RETURN_CODE) when no browser is
 installed. Standard library only.
 
@@ -294,8 +296,8 @@ def map_checksum(path):
     return sum((i + 1) * t for i, t in enumerate(ids)) % 1000000007
 
 
-def check_pair_view(browser, url, results, pair, screenshot):
-    link = "#pair=base/%s/%s" % (pair["source"], pair["target"])
+def check_pair_view(browser, url, results, pair, screenshot, variant="base"):
+    link = "#pair=%s/%s/%s" % (variant, pair["source"], pair["target"])
     seconds = browser.open(url + link,
                            "['drawn'].includes((document.getElementById('view-status') || {dataset: {}}).dataset.state) "
                            "|| document.getElementById('view-status').className === 'warning'", timeout=120)
@@ -304,7 +306,7 @@ def check_pair_view(browser, url, results, pair, screenshot):
           "pair view did not draw: %s" % status)
     check(not browser.errors(), "pair view: %s" % browser.errors())
     checksum = browser.evaluate("document.getElementById('view-status').dataset.mapChecksum")
-    expected = map_checksum(os.path.join(results, "base", "maps", "%s_%s.map" % (pair["source"], pair["target"])))
+    expected = map_checksum(os.path.join(results, variant, "maps", "%s_%s.map" % (pair["source"], pair["target"])))
     check(checksum == str(expected), "pair view: the decoded map's checksum %s, the map file's %d" % (checksum, expected))
     rect = browser.evaluate("(() => { const r = document.getElementById('viewer-canvas').getBoundingClientRect();"
                             " return [r.left + scrollX, r.top + scrollY, r.width, r.height]; })()")
@@ -330,6 +332,33 @@ def check_pair_view(browser, url, results, pair, screenshot):
               % (panel, mesh, total))
         check(len(colours) > 20, "panel %d: only %d colours: not a coloured mesh" % (panel, len(colours)))
     return seconds, status
+
+
+# A run whose variant loads other meshes under the shapes' names: the synthetic poses remeshed.
+REMESHED_CONFIG = """name: remeshed
+dataset: {format: synthetic, kinds: [humanoid], poses: 3, vertices: 600, seed: 3}
+pipeline:
+  sampling: {type: farthest_point, count: 80}
+  symmetry: {type: plane3d}
+  flip: {type: oracle}
+evaluation: {geodesics: dijkstra}
+variants:
+  - {name: remeshed, set: {dataset.remesh: 400}}
+"""
+
+
+def run_remeshed(symembed, work):
+    config = os.path.join(work, "remeshed.yaml")
+    with open(config, "w") as f:
+        f.write(REMESHED_CONFIG)
+    results = os.path.join(work, "results", "remeshed")
+    run = subprocess.run([os.path.abspath(symembed), "run", config, "--quiet", "--jobs", "2",
+                          "--cache", os.path.join(work, "cache"), "--out", results],
+                         cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    check(run.returncode == 0, "symembed run (remeshed) failed:\n" + run.stdout)
+    with open(os.path.join(results, "remeshed", "pairs.csv"), newline="") as f:
+        pair = next(p for p in csv.DictReader(f) if p["status"] == "ok")
+    return results, pair
 
 
 def main():
@@ -375,6 +404,10 @@ def main():
             pair = max((p for p in pairs if p["status"] == "ok"), key=lambda p: float(p["mean_direct"]))
             seconds, status = check_pair_view(browser, url, results, pair, args.screenshot)
             print("pair view %s -> %s: drawn in %.2f s (%s)" % (pair["source"], pair["target"], seconds, status))
+            remeshed, pair = run_remeshed(args.symembed, work)
+            url = "file://" + os.path.join(remeshed, "report", "index.html")
+            seconds, status = check_pair_view(browser, url, remeshed, pair, None, variant="remeshed")
+            print("remeshed pair view %s -> %s: drawn in %.2f s (%s)" % (pair["source"], pair["target"], seconds, status))
         finally:
             browser.close()
     except Failure as failure:

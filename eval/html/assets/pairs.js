@@ -189,7 +189,9 @@
     const labels = ['source ' + pair.source + ': smooth colouring', 'target ' + pair.target + ': colours through the map',
       'source: error per ground-truth point', 'target: colours through the ground truth'];
     stage.append(v.canvas, h('div', { class: 'panel-labels' }, labels.map((l, i) => h('span', { id: 'panel-label-' + i }, l))));
-    const [S, T] = await Promise.all([shapeData(pair.source), shapeData(pair.target)]);
+    // A variant with its own meshes under the shapes' names names them by their ids.
+    const [S, T] = await Promise.all(
+        [shapeData(pair.source_shape || pair.source), shapeData(pair.target_shape || pair.target)]);
     const P = await pairData(pair.view, S, T);
     if (token !== viewToken) return;
     if (!v.instance) v.instance = new SymembedViewer.Viewer(v.canvas, 4, 2);

@@ -79,8 +79,10 @@ window.SymembedSideFiles = (function () {
     return values;
   }
 
-  const shapes = new Map();  // name -> Promise of the decoded shape
+  const shapes = new Map();  // id -> Promise of the decoded shape
 
+  // name: the shape's id in R.shapes (its name, or for another mesh under the name the id the
+  // pair row gives as source_shape / target_shape).
   function shapeData(name) {
     if (shapes.has(name)) return shapes.get(name);
     const promise = (async () => {
