@@ -13,15 +13,34 @@ namespace symembed {
 
 bool ExtrinsicFlipOptions::IsValid(std::string* error) const {
   std::ostringstream out;
+  std::string smoothing_error;
   if (!(local_weight >= 0.0 && global_weight >= 0.0 && chamfer_weight >= 0.0))
     out << "local_weight, global_weight and chamfer_weight must be >= 0";
   else if (local_weight + global_weight + chamfer_weight <= 0.0)
     out << "at least one of local_weight, global_weight, chamfer_weight must be > 0";
   else if (profile_bins < 1) out << "profile_bins must be >= 1, got " << profile_bins;
   else if (histogram_bins < 1) out << "histogram_bins must be >= 1, got " << histogram_bins;
-  else if (smoothing_rings < 0) out << "smoothing_rings must be >= 0, got " << smoothing_rings;
+  else if (!smoothing.IsValid(&smoothing_error))
+    out << smoothing_error;
   if (error) *error = out.str();
   return out.str().empty();
+}
+
+bool FeatureSmoothing::IsValid(std::string* error) const {
+  std::ostringstream out;
+  if (rings < 0)
+    out << "smoothing_rings must be >= 0, got " << rings;
+  else if (!(radius >= 0.0) || !std::isfinite(radius))
+    out << "smoothing_radius must be finite and >= 0, got " << radius;
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+FeatureSmoothing ReadFeatureSmoothing(OptionReader& o, const FeatureSmoothing& defaults) {
+  FeatureSmoothing s;
+  s.rings = o.GetInt("smoothing_rings", defaults.rings, 0, 100);
+  s.radius = o.GetDouble("smoothing_radius", defaults.radius, 0.0);
+  return s;
 }
 
 namespace {

@@ -23,9 +23,25 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "registry/options.h"
 #include "stages/flip/flip_common.h"
 
 namespace symembed {
+
+// The neighbourhood the curvature features are averaged over (core/curvature.h): each vertex's
+// `rings` rings, or, when radius > 0, the vertices within edge-graph distance radius * sqrt(total
+// area). A number of rings is a size in edges, so it follows the meshing: two meshings of one
+// surface, or one with elongated triangles, give each vertex neighbourhoods of other sizes and
+// shapes, and the features differ where the surfaces do not. A radius is a size on the surface.
+struct FeatureSmoothing {
+  int rings = 2;        // >= 0
+  double radius = 0.0;  // >= 0, finite; > 0 overrides rings
+
+  bool IsValid(std::string* error) const;
+};
+
+// Reads `smoothing_rings` and `smoothing_radius` of a term's options (defaults: `defaults`).
+FeatureSmoothing ReadFeatureSmoothing(OptionReader& options, const FeatureSmoothing& defaults);
 
 struct ExtrinsicFlipOptions {
   double local_weight = 1.0;
@@ -35,8 +51,8 @@ struct ExtrinsicFlipOptions {
   int profile_bins = 16;
   // Bins of the shape-index histograms of each half.
   int histogram_bins = 8;
-  // k-ring averaging of the curvatures (CurvatureOptions::smoothing_rings), against noise.
-  int smoothing_rings = 2;
+  // Averaging of the curvatures against noise (FeatureSmoothing): the paper's scorer over 2 rings.
+  FeatureSmoothing smoothing = {};
 
   bool IsValid(std::string* error) const;
 };
@@ -68,8 +84,8 @@ double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
 
 // The curvature features of `surface`, #V x 3 columns [shape index in [-1, 1],
 // log(1 + curvedness * sqrt(area)), vertex area / total area], from core/curvature.h with
-// curvatures averaged over smoothing_rings rings. Curvedness sqrt((k1^2 + k2^2) / 2)
-// [Koenderink & van Doorn 1992] is made scale-free by sqrt(total area).
-Eigen::MatrixXd ExtrinsicFeatures(const Surface& surface, int smoothing_rings);
+// curvatures averaged and fitted over the neighbourhoods of `smoothing`. Curvedness
+// sqrt((k1^2 + k2^2) / 2) [Koenderink & van Doorn 1992] is made scale-free by sqrt(total area).
+Eigen::MatrixXd ExtrinsicFeatures(const Surface& surface, const FeatureSmoothing& smoothing);
 
 }  // namespace symembed

@@ -7,12 +7,13 @@
 
 namespace symembed {
 
-Eigen::MatrixXd ExtrinsicFeatures(const Surface& surface, int smoothing_rings) {
+Eigen::MatrixXd ExtrinsicFeatures(const Surface& surface, const FeatureSmoothing& smoothing) {
   if (surface.NumVertices() == 0 || surface.NumFaces() == 0) {
     throw InvalidInputError("flip extrinsic: empty surface");
   }
   CurvatureOptions options;
-  options.smoothing_rings = smoothing_rings;
+  options.smoothing_rings = smoothing.rings;
+  options.smoothing_radius = smoothing.radius;
   const CurvatureFeatures c = ComputeCurvature(surface, options);
   const Eigen::VectorXd areas = VertexAreas(surface);
   const double total = areas.sum();

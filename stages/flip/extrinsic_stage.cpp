@@ -65,7 +65,7 @@ class ExtrinsicStage : public FlipStage {
     basis_size_ = decision_->BasisSize();
     for (const auto& term : terms_) {
       basis_size_ = std::max(basis_size_, term->BasisSize());
-      if (term->FeatureRings() >= 0) feature_rings_ = term->FeatureRings();
+      if (term->Features()) features_ = term->Features();
     }
   }
 
@@ -76,17 +76,16 @@ class ExtrinsicStage : public FlipStage {
     return needs;
   }
   // Whether the decision reads features that no term declares.
-  bool LacksFeatures() const { return decision_->ReadsFeatures() && feature_rings_ < 0; }
+  bool LacksFeatures() const { return decision_->ReadsFeatures() && !features_; }
 
   FlipResult Run(const PairInput& pair) const override {
     CheckFlipPair(pair);
     // One set of candidate maps for every term.
     const CandidateMaps maps = ComputeCandidateMaps(pair.source.Y, pair.target.Y, threads_);
-    const bool features = feature_rings_ >= 0;
     const Eigen::MatrixXd* Fs =
-        features ? &ProductOf(pair.source, CurvatureFeaturesKey(feature_rings_)) : nullptr;
+        features_ ? &ProductOf(pair.source, CurvatureFeaturesKey(*features_)) : nullptr;
     const Eigen::MatrixXd* Ft =
-        features ? &ProductOf(pair.target, CurvatureFeaturesKey(feature_rings_)) : nullptr;
+        features_ ? &ProductOf(pair.target, CurvatureFeaturesKey(*features_)) : nullptr;
     // One copy of each basis for all parts, into storage the thread keeps from pair to pair.
     thread_local LaplaceBasis source_basis, target_basis;
     static const LaplaceBasis kNoBasis;
@@ -111,9 +110,9 @@ class ExtrinsicStage : public FlipStage {
   std::vector<std::unique_ptr<FlipTerm>> terms_;  // those of weight > 0, in kFlipTerms order
   std::unique_ptr<FlipDecision> decision_;
   int basis_size_ = 0;  // eigenpairs the parts read (0: none)
-  // The smoothing rings of the curvature features of the context: those of the last term that
-  // reads features (-1: none does).
-  int feature_rings_ = -1;
+  // The smoothing of the curvature features of the context: that of the last term that reads
+  // features (none: no term does).
+  std::optional<FeatureSmoothing> features_;
 };
 
 }  // namespace

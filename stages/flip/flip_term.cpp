@@ -1,17 +1,27 @@
 #include "stages/flip/flip_term.h"
 
+#include <sstream>
+
 #include "stages/flip/extrinsic.h"
 
 namespace symembed {
 
-ProductKey<Eigen::MatrixXd> CurvatureFeaturesKey(int smoothing_rings) {
-  return {"curvature_features", "smoothing_rings=" + std::to_string(smoothing_rings)};
+ProductKey<Eigen::MatrixXd> CurvatureFeaturesKey(const FeatureSmoothing& smoothing) {
+  // The text of ring smoothing is that of the features before radii existed, so their cache
+  // entries stay valid.
+  if (smoothing.radius <= 0.0) {
+    return {"curvature_features", "smoothing_rings=" + std::to_string(smoothing.rings)};
+  }
+  std::ostringstream text;
+  text.precision(17);
+  text << "smoothing_radius=" << smoothing.radius;
+  return {"curvature_features", text.str()};
 }
 
-ProductNeed CurvatureFeaturesNeed(int smoothing_rings) {
-  return NeedProduct(CurvatureFeaturesKey(smoothing_rings), ProductInput::kSurface, 0,
-                     [smoothing_rings](const ShapeData& shape, const LaplaceBasis&) {
-                       return ExtrinsicFeatures(shape.surface, smoothing_rings);
+ProductNeed CurvatureFeaturesNeed(const FeatureSmoothing& smoothing) {
+  return NeedProduct(CurvatureFeaturesKey(smoothing), ProductInput::kSurface, 0,
+                     [smoothing](const ShapeData& shape, const LaplaceBasis&) {
+                       return ExtrinsicFeatures(shape.surface, smoothing);
                      });
 }
 

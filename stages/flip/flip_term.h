@@ -10,12 +10,14 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "core/spectral.h"
 #include "registry/product_needs.h"
 #include "registry/types.h"
+#include "stages/flip/extrinsic.h"
 #include "stages/flip/flip_common.h"
 
 namespace symembed {
@@ -29,7 +31,7 @@ struct FlipTermContext {
   const LaplaceBasis& source_basis;
   const LaplaceBasis& target_basis;
   // The shapes' curvature features (ExtrinsicFeatures, extrinsic.h) of the last term that reads
-  // them (FeatureRings), or null when none does.
+  // them (Features), or null when none does.
   const Eigen::MatrixXd* source_features;
   const Eigen::MatrixXd* target_features;
   int threads;                        // the stage's threads (0: all cores)
@@ -47,9 +49,9 @@ class FlipTerm {
   virtual void AddNeeds(int /*stage_basis*/, ShapeNeeds* /*needs*/) const {}
   // Laplace-Beltrami eigenpairs the term reads (0: none).
   virtual int BasisSize() const { return 0; }
-  // The smoothing rings of the curvature features the term reads (CurvatureFeaturesKey), which
-  // the stage then passes to every part in the context, or -1 when it reads none.
-  virtual int FeatureRings() const { return -1; }
+  // The smoothing of the curvature features the term reads (CurvatureFeaturesKey), which the
+  // stage then passes to every part in the context, or none when it reads none.
+  virtual std::optional<FeatureSmoothing> Features() const { return std::nullopt; }
   // Adds the term to *total (per candidate of CandidateRotations()) and its values to *detail
   // ("; <name> v0 v1 v2 v3", the status message of the stage).
   virtual void Score(const FlipTermContext& context, std::array<double, 4>* total,
@@ -74,7 +76,7 @@ class FlipDecision {
 
 // The curvature features of a shape (ExtrinsicFeatures, extrinsic.h), #V x 3, a product of its
 // surface.
-ProductKey<Eigen::MatrixXd> CurvatureFeaturesKey(int smoothing_rings);
-ProductNeed CurvatureFeaturesNeed(int smoothing_rings);
+ProductKey<Eigen::MatrixXd> CurvatureFeaturesKey(const FeatureSmoothing& smoothing);
+ProductNeed CurvatureFeaturesNeed(const FeatureSmoothing& smoothing);
 
 }  // namespace symembed

@@ -11,7 +11,7 @@ CurvatureTerm::CurvatureTerm(double weight, const ExtrinsicFlipOptions& options)
 }
 
 void CurvatureTerm::AddNeeds(int, ShapeNeeds* needs) const {
-  needs->products.push_back(CurvatureFeaturesNeed(options_.smoothing_rings));
+  needs->products.push_back(CurvatureFeaturesNeed(options_.smoothing));
 }
 
 void CurvatureTerm::Score(const FlipTermContext& context, std::array<double, 4>* total,
@@ -38,7 +38,7 @@ std::unique_ptr<FlipTerm> ReadCurvatureTerm(OptionReader& o, double weight) {
   e.chamfer_weight = o.GetDouble("chamfer_weight", e.chamfer_weight, 0.0);
   e.profile_bins = o.GetInt("profile_bins", e.profile_bins, 1, 1000);
   e.histogram_bins = o.GetInt("histogram_bins", e.histogram_bins, 1, 1000);
-  e.smoothing_rings = o.GetInt("smoothing_rings", e.smoothing_rings, 0, 100);
+  e.smoothing = ReadFeatureSmoothing(o, e.smoothing);
   std::string error;
   if (!e.IsValid(&error)) o.Fail("", error);
   return std::make_unique<CurvatureTerm>(weight, e);

@@ -2,7 +2,7 @@
 // scorer, curvature features compared locally through each candidate's nearest-neighbour map and
 // globally along the canonical axes (extrinsic.h), times the term's weight.
 //   curvature: {weight: 1, local_weight: 1, global_weight: 1, chamfer_weight: 0,
-//               profile_bins: 16, histogram_bins: 8, smoothing_rings: 2}
+//               profile_bins: 16, histogram_bins: 8, smoothing_rings: 2, smoothing_radius: 0}
 // Per shape it needs the curvature features (CurvatureFeaturesKey), which the refined decision
 // (decide_refined.h) reads too. Status message: "; local l0 l1 l2 l3; global g0 g1 g2 g3".
 #pragma once
@@ -20,7 +20,7 @@ class CurvatureTerm : public FlipTerm {
   // Throws ConfigError for invalid options.
   CurvatureTerm(double weight, const ExtrinsicFlipOptions& options);
   void AddNeeds(int stage_basis, ShapeNeeds* needs) const override;
-  int FeatureRings() const override { return options_.smoothing_rings; }
+  std::optional<FeatureSmoothing> Features() const override { return options_.smoothing; }
   // Needs the context's features.
   void Score(const FlipTermContext& context, std::array<double, 4>* total,
              std::ostringstream* detail) const override;

@@ -22,6 +22,7 @@ ProductKey<Eigen::MatrixXd> SampleGeodesicsKey(int sources) {
 
 bool RefinedMapsTermOptions::IsValid(std::string* error) const {
   std::ostringstream out;
+  std::string feature_error;
   std::string schedule;
   if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
   else if (sources < 1) out << "sources must be >= 1, got " << sources;
@@ -30,7 +31,8 @@ bool RefinedMapsTermOptions::IsValid(std::string* error) const {
     out << "targets must be <= zoomout.samples (" << zoomout.samples << "), got " << targets;
   else if (!(distortion_weight >= 0.0 && disagreement_weight >= 0.0 && orientation_weight >= 0.0))
     out << "distortion_weight, disagreement_weight and orientation_weight must be >= 0";
-  else if (smoothing_rings < 0) out << "smoothing_rings must be >= 0, got " << smoothing_rings;
+  else if (!smoothing.IsValid(&feature_error))
+    out << feature_error;
   else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0";
   if (error) *error = out.str();
   return out.str().empty();
@@ -86,7 +88,7 @@ void RefinedMapsTerm::AddNeeds(int, ShapeNeeds* needs) const {
             shape.samples, count, 1, "flip refined_maps: shape '" + shape.name + "'");
         return DijkstraDistances(shape.surface, sources);
       }));
-  needs->products.push_back(CurvatureFeaturesNeed(options_.smoothing_rings));
+  needs->products.push_back(CurvatureFeaturesNeed(options_.smoothing));
 }
 
 void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4>* total,
@@ -95,8 +97,8 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
   const ShapeData& target = context.pair.target;
   const Eigen::MatrixXd& source_distances =
       ProductOf(source, SampleGeodesicsKey(options_.sources));
-  const Eigen::MatrixXd& Fs = ProductOf(source, CurvatureFeaturesKey(options_.smoothing_rings));
-  const Eigen::MatrixXd& Ft = ProductOf(target, CurvatureFeaturesKey(options_.smoothing_rings));
+  const Eigen::MatrixXd& Fs = ProductOf(source, CurvatureFeaturesKey(options_.smoothing));
+  const Eigen::MatrixXd& Ft = ProductOf(target, CurvatureFeaturesKey(options_.smoothing));
   // Shapes with fewer samples than the options ask for use all of theirs.
   const int sources = std::min<int>(options_.sources, source.samples.size());
   if (source_distances.rows() != sources ||
@@ -136,7 +138,7 @@ std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
   r.distortion_weight = o.GetDouble("distortion_weight", r.distortion_weight, 0.0);
   r.disagreement_weight = o.GetDouble("disagreement_weight", r.disagreement_weight, 0.0);
   r.orientation_weight = o.GetDouble("orientation_weight", r.orientation_weight, 0.0);
-  r.smoothing_rings = o.GetInt("smoothing_rings", r.smoothing_rings, 0, 100);
+  r.smoothing = ReadFeatureSmoothing(o, r.smoothing);
   r.normal_weight = o.GetDouble("normal_weight", r.normal_weight, 0.0);
   std::string error;
   if (!r.IsValid(&error)) o.Fail("", error);

@@ -53,7 +53,8 @@ struct RefinedMapsTermOptions {
   double distortion_weight = 0.5;
   double disagreement_weight = 1.0;
   double orientation_weight = 0.025;
-  int smoothing_rings = 2;  // of the curvature features (ExtrinsicFeatures, extrinsic.h)
+  // Of the curvature features (ExtrinsicFeatures, extrinsic.h).
+  FeatureSmoothing smoothing = {};
   // Weight of the embedded normals in the initial maps (RefinedAgreementOptions::normal_weight).
   double normal_weight = 0.1;
 
@@ -73,7 +74,7 @@ class RefinedMapsTerm : public FlipTerm {
   // Throws ConfigError for invalid options.
   RefinedMapsTerm(double weight, const RefinedMapsTermOptions& options);
   void AddNeeds(int stage_basis, ShapeNeeds* needs) const override;
-  int FeatureRings() const override { return options_.smoothing_rings; }
+  std::optional<FeatureSmoothing> Features() const override { return options_.smoothing; }
   int BasisSize() const override { return options_.zoomout.k_end; }
   void Score(const FlipTermContext& context, std::array<double, 4>* total,
              std::ostringstream* detail) const override;
@@ -83,7 +84,8 @@ class RefinedMapsTerm : public FlipTerm {
 };
 
 // The term of weight `weight` from its YAML map {zoomout, sources, targets, distortion_weight,
-// disagreement_weight, orientation_weight, normal_weight, smoothing_rings} (defaults: RefinedMapsTermOptions). Throws ConfigError.
+// disagreement_weight, orientation_weight, normal_weight, smoothing_rings, smoothing_radius}
+// (defaults: RefinedMapsTermOptions). Throws ConfigError.
 std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& options, double weight);
 
 }  // namespace symembed

@@ -48,12 +48,12 @@ TEST(FlipTermOptions, DefaultsFillEveryNestedMap) {
   const std::string expected =
       "{type: extrinsic, threads: 1, terms: {"
       "curvature: {weight: 0, local_weight: 1, global_weight: 1, chamfer_weight: 0, "
-      "profile_bins: 16, histogram_bins: 8, smoothing_rings: 2}, "
+      "profile_bins: 16, histogram_bins: 8, smoothing_rings: 2, smoothing_radius: 0}, "
       "descriptor: {weight: 0, k: 30, eigenpairs: 60, energies: 100, sigma: 7, mu: 0.01, "
       "samples: 300, axes: 1}, "
       "refined_maps: {weight: 1, zoomout: {k_start: 20, k_end: 60, step: 5, samples: 1000, "
       "target_samples: 1000}, sources: 40, targets: 200, distortion_weight: 0.5, "
-      "disagreement_weight: 1, orientation_weight: 0.025, smoothing_rings: 2, "
+      "disagreement_weight: 1, orientation_weight: 0.025, smoothing_rings: 2, smoothing_radius: 0, "
       "normal_weight: 0.1}, "
       "orientation: {weight: 0, zoomout: {k_start: 6, k_end: 60, step: 5, samples: 200, "
       "target_samples: 1000}}}, "
@@ -206,8 +206,8 @@ struct TermInputs {
             maps,
             source_basis,
             target_basis,
-            &ProductOf(shapes[0], CurvatureFeaturesKey(2)),
-            &ProductOf(shapes[1], CurvatureFeaturesKey(2)),
+            &ProductOf(shapes[0], CurvatureFeaturesKey({2})),
+            &ProductOf(shapes[1], CurvatureFeaturesKey({2})),
             1};
   }
 };
@@ -240,7 +240,7 @@ TEST(CurvatureTerm, IsThePapersScoreTimesItsWeight) {
   EXPECT_EQ(needs.basis, 0);
   ComputeNeeds(needs, &shape);
   ASSERT_EQ(shape.products.size(), 1u);
-  EXPECT_EQ(ProductOf(shape, CurvatureFeaturesKey(2)), ExtrinsicFeatures(shape.surface, 2));
+  EXPECT_EQ(ProductOf(shape, CurvatureFeaturesKey({2})), ExtrinsicFeatures(shape.surface, {2}));
   EXPECT_THROW(CurvatureTerm(1.0, ExtrinsicFlipOptions{0, 0, 0}), ConfigError);
 }
 
@@ -346,8 +346,8 @@ FlipResult OldExtrinsicRun(const PairInput& pair, const OldStageOptions& o) {
   const DescriptorMapOptions descriptor;
   const RefinedAgreementOptions refined_options;
   const CandidateMaps maps = ComputeCandidateMaps(pair.source.Y, pair.target.Y);
-  const Eigen::MatrixXd Fs = ExtrinsicFeatures(pair.source.surface, curvature.smoothing_rings);
-  const Eigen::MatrixXd Ft = ExtrinsicFeatures(pair.target.surface, curvature.smoothing_rings);
+  const Eigen::MatrixXd Fs = ExtrinsicFeatures(pair.source.surface, curvature.smoothing);
+  const Eigen::MatrixXd Ft = ExtrinsicFeatures(pair.target.surface, curvature.smoothing);
   ExtrinsicScores s = ExtrinsicFlipScores(pair.source.Y, pair.target.Y, Fs, Ft, curvature, maps);
   const LaplaceBasis bs = LeadingEigenpairs(pair.source.basis, 60);
   const LaplaceBasis bt = LeadingEigenpairs(pair.target.basis, 60);
@@ -432,6 +432,35 @@ TEST(ExtrinsicStage, GivesWhatTheOldFunctionsComposedGive) {
   }
 }
 
+// smoothing_radius (refined_maps and curvature terms) averages the features over a radius on the
+// surface: its features are a product of their own, the rings' keep the key they always had (so
+// their cache entries stay valid), and a bad radius is a ConfigError naming the key.
+TEST(ExtrinsicStage, ASmoothingRadiusHasFeaturesOfItsOwn) {
+  EXPECT_EQ(CurvatureFeaturesKey({2}).options, "smoothing_rings=2");
+  EXPECT_NE(CurvatureFeaturesKey({2, 0.06}).Id(), CurvatureFeaturesKey({2}).Id());
+  EXPECT_NE(CurvatureFeaturesKey({2, 0.06}).Id(), CurvatureFeaturesKey({2, 0.08}).Id());
+  const auto stage =
+      MakeStage("{type: extrinsic, terms: {refined_maps: {smoothing_radius: 0.06}}}");
+  const ShapeNeeds needs = stage->Needs();
+  int features = 0;
+  for (const ProductNeed& need : needs.products) {
+    if (need.name != "curvature_features") continue;
+    ++features;
+    EXPECT_EQ(need.id, CurvatureFeaturesKey({2, 0.06}).Id());
+  }
+  EXPECT_EQ(features, 1);
+  ShapeData shape = testing::FlipShape("rest", testing::SymmetricFigure());
+  ComputeNeeds(needs, &shape);
+  EXPECT_EQ(ProductOf(shape, CurvatureFeaturesKey({2, 0.06})),
+            ExtrinsicFeatures(shape.surface, {2, 0.06}));
+  EXPECT_NE(ErrorOf("{type: extrinsic, terms: {refined_maps: {smoothing_radius: -1}}}")
+                .find("smoothing_radius"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("{type: extrinsic, terms: {curvature: {weight: 1, smoothing_radius: -0.5}}}")
+                .find("smoothing_radius"),
+            std::string::npos);
+}
+
 TEST(ExtrinsicStage, TermOfWeightZeroIsNeitherPreparedNorComputed) {
   ShapeData shapes[2] = {testing::FlipShape("rest", testing::SymmetricFigure()),
                          testing::FlipShape("posed", testing::PosedSymmetricFigure(1, 0.5, 0.2))};
@@ -441,7 +470,7 @@ TEST(ExtrinsicStage, TermOfWeightZeroIsNeitherPreparedNorComputed) {
     // No basis, no signature products: the features only.
     EXPECT_EQ(shape.basis.NumEigenpairs(), 0);
     ASSERT_EQ(shape.products.size(), 1u);
-    EXPECT_TRUE(shape.products.Has(CurvatureFeaturesKey(2).Id()));
+    EXPECT_TRUE(shape.products.Has(CurvatureFeaturesKey({2}).Id()));
   }
   const std::string message = stage->Run(PairInput{shapes[0], shapes[1]}).status.message;
   EXPECT_NE(message.find("; local"), std::string::npos) << message;
