@@ -231,11 +231,21 @@ class ReportWriter {
     };
     std::vector<Job> jobs;
     for (size_t vi = 0; vi < variants.size(); ++vi) {
-      const auto& rows = variants[vi].data.Get("pairs").items();
+      const VariantInputs& v = variants[vi];
+      const auto& rows = v.data.Get("pairs").items();
       for (size_t r = 0; r < rows.size(); ++r) {
         if (rows[r].Get("status").AsString() != "ok") continue;
-        jobs.push_back({vi, r, rows[r].Get("source").AsString(), rows[r].Get("target").AsString(),
-                        "", "", PairView()});
+        Job job{
+            vi, r,         rows[r].Get("source").AsString(), rows[r].Get("target").AsString(), "",
+            "", PairView()};
+        // Empty keys: the shape is not in the variant's dataset (or it has none).
+        if (v.dataset) {
+          for (auto [name, key] :
+               {std::pair{&job.source, &job.source_key}, std::pair{&job.target, &job.target_key}}) {
+            if (const DatasetShape* shape = v.index.Find(*name)) *key = MeshKey(*shape);
+          }
+        }
+        jobs.push_back(std::move(job));
       }
     }
     fs::create_directories(dir_ / "pairs");
@@ -252,9 +262,7 @@ class ReportWriter {
           }
           for (auto [name, key] :
                {std::pair{&job.source, &job.source_key}, std::pair{&job.target, &job.target_key}}) {
-            const DatasetShape* shape = v.index.Find(*name);
-            if (shape) *key = MeshKey(*shape);
-            if (!shape || !shapes_.count(*key)) {
+            if (!shapes_.count(*key)) {
               job.view.error = "shape " + *name + " is not in the dataset of " +
                                VariantConfigPath(v.variant.dir);
               return;
@@ -329,8 +337,8 @@ class ReportWriter {
   int threads_;
   // The page's id of a mesh: the shape's name for the first mesh seen under the name, the name
   // and a digest of the mesh file's path for another one (a variant that remeshes its shapes).
+  // Called in variant order, outside the parallel loops, so the first mesh is the first variant's.
   std::string MeshKey(const DatasetShape& shape) {
-    std::lock_guard<std::mutex> lock(keys_mutex_);
     const auto [first, fresh] = first_mesh_.emplace(shape.name, shape.mesh_path);
     if (fresh || first->second == shape.mesh_path) return shape.name;
     return shape.name + "@" +
@@ -339,7 +347,6 @@ class ReportWriter {
 
   std::map<std::string, ShapeView> shapes_;        // by MeshKey
   std::map<std::string, std::string> first_mesh_;  // mesh path of the first mesh of each name
-  std::mutex keys_mutex_;
   int shapes_written_ = 0;
 };
 
