@@ -99,6 +99,18 @@ int ArgParser::GetInt(const std::string& name) const {
   }
 }
 
+double ArgParser::GetDouble(const std::string& name) const {
+  const std::string v = Get(name);
+  try {
+    size_t used = 0;
+    const double x = std::stod(v, &used);
+    if (used != v.size()) throw std::invalid_argument(v);
+    return x;
+  } catch (const std::exception&) {
+    throw UsageError{"option --" + name + " expects a number, got '" + v + "'"};
+  }
+}
+
 std::string ArgParser::Help() const {
   std::ostringstream out;
   out << "usage: symembed " << command_ << (order_.empty() ? "" : " [options]")

@@ -33,6 +33,7 @@ class ArgParser {
   bool Given(const std::string& name) const;
   bool Flag(const std::string& name) const;
   int GetInt(const std::string& name) const;
+  double GetDouble(const std::string& name) const;
   const std::vector<std::string>& positionals() const { return positionals_; }
   std::string Help() const;
 

@@ -5,23 +5,12 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "core/errors.h"
+#include "eval/synthetic/dataset_writer.h"
 #include "eval/synthetic/synthetic.h"
 
 namespace symembed {
 
 namespace {
-
-double ParseDouble(const ArgParser& parser, const std::string& name) {
-  const std::string v = parser.Get(name);
-  try {
-    size_t used = 0;
-    const double x = std::stod(v, &used);
-    if (used != v.size()) throw std::invalid_argument(v);
-    return x;
-  } catch (const std::exception&) {
-    throw UsageError{"option --" + name + " expects a number, got '" + v + "'"};
-  }
-}
 
 std::vector<FigureKind> ParseKinds(const std::string& text) {
   std::vector<FigureKind> kinds;
@@ -71,27 +60,17 @@ int SynthCommand(const Args& args) {
   options.vertices = parser.GetInt("vertices");
   options.seed = parser.GetInt("seed");
   options.remesh = parser.GetInt("remesh");
-  options.remesh_anisotropy = ParseDouble(parser, "remesh-anisotropy");
-  options.nonisometric = ParseDouble(parser, "nonisometric");
-  options.noise = ParseDouble(parser, "noise");
-  options.partial = ParseDouble(parser, "partial");
+  options.remesh_anisotropy = parser.GetDouble("remesh-anisotropy");
+  options.nonisometric = parser.GetDouble("nonisometric");
+  options.noise = parser.GetDouble("noise");
+  options.partial = parser.GetDouble("partial");
   options.pairs = parser.GetInt("pairs");
   std::string error;
   if (!options.IsValid(&error)) throw UsageError{error};
 
   namespace fs = std::filesystem;
   const fs::path out = parser.Get("out");
-  if (fs::exists(out) && !fs::is_directory(out)) {
-    throw IoError(out.string() + " exists and is not a directory");
-  }
-  if (fs::is_directory(out) && !fs::is_empty(out)) {
-    if (!parser.Flag("force")) {
-      throw IoError(out.string() + " is not empty; use --force to replace a dataset there");
-    }
-    for (const char* name : {"shapes", "corres", "test_pairs.txt", "README.md"}) {
-      fs::remove_all(out / name);
-    }
-  }
+  PrepareDatasetOutput(out, parser.Flag("force"));
   WriteSyntheticDataset(out.string(), options);
   std::cout << "wrote " << options.poses * options.kinds.size() << " shapes to " << out.string()
             << "\n";

@@ -19,6 +19,7 @@ int MergeCommand(const Args& args);     // merge DIR...: join shard outputs
 int SlurmCommand(const Args& args);     // slurm CONFIG --shards N: sbatch jobs of a study
 int StagesCommand(const Args& args);    // stages: list registered stages
 int SynthCommand(const Args& args);     // synth: write a synthetic dataset
+int RemeshCommand(const Args& args);    // remesh --in ROOT --out DIR: a remeshed dataset
 int ValidateCommand(const Args& args);  // validate MESH...: mesh validation report
 int ReportCommand(const Args& args);    // report RESULTS_DIR: the HTML report
 

@@ -23,6 +23,7 @@ const std::map<std::string, Command>& Commands() {
       {"merge", {symembed::MergeCommand, "join the outputs of sharded runs"}},
       {"slurm", {symembed::SlurmCommand, "write (and submit) the sbatch jobs of a study on Slurm"}},
       {"stages", {symembed::StagesCommand, "list the registered stages (kind, name, description)"}},
+      {"remesh", {symembed::RemeshCommand, "write a remeshed copy of a ground-truth dataset"}},
       {"synth", {symembed::SynthCommand, "generate a synthetic ground-truth dataset"}},
       {"validate", {symembed::ValidateCommand, "print the validation report of meshes"}},
       {"report", {symembed::ReportCommand, "write the HTML report of a results folder"}},

@@ -199,4 +199,16 @@ Surface PosedSymmetricFigure(int detail, double arm_angle, double leg_angle) {
   return BuildFigure(detail, true, arm_angle, leg_angle);
 }
 
+double EdgeExtentRatio(const Surface& s, const Eigen::Vector3d& d) {
+  double along = 0.0, across = 0.0;
+  for (int f = 0; f < s.NumFaces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d e = s.V.row(s.F(f, (k + 1) % 3)) - s.V.row(s.F(f, k));
+      along += std::abs(e.dot(d));
+      across += e.cross(d).norm();
+    }
+  }
+  return along / across;
+}
+
 }  // namespace symembed::testing

@@ -33,6 +33,10 @@ std::string SourceDir();
 // Empty when the folder does not exist.
 std::string DataRoot();
 
+// Mean |e . d| over mean |e x d| of the edges e of s: the edge extent along the unit vector d
+// against across it (an anisotropic remeshing along d makes it smaller).
+double EdgeExtentRatio(const Surface& s, const Eigen::Vector3d& d);
+
 // Runs a shell command, returns its exit code; its stdout+stderr go to *output when given.
 int RunShell(const std::string& command, std::string* output = nullptr);
 

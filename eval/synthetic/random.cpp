@@ -1,5 +1,8 @@
 #include "eval/synthetic/random.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/errors.h"
 
 namespace symembed {
@@ -38,6 +41,13 @@ int SynthRandom::Index(int n) {
     x = static_cast<uint32_t>(engine_());
   } while (x > limit);
   return static_cast<int>(x % range);
+}
+
+Eigen::Vector3d RandomUnitVector(uint32_t seed) {
+  SynthRandom random(seed);
+  const double z = random.Uniform(-1.0, 1.0), phi = random.Uniform(0.0, 2.0 * M_PI);
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return Eigen::Vector3d(r * std::cos(phi), r * std::sin(phi), z);
 }
 
 }  // namespace symembed

@@ -6,6 +6,7 @@
 // turning an option on (noise, say) does not change the numbers drawn for anything else.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -29,5 +30,8 @@ class SynthRandom {
  private:
   std::mt19937 engine_;
 };
+
+// A unit vector uniform on the sphere, from its own stream.
+Eigen::Vector3d RandomUnitVector(uint32_t seed);
 
 }  // namespace symembed

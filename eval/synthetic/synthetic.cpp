@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "core/mesh_io.h"
 #include "core/parallel.h"
+#include "eval/synthetic/dataset_writer.h"
 #include "eval/synthetic/posing.h"
 #include "eval/synthetic/random.h"
 
@@ -76,14 +77,6 @@ void Shuffle(std::vector<T>& items, SynthRandom& random) {
   for (int i = static_cast<int>(items.size()) - 1; i > 0; --i) {
     std::swap(items[i], items[random.Index(i + 1)]);
   }
-}
-
-// A unit vector uniform on the sphere.
-Eigen::Vector3d RandomUnitVector(uint32_t seed) {
-  SynthRandom random(seed);
-  const double z = random.Uniform(-1.0, 1.0), phi = random.Uniform(0.0, 2.0 * M_PI);
-  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-  return Eigen::Vector3d(r * std::cos(phi), r * std::sin(phi), z);
 }
 
 }  // namespace
@@ -162,13 +155,6 @@ SynthClass GenerateClass(FigureKind kind, const SynthOptions& options) {
 
 namespace {
 
-void WriteFile(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw IoError("cannot write " + path.string());
-}
-
 // Line i: 1-based id in the shape of rest vertex lines[i], or 0 when absent.
 std::string VtsText(const std::vector<int>& rest_ids, const std::vector<int>& lines, int num_rest) {
   std::vector<int> id_of(num_rest, 0);
@@ -185,13 +171,7 @@ void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) 
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("synthetic options: " + error);
   const fs::path root(dir);
-  std::error_code ec;
-  fs::create_directories(root / "shapes", ec);
-  fs::create_directories(root / "corres", ec);
-  if (!fs::is_directory(root / "shapes") || !fs::is_directory(root / "corres")) {
-    throw IoError("cannot create " + (root / "shapes").string() + " and " +
-                  (root / "corres").string());
-  }
+  CreateDatasetFolders(root);
   std::string pairs_text, shapes_text;
   for (FigureKind kind : options.kinds) {
     const SynthClass c = GenerateClass(kind, options);
@@ -205,9 +185,10 @@ void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) 
     for (int i = 0; i < num_rest; ++i) direct[i] = i;
     for (const SynthShape& s : c.shapes) {
       SaveMesh((root / "shapes" / (s.name + ".off")).string(), s.shape.surface);
-      WriteFile(root / "corres" / (s.name + ".vts"), VtsText(s.shape.rest_ids, direct, num_rest));
-      WriteFile(root / "corres" / (s.name + ".sym.vts"),
-                VtsText(s.shape.rest_ids, c.rest.mirror, num_rest));
+      WriteDatasetFile(root / "corres" / (s.name + ".vts"),
+                       VtsText(s.shape.rest_ids, direct, num_rest));
+      WriteDatasetFile(root / "corres" / (s.name + ".sym.vts"),
+                       VtsText(s.shape.rest_ids, c.rest.mirror, num_rest));
       shapes_text += "| " + s.name + " | " + std::to_string(s.shape.surface.NumVertices()) +
                      " | " + (s.note.empty() ? "posed" : "posed, " + s.note) + " |\n";
     }
@@ -216,7 +197,7 @@ void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) 
     }
     shapes_text += "\n";
   }
-  WriteFile(root / "test_pairs.txt", pairs_text);
+  WriteDatasetFile(root / "test_pairs.txt", pairs_text);
   std::ostringstream readme;
   readme << "# Synthetic ground-truth dataset (symembed synth)\n\n"
          << "Generator options (the same options give byte-identical files):\n\n```yaml\n"
@@ -227,7 +208,7 @@ void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) 
             "`test_pairs.txt`: tab-separated pairs within a class. The class of a shape is its "
             "name without the trailing digits.\n\n"
          << shapes_text;
-  WriteFile(root / "README.md", readme.str());
+  WriteDatasetFile(root / "README.md", readme.str());
 }
 
 }  // namespace symembed

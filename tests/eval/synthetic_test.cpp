@@ -256,20 +256,6 @@ TEST_P(SyntheticKinds, RemeshedPosesKeepExactGroundTruth) {
   EXPECT_NE(kept[0], kept[1]);
 }
 
-// Mean |e . d| over mean |e x d| of the edges e of s: the edge extent along the unit vector d
-// against across it.
-double EdgeExtentRatio(const Surface& s, const Eigen::Vector3d& d) {
-  double along = 0.0, across = 0.0;
-  for (int f = 0; f < s.NumFaces(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d e = s.V.row(s.F(f, (k + 1) % 3)) - s.V.row(s.F(f, k));
-      along += std::abs(e.dot(d));
-      across += e.cross(d).norm();
-    }
-  }
-  return along / across;
-}
-
 // An anisotropic remeshing keeps the edges along its direction short and those across it long,
 // with the ground truth exact and the surface closed; anisotropy 1 is the isotropic remeshing.
 TEST_P(SyntheticKinds, AnisotropicRemeshingShortensTheEdgesAlongItsDirection) {
@@ -284,8 +270,8 @@ TEST_P(SyntheticKinds, AnisotropicRemeshingShortensTheEdgesAlongItsDirection) {
     for (int v = 0; v < aniso.surface.NumVertices(); ++v) {
       ASSERT_TRUE(aniso.surface.V.row(v) == posed.surface.V.row(aniso.rest_ids[v])) << v;
     }
-    const double iso_ratio = EdgeExtentRatio(iso.surface, d);
-    const double aniso_ratio = EdgeExtentRatio(aniso.surface, d);
+    const double iso_ratio = testing::EdgeExtentRatio(iso.surface, d);
+    const double aniso_ratio = testing::EdgeExtentRatio(aniso.surface, d);
     // Along the figures' long axes, 2,000 -> 700 vertices: 0.6-0.8 of the isotropic ratio.
     EXPECT_LT(aniso_ratio, 0.9 * iso_ratio) << iso_ratio << " " << aniso_ratio;
   }
