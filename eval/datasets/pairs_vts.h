@@ -15,7 +15,9 @@
 //                             within each class
 // Other files in corres/ (CLASS_sampleID.vts) are ignored.
 //
-// Options: root (required), classes, max_pairs, pairs_file (DatasetRestrictions).
+// Options: root (required), classes, max_pairs, pairs_file (DatasetRestrictions); remesh,
+// remesh_anisotropy, remesh_seed and cache read the dataset through an independent remeshing of
+// every shape (eval/datasets/remeshed_dataset.h).
 // Load() checks that every pair names two shapes with meshes and ground truth, and that the
 // .vts (and .sym.vts) files of the two shapes of a pair have the same number of lines;
 // GroundTruth() checks every id against the mesh's vertex count. Errors: InvalidInputError or

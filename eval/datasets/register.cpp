@@ -2,6 +2,7 @@
 
 #include "eval/datasets/kim2011.h"
 #include "eval/datasets/pairs_vts.h"
+#include "eval/datasets/remeshed_dataset.h"
 #include "eval/datasets/same_connectivity.h"
 #include "eval/datasets/synthetic_dataset.h"
 
@@ -10,10 +11,9 @@ namespace symembed {
 void RegisterDatasetLoaders(Registry& registry) {
   registry.Add("dataset", "pairs_vts",
                "shapes/*.off|obj|ply + corres/NAME.vts (.sym.vts) + test_pairs.txt (TOSCA/FAUST "
-               "remeshed, synthetic output)",
-               [](OptionReader& o) {
-                 return std::make_unique<PairsVtsDataset>(ReadPairsVtsOptions(o));
-               });
+               "remeshed, synthetic output); optionally read through an independent, "
+               "optionally anisotropic remeshing of every shape (cached)",
+               [](OptionReader& o) { return CreatePairsVtsDataset(o); });
   registry.Add("dataset", "same_connectivity",
                "root/<class>/*.off|obj|ply sharing vertex ids (SCAPE, TOSCA originals); "
                "identity ground truth, optional sym.txt",

@@ -1,10 +1,9 @@
 #include "eval/datasets/synthetic_dataset.h"
 
-#include <cstdio>
 #include <filesystem>
-#include <random>
 
 #include "core/errors.h"
+#include "eval/synthetic/dataset_writer.h"
 
 namespace symembed {
 
@@ -18,15 +17,7 @@ constexpr const char* kGeneratorVersion = "synthetic-generator-2";
 }  // namespace
 
 std::string SynthOptionsHash(const SynthOptions& options) {
-  const std::string text = std::string(kGeneratorVersion) + "\n" + SynthOptionsText(options);
-  uint64_t h = 1469598103934665603ULL;  // FNV-1a
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  char buffer[17];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
-  return buffer;
+  return HashHex(std::string(kGeneratorVersion) + "\n" + SynthOptionsText(options));
 }
 
 SyntheticDataset::SyntheticDataset(SynthOptions generator, std::string cache,
@@ -36,21 +27,7 @@ SyntheticDataset::SyntheticDataset(SynthOptions generator, std::string cache,
       reader_(PairsVtsOptions{cache_, std::move(restrictions)}) {}
 
 void SyntheticDataset::EnsureGenerated() const {
-  if (fs::exists(fs::path(cache_) / "README.md")) return;
-  const fs::path target(cache_);
-  if (target.has_parent_path()) fs::create_directories(target.parent_path());
-  std::random_device rd;
-  const fs::path tmp = target.string() + ".tmp" + std::to_string(rd());
-  WriteSyntheticDataset(tmp.string(), generator_);
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove_all(tmp);
-    // Another process may have finished first; anything else is an error.
-    if (!fs::exists(target / "README.md")) {
-      throw IoError("cannot move the generated dataset to " + cache_ + ": " + ec.message());
-    }
-  }
+  GenerateOnce(cache_, [&](const std::string& dir) { WriteSyntheticDataset(dir, generator_); });
 }
 
 DatasetIndex SyntheticDataset::Load() const {

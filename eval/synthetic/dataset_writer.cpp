@@ -1,6 +1,9 @@
 #include "eval/synthetic/dataset_writer.h"
 
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
+#include <random>
 
 #include "core/errors.h"
 
@@ -33,6 +36,41 @@ void PrepareDatasetOutput(const fs::path& out, bool force) {
   if (!force) throw IoError(out.string() + " is not empty; use --force to replace a dataset there");
   for (const char* name : {"shapes", "corres", "test_pairs.txt", "README.md"}) {
     fs::remove_all(out / name);
+  }
+}
+
+std::string HashHex(const std::string& text) {
+  uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
+  return buffer;
+}
+
+void GenerateOnce(const std::string& folder, const std::function<void(const std::string&)>& write) {
+  if (fs::exists(fs::path(folder) / "README.md")) return;
+  const fs::path target(folder);
+  if (target.has_parent_path()) fs::create_directories(target.parent_path());
+  std::random_device rd;
+  const fs::path tmp = target.string() + ".tmp" + std::to_string(rd());
+  try {
+    write(tmp.string());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(tmp, ignored);
+    throw;
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove_all(tmp);
+    // Another process may have finished first; anything else is an error.
+    if (!fs::exists(target / "README.md")) {
+      throw IoError("cannot move the generated dataset to " + folder + ": " + ec.message());
+    }
   }
 }
 

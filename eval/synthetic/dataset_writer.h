@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace symembed {
@@ -18,5 +19,14 @@ void WriteDatasetFile(const std::filesystem::path& path, const std::string& text
 // README.md) and leaves anything else. Throws IoError ("... use --force ..." when refused, or
 // when out is a file).
 void PrepareDatasetOutput(const std::filesystem::path& out, bool force);
+
+// 16 hex digits of the 64-bit FNV-1a hash of text: the name of a generated dataset's cache
+// folder.
+std::string HashHex(const std::string& text);
+
+// Makes `folder` hold what write(dir) writes into an empty dir, unless folder/README.md exists:
+// written to a temporary sibling and renamed into place, so that concurrent users see it
+// complete or not at all. Throws IoError when it cannot be moved there.
+void GenerateOnce(const std::string& folder, const std::function<void(const std::string&)>& write);
 
 }  // namespace symembed

@@ -1,14 +1,18 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 
 #include "core/errors.h"
+#include "core/mesh_io.h"
 #include "eval/datasets/dataset_files.h"
 #include "eval/datasets/kim2011.h"
 #include "eval/datasets/pairs_vts.h"
+#include "eval/datasets/remeshed_dataset.h"
 #include "eval/datasets/same_connectivity.h"
 #include "eval/datasets/synthetic_dataset.h"
+#include "eval/synthetic/synthetic.h"
 #include "registry/registry.h"
 #include "tests/test_util.h"
 
@@ -483,6 +487,103 @@ TEST(SyntheticDataset, DefaultCacheIsKeyedByTheGeneratorOptions) {
   ExpectError<ConfigError>([&] { Create("{type: synthetic, noise: 2}"); },
                            {"dataset.noise", "out of range"});
   ExpectError<ConfigError>([&] { Create("{type: synthetic, pose: 3}"); }, {"unknown key 'pose'"});
+}
+
+// --- pairs_vts through a remeshing ------------------------------------------------------------
+
+TEST(RemeshedPairsVts, RemeshesIntoTheCacheOnceAndReadsIt) {
+  TempDir dir;
+  SynthOptions o;
+  o.kinds = {FigureKind::kHumanoid};
+  o.poses = 3;
+  o.vertices = 900;
+  WriteSyntheticDataset(dir.File("in"), o);
+  WriteText(dir.File("in/two_pairs.txt"), "humanoid0 humanoid1\nhumanoid1 humanoid2\n");
+  const std::string yaml = "{type: pairs_vts, root: " + dir.File("in") +
+                           ", remesh: 400, remesh_anisotropy: 3, cache: " + dir.File("cache") + "}";
+  auto dataset = Create(yaml);
+  ASSERT_NE(dynamic_cast<RemeshedDataset*>(dataset.get()), nullptr);
+  const DatasetIndex index = dataset->Load();
+  ASSERT_EQ(index.shapes.size(), 3u);
+  ASSERT_EQ(index.pairs.size(), 3u);
+  const DatasetShape& s = *index.Find("humanoid1");
+  EXPECT_EQ(s.mesh_path.rfind(dir.File("cache"), 0), 0u) << s.mesh_path;
+  const int n = CountMeshVertices(s.mesh_path);
+  EXPECT_LE(n, 420);
+  const ShapeGroundTruth gt = dataset->GroundTruth(s, n);
+  EXPECT_EQ(gt.sym_ids.size(), gt.ids.size());
+  EXPECT_EQ(std::count_if(gt.ids.begin(), gt.ids.end(), [](int v) { return v >= 0; }), n);
+  // Read again without remeshing; restrictions apply, a pairs file is the input's.
+  const std::string readme = dir.File("cache/README.md");
+  const auto written = fs::last_write_time(readme);
+  auto restricted = Create("{type: pairs_vts, root: " + dir.File("in") +
+                           ", remesh: 400, remesh_anisotropy: 3, pairs_file: two_pairs.txt, "
+                           "max_pairs: 1, cache: " +
+                           dir.File("cache") + "}");
+  const DatasetIndex one = restricted->Load();
+  ASSERT_EQ(one.pairs.size(), 1u);
+  EXPECT_EQ(one.pairs[0].source, "humanoid0");
+  EXPECT_EQ(fs::last_write_time(readme), written);
+}
+
+TEST(RemeshedPairsVts, DefaultCacheFollowsTheOptionsAndTheInputFiles) {
+  TempDir dir;
+  WritePairsVtsTree(dir.File("in"));
+  auto key = [&](const std::string& extra) {
+    auto d = Create("{type: pairs_vts, root: " + dir.File("in") + ", remesh: 100" + extra + "}");
+    const auto* r = dynamic_cast<RemeshedDataset*>(d.get());
+    EXPECT_NE(r, nullptr);
+    return r ? r->cache() : std::string();
+  };
+  const std::string a = key("");
+  EXPECT_EQ(a.rfind("results/.cache/remeshed/", 0), 0u) << a;
+  EXPECT_EQ(key(""), a);
+  EXPECT_EQ(key(", max_pairs: 1"), a);  // restrictions do not change what is remeshed
+  EXPECT_NE(key(", remesh_seed: 2"), a);
+  EXPECT_NE(key(", remesh_anisotropy: 2"), a);
+  WriteText(dir.File("in/corres/dog1.vts"), "1\n2\n3\n");  // an edited ground truth
+  EXPECT_NE(key(""), a);
+  // Without remesh the loader reads the files themselves; remeshing options alone are errors.
+  EXPECT_NE(dynamic_cast<PairsVtsDataset*>(
+                Create("{type: pairs_vts, root: " + dir.File("in") + "}").get()),
+            nullptr);
+  ExpectError<ConfigError>(
+      [&] { Create("{type: pairs_vts, root: " + dir.File("in") + ", remesh_anisotropy: 3}"); },
+      {"remesh_anisotropy", "needs remesh > 0"});
+  ExpectError<ConfigError>(
+      [&] { Create("{type: pairs_vts, root: " + dir.File("in") + ", remesh: 20}"); },
+      {"dataset.remesh", "below 50"});
+}
+
+TEST(RemeshedPairsVts, BadInputIsNamedAndLeavesNoCache) {
+  TempDir dir;
+  WritePairsVtsTree(dir.File("in"));
+  // Tetrahedra have 4 and 5 vertices, fewer than the target: copied as they are.
+  auto dataset = Create("{type: pairs_vts, root: " + dir.File("in") +
+                        ", remesh: 60, cache: " + dir.File("cache") + "}");
+  EXPECT_EQ(dataset->Load().pairs.size(), 3u);
+  // A broken ground-truth file is reported with its path.
+  WriteText(dir.File("in/corres/cat1.vts"), "2\n2\n99\n");
+  auto broken = Create("{type: pairs_vts, root: " + dir.File("in") +
+                       ", remesh: 60, cache: " + dir.File("cache2") + "}");
+  ExpectError<InvalidInputError>([&] { broken->Load(); }, {"cat1.vts"});
+  EXPECT_FALSE(fs::exists(dir.File("cache2")));
+  // So is a mesh the decimation cannot take: a face on an edge that has two already.
+  SynthOptions o;
+  o.poses = 2;
+  o.vertices = 900;
+  WriteSyntheticDataset(dir.File("synth"), o);
+  Surface s = LoadSurface(dir.File("synth/shapes/humanoid1.off"));
+  s.V.conservativeResize(s.V.rows() + 1, 3);
+  s.V.row(s.V.rows() - 1) << 5.0, 5.0, 5.0;
+  s.F.conservativeResize(s.F.rows() + 1, 3);
+  s.F.row(s.F.rows() - 1) << s.F(0, 0), s.F(0, 1), static_cast<int>(s.V.rows() - 1);
+  SaveMesh(dir.File("synth/shapes/humanoid1.off"), s);
+  auto bad_mesh = Create("{type: pairs_vts, root: " + dir.File("synth") +
+                         ", remesh: 400, cache: " + dir.File("cache3") + "}");
+  ExpectError<InvalidInputError>([&] { bad_mesh->Load(); },
+                                 {"humanoid1.off", "cannot be remeshed"});
+  EXPECT_FALSE(fs::exists(dir.File("cache3")));
 }
 
 }  // namespace
