@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 
 #include "core/errors.h"
 #include "registry/options.h"
 #include "registry/registry.h"
+#include "tests/test_util.h"
 
 namespace symembed {
 namespace {
@@ -383,6 +385,31 @@ TEST(Config, CrossOptionErrorOfAMapMadeByAVariantHasALine) {
               std::string::npos)
         << e.what();
   }
+}
+
+// Every config shipped in configs/ (the quickstart, the paper studies, the suite) loads: its keys
+// exist and every variant's stages, dataset included, are built with their options. No data is
+// read.
+TEST(Config, EveryShippedConfigLoads) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  int configs = 0;
+  for (const auto& entry :
+       std::filesystem::recursive_directory_iterator(testing::SourceDir() + "/configs")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++configs;
+    try {
+      const ExperimentConfig config = LoadExperimentConfig(entry.path().string(), registry);
+      EXPECT_FALSE(config.variants.empty()) << entry.path();
+      for (const VariantConfig& variant : config.variants) {
+        EXPECT_NO_THROW(BuildPipeline(config, variant, registry))
+            << entry.path() << " " << variant.name;
+      }
+    } catch (const Error& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
+  EXPECT_GE(configs, 7);
 }
 
 TEST(Config, AnEmbeddingThatCannotRunIsRefused) {
