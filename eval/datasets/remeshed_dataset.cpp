@@ -62,23 +62,12 @@ std::string RemeshedDatasetHash(const std::string& root, const RemeshDatasetOpti
 
 RemeshedDataset::RemeshedDataset(std::string root, RemeshDatasetOptions remesh, std::string cache,
                                  DatasetRestrictions restrictions)
-    : root_(std::move(root)),
-      remesh_(remesh),
-      cache_(std::move(cache)),
-      reader_(PairsVtsOptions{cache_, std::move(restrictions)}) {}
+    : GeneratedDataset(std::move(cache), std::move(restrictions)),
+      root_(std::move(root)),
+      remesh_(remesh) {}
 
-void RemeshedDataset::EnsureGenerated() const {
-  GenerateOnce(cache_, [&](const std::string& dir) { WriteRemeshedDataset(root_, dir, remesh_); });
-}
-
-DatasetIndex RemeshedDataset::Load() const {
-  EnsureGenerated();
-  return reader_.Load();
-}
-
-ShapeGroundTruth RemeshedDataset::GroundTruth(const DatasetShape& shape, int num_vertices) const {
-  EnsureGenerated();
-  return reader_.GroundTruth(shape, num_vertices);
+void RemeshedDataset::Write(const std::string& dir) const {
+  WriteRemeshedDataset(root_, dir, remesh_);
 }
 
 std::unique_ptr<Dataset> CreatePairsVtsDataset(OptionReader& options) {

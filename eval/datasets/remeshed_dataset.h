@@ -14,28 +14,21 @@
 #include <memory>
 #include <string>
 
-#include "eval/datasets/pairs_vts.h"
+#include "eval/datasets/generated_dataset.h"
 #include "eval/synthetic/remesh_dataset.h"
 #include "registry/dataset.h"
 
 namespace symembed {
 
-class RemeshedDataset : public Dataset {
+class RemeshedDataset : public GeneratedDataset {
  public:
   RemeshedDataset(std::string root, RemeshDatasetOptions remesh, std::string cache,
                   DatasetRestrictions restrictions);
-  DatasetIndex Load() const override;
-  ShapeGroundTruth GroundTruth(const DatasetShape& shape, int num_vertices) const override;
-
-  const std::string& cache() const { return cache_; }
-  // Writes the remeshed copy into the cache folder unless it is there already.
-  void EnsureGenerated() const;
 
  private:
+  void Write(const std::string& dir) const override;
   std::string root_;
   RemeshDatasetOptions remesh_;
-  std::string cache_;
-  PairsVtsDataset reader_;
 };
 
 // The cache folder's name for a remeshing of the dataset under root: 16 hex digits.

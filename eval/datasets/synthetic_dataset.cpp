@@ -1,13 +1,9 @@
 #include "eval/datasets/synthetic_dataset.h"
 
-#include <filesystem>
-
 #include "core/errors.h"
 #include "eval/synthetic/dataset_writer.h"
 
 namespace symembed {
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -22,22 +18,11 @@ std::string SynthOptionsHash(const SynthOptions& options) {
 
 SyntheticDataset::SyntheticDataset(SynthOptions generator, std::string cache,
                                    DatasetRestrictions restrictions)
-    : generator_(std::move(generator)),
-      cache_(std::move(cache)),
-      reader_(PairsVtsOptions{cache_, std::move(restrictions)}) {}
+    : GeneratedDataset(std::move(cache), std::move(restrictions)),
+      generator_(std::move(generator)) {}
 
-void SyntheticDataset::EnsureGenerated() const {
-  GenerateOnce(cache_, [&](const std::string& dir) { WriteSyntheticDataset(dir, generator_); });
-}
-
-DatasetIndex SyntheticDataset::Load() const {
-  EnsureGenerated();
-  return reader_.Load();
-}
-
-ShapeGroundTruth SyntheticDataset::GroundTruth(const DatasetShape& shape, int num_vertices) const {
-  EnsureGenerated();
-  return reader_.GroundTruth(shape, num_vertices);
+void SyntheticDataset::Write(const std::string& dir) const {
+  WriteSyntheticDataset(dir, generator_);
 }
 
 std::unique_ptr<SyntheticDataset> CreateSyntheticDataset(OptionReader& options) {

@@ -12,26 +12,19 @@
 #include <memory>
 #include <string>
 
-#include "eval/datasets/pairs_vts.h"
+#include "eval/datasets/generated_dataset.h"
 #include "eval/synthetic/synthetic.h"
 #include "registry/dataset.h"
 
 namespace symembed {
 
-class SyntheticDataset : public Dataset {
+class SyntheticDataset : public GeneratedDataset {
  public:
   SyntheticDataset(SynthOptions generator, std::string cache, DatasetRestrictions restrictions);
-  DatasetIndex Load() const override;
-  ShapeGroundTruth GroundTruth(const DatasetShape& shape, int num_vertices) const override;
-
-  const std::string& cache() const { return cache_; }
-  // Generates into the cache folder unless it is there already.
-  void EnsureGenerated() const;
 
  private:
+  void Write(const std::string& dir) const override;
   SynthOptions generator_;
-  std::string cache_;
-  PairsVtsDataset reader_;
 };
 
 // 16 hex digits identifying a generator option set (and the generator version).

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace symembed {
 
@@ -13,6 +14,12 @@ void CreateDatasetFolders(const std::filesystem::path& root);
 
 // Writes text to path; throws IoError naming it when it cannot be written.
 void WriteDatasetFile(const std::filesystem::path& path, const std::string& text);
+
+// The text of a .vts file of a shape whose vertex v is vertex kept[v] of a source mesh with
+// num_source vertices (the synthetic rest shape, a remeshed input): line i is the 1-based id of
+// the shape's vertex that is source vertex lines[i], or 0 when lines[i] < 0 or the shape did not
+// keep that vertex.
+std::string VtsText(const std::vector<int>& kept, const std::vector<int>& lines, int num_source);
 
 // Makes `out` ready for a dataset: absent or empty is fine; a non-empty directory is refused
 // unless `force`, which removes the layout's entries (shapes/, corres/, test_pairs.txt,

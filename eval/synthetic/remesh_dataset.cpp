@@ -2,7 +2,6 @@
 
 #include <exception>
 #include <filesystem>
-#include <set>
 #include <sstream>
 
 #include "core/errors.h"
@@ -27,18 +26,6 @@ bool RemeshDatasetOptions::IsValid(std::string* error) const {
   return out.str().empty();
 }
 
-namespace {
-
-// One line per ground-truth line: the 1-based id in the remeshed shape of the input vertex the
-// line names, 0 when the line is missing or its vertex was collapsed away.
-std::string VtsText(const std::vector<int>& ids, const std::vector<int>& new_id) {
-  std::string text;
-  for (int v : ids) text += std::to_string(v >= 0 ? new_id[v] + 1 : 0) + "\n";
-  return text;
-}
-
-}  // namespace
-
 RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,
                                           const std::string& output_dir,
                                           const RemeshDatasetOptions& options) {
@@ -48,26 +35,19 @@ RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,
   input.root = input_root;
   const PairsVtsDataset dataset(input);
   const DatasetIndex index = dataset.Load();
-  std::set<std::string> paired;
-  for (const DatasetPair& p : index.pairs) {
-    paired.insert(p.source);
-    paired.insert(p.target);
-  }
-  std::vector<const DatasetShape*> shapes;
-  for (const DatasetShape& s : index.shapes) {
-    if (paired.count(s.name)) shapes.push_back(&s);
-  }
 
   const fs::path root(output_dir);
   CreateDatasetFolders(root);
 
   const uint64_t seed = static_cast<uint64_t>(options.seed);
+  // The loader lists exactly the shapes its pairs name.
+  const std::vector<DatasetShape>& shapes = index.shapes;
   const int n = static_cast<int>(shapes.size());
   std::vector<int> before(n), after(n);
   std::vector<std::exception_ptr> failures(n);
   ParallelFor(n, [&](int i) {
     try {
-      const DatasetShape& shape = *shapes[i];
+      const DatasetShape& shape = shapes[i];
       TrackedSurface tracked{LoadSurface(shape.mesh_path), {}};
       const int nv = tracked.surface.NumVertices();
       const ShapeGroundTruth truth = dataset.GroundTruth(shape, nv);
@@ -85,15 +65,12 @@ RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,
                                   "); `symembed validate` lists what is wrong with it");
         }
       }
-      std::vector<int> new_id(nv, -1);
-      for (size_t v = 0; v < tracked.rest_ids.size(); ++v) {
-        new_id[tracked.rest_ids[v]] = static_cast<int>(v);
-      }
       SaveMesh((root / "shapes" / (shape.name + ".off")).string(), tracked.surface);
-      WriteDatasetFile(root / "corres" / (shape.name + ".vts"), VtsText(truth.ids, new_id));
+      WriteDatasetFile(root / "corres" / (shape.name + ".vts"),
+                       VtsText(tracked.rest_ids, truth.ids, nv));
       if (!truth.sym_ids.empty()) {
         WriteDatasetFile(root / "corres" / (shape.name + ".sym.vts"),
-                         VtsText(truth.sym_ids, new_id));
+                         VtsText(tracked.rest_ids, truth.sym_ids, nv));
       }
       before[i] = nv;
       after[i] = tracked.surface.NumVertices();
@@ -123,7 +100,7 @@ RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,
          << "vertex was collapsed away is 0. Layout: pairs_vts (`shapes/`, `corres/`, "
          << "`test_pairs.txt`).\n\n| shape | vertices before | after |\n| --- | --- | --- |\n";
   for (int i = 0; i < n; ++i) {
-    readme << "| " << shapes[i]->name << " | " << before[i] << " | " << after[i] << " |\n";
+    readme << "| " << shapes[i].name << " | " << before[i] << " | " << after[i] << " |\n";
     summary.remeshed += after[i] < before[i];
   }
   WriteDatasetFile(root / "README.md", readme.str());

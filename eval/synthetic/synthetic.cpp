@@ -153,20 +153,6 @@ SynthClass GenerateClass(FigureKind kind, const SynthOptions& options) {
   return out;
 }
 
-namespace {
-
-// Line i: 1-based id in the shape of rest vertex lines[i], or 0 when absent.
-std::string VtsText(const std::vector<int>& rest_ids, const std::vector<int>& lines, int num_rest) {
-  std::vector<int> id_of(num_rest, 0);
-  for (size_t v = 0; v < rest_ids.size(); ++v) id_of[rest_ids[v]] = static_cast<int>(v) + 1;
-  std::string text;
-  text.reserve(6 * lines.size());
-  for (int r : lines) text += std::to_string(id_of[r]) + "\n";
-  return text;
-}
-
-}  // namespace
-
 void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("synthetic options: " + error);

@@ -7,8 +7,8 @@
 namespace symembed {
 
 ProductKey<Eigen::MatrixXd> CurvatureFeaturesKey(const FeatureSmoothing& smoothing) {
-  // The text of ring smoothing is that of the features before radii existed, so their cache
-  // entries stay valid.
+  // The key names only the smoothing in use: ring smoothing keeps its `smoothing_rings=N`
+  // text, so cached features over rings stay valid whatever radius options exist.
   if (smoothing.radius <= 0.0) {
     return {"curvature_features", "smoothing_rings=" + std::to_string(smoothing.rings)};
   }
