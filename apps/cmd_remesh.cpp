@@ -23,6 +23,10 @@ int RemeshCommand(const Args& args) {
                 "> 1: edges measured this many times longer along a random direction per shape, "
                 "so that the edges along it stay short",
                 "1");
+  parser.Option("subdivide",
+                "Loop subdivision levels (0-2) before the decimation, to remesh denser than the "
+                "input (each level about 4 times the vertices)",
+                "0");
   parser.Option("seed", "random seed (same input, options and seed: byte-identical files)", "1");
   parser.Switch("force",
                 "write into a non-empty output directory (replaces shapes/, corres/, "
@@ -33,6 +37,7 @@ int RemeshCommand(const Args& args) {
   RemeshDatasetOptions options;
   options.vertices = parser.GetInt("vertices");
   options.anisotropy = parser.GetDouble("anisotropy");
+  options.subdivide = parser.GetInt("subdivide");
   options.seed = parser.GetInt("seed");
   std::string error;
   if (!options.IsValid(&error)) throw UsageError{error};

@@ -54,7 +54,10 @@ std::string RemeshedDatasetHash(const std::string& root, const RemeshDatasetOpti
   std::ostringstream text;
   text.precision(17);
   text << kRemeshVersion << "\nvertices " << remesh.vertices << "\nanisotropy " << remesh.anisotropy
-       << "\nseed " << remesh.seed << "\nroot " << absolute.string() << "\n"
+       << "\nseed " << remesh.seed;
+  // Absent at 0, so that caches written before the option keep their names.
+  if (remesh.subdivide != 0) text << "\nsubdivide " << remesh.subdivide;
+  text << "\nroot " << absolute.string() << "\n"
        << FolderStamps(absolute, "shapes") << FolderStamps(absolute, "corres")
        << FileStamp(absolute / "test_pairs.txt", "test_pairs.txt");
   return HashHex(text.str());
@@ -76,10 +79,14 @@ std::unique_ptr<Dataset> CreatePairsVtsDataset(OptionReader& options) {
   remesh.vertices = options.GetInt("remesh", 0, 0);
   remesh.anisotropy = options.GetDouble("remesh_anisotropy", 1.0, 1.0, 20.0);
   remesh.seed = options.GetInt("remesh_seed", 1, 0);
+  remesh.subdivide = options.GetInt("remesh_subdivide", 0, 0, 2);
   std::string cache = options.GetString("cache", "");
   if (remesh.vertices == 0) {
     if (remesh.anisotropy != 1.0) {
       options.Fail("remesh_anisotropy", "needs remesh > 0 (the anisotropy is the remeshing's)");
+    }
+    if (remesh.subdivide != 0) {
+      options.Fail("remesh_subdivide", "needs remesh > 0 (the target after the subdivision)");
     }
     if (!cache.empty()) options.Fail("cache", "needs remesh > 0 (only a remeshing is cached)");
     return std::make_unique<PairsVtsDataset>(o);

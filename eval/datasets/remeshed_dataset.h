@@ -1,7 +1,8 @@
 // The `pairs_vts` loader's remeshing: with `remesh: N` (> 0) the dataset under `root` is read
 // through a remeshed copy (eval/synthetic/remesh_dataset.h: every shape decimated independently
 // to N vertices, anisotropically with `remesh_anisotropy` A > 1 along a random direction per
-// shape, seeded by `remesh_seed`; the ground truth carried over exactly) written on first use
+// shape, seeded by `remesh_seed`, after `remesh_subdivide` levels of Loop subdivision; the
+// ground truth carried over exactly) written on first use
 // into a cache folder, `cache` (default results/.cache/remeshed/<hash>, relative to the working
 // directory). The hash covers the options, the root's absolute path and the name, size and
 // modification time of every file of its shapes/ and corres/ and of test_pairs.txt, so an edited

@@ -30,7 +30,9 @@ void WriteDatasetFile(const fs::path& path, const std::string& text) {
 
 std::string VtsText(const std::vector<int>& kept, const std::vector<int>& lines, int num_source) {
   std::vector<int> id_of(num_source, 0);
-  for (size_t v = 0; v < kept.size(); ++v) id_of[kept[v]] = static_cast<int>(v) + 1;
+  for (size_t v = 0; v < kept.size(); ++v) {
+    if (kept[v] >= 0) id_of[kept[v]] = static_cast<int>(v) + 1;
+  }
   std::string text;
   text.reserve(6 * lines.size());
   for (int r : lines) text += std::to_string(r >= 0 ? id_of[r] : 0) + "\n";

@@ -16,7 +16,8 @@ void CreateDatasetFolders(const std::filesystem::path& root);
 void WriteDatasetFile(const std::filesystem::path& path, const std::string& text);
 
 // The text of a .vts file of a shape whose vertex v is vertex kept[v] of a source mesh with
-// num_source vertices (the synthetic rest shape, a remeshed input): line i is the 1-based id of
+// num_source vertices (the synthetic rest shape, a remeshed input), or no source vertex when
+// kept[v] < 0 (a vertex a subdivision added): line i is the 1-based id of
 // the shape's vertex that is source vertex lines[i], or 0 when lines[i] < 0 or the shape did not
 // keep that vertex.
 std::string VtsText(const std::vector<int>& kept, const std::vector<int>& lines, int num_source);

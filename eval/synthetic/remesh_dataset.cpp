@@ -22,6 +22,8 @@ bool RemeshDatasetOptions::IsValid(std::string* error) const {
     out << "vertices: a target below 50 vertices is degenerate, got " << vertices;
   else if (!(anisotropy >= 1.0 && anisotropy <= 20.0))
     out << "anisotropy: must be in [1, 20], got " << anisotropy;
+  else if (subdivide < 0 || subdivide > 2)
+    out << "subdivide: Loop subdivision levels must be in [0, 2], got " << subdivide;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -53,7 +55,13 @@ RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,
       const ShapeGroundTruth truth = dataset.GroundTruth(shape, nv);
       tracked.rest_ids.resize(nv);
       for (int v = 0; v < nv; ++v) tracked.rest_ids[v] = v;
-      if (options.vertices < nv) {
+      try {
+        tracked = Subdivide(tracked, options.subdivide);
+      } catch (const Error& e) {
+        throw InvalidInputError(shape.mesh_path + ": cannot be subdivided (" + e.what() +
+                                "); `symembed validate` lists what is wrong with it");
+      }
+      if (options.vertices < tracked.surface.NumVertices()) {
         const Eigen::Vector3d direction =
             options.anisotropy > 1.0 ? RandomUnitVector(DeriveSeed(seed, "remesh_direction", i))
                                      : Eigen::Vector3d::UnitX();
@@ -92,6 +100,11 @@ RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,
   readme << "# Remeshed dataset (symembed remesh)\n\n"
          << "Every shape of `" << input_root << "` decimated independently to " << options.vertices
          << " vertices";
+  if (options.subdivide > 0) {
+    readme << " after " << options.subdivide
+           << " level(s) of Loop subdivision (old vertices moved by Loop's rule, new ones without "
+           << "ground truth)";
+  }
   if (options.anisotropy > 1.0) {
     readme << ", edges measured " << options.anisotropy
            << " times longer along a random direction per shape";
@@ -101,7 +114,7 @@ RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,
          << "`test_pairs.txt`).\n\n| shape | vertices before | after |\n| --- | --- | --- |\n";
   for (int i = 0; i < n; ++i) {
     readme << "| " << shapes[i].name << " | " << before[i] << " | " << after[i] << " |\n";
-    summary.remeshed += after[i] < before[i];
+    summary.remeshed += after[i] != before[i];
   }
   WriteDatasetFile(root / "README.md", readme.str());
   return summary;

@@ -4,6 +4,12 @@
 // results depend on the meshing on real shapes, as the synthetic benchmark's `remesh` and
 // `remesh_anisotropy` options do on generated ones.
 //
+// With `subdivide` L > 0 every shape is first Loop-subdivided L times (Subdivide in
+// eval/synthetic/variations.h: each level about 4 times the vertices, the old vertices moved by a
+// fraction of an edge and keeping their ids, the new ones without ground truth) and then
+// decimated, so a dataset can be remeshed denser than it is distributed (12,000 vertices from
+// 5,000: subdivide 1, vertices 12000).
+//
 // Each shape is decimated with Remesh (eval/synthetic/variations.h): halfedge collapses only, so
 // every kept vertex keeps its position, and a ground-truth line whose vertex is kept names it in
 // the new mesh; a line whose vertex was collapsed away is written as 0 ("the shape does not have
@@ -21,6 +27,7 @@ struct RemeshDatasetOptions {
   int vertices = 2500;      // target vertex count of every shape (>= 50); larger shapes only
   double anisotropy = 1.0;  // in [1, 20]; > 1: edges measured this many times longer along a
                             // random direction per shape (kept short along it)
+  int subdivide = 0;        // Loop subdivision levels before the decimation, in [0, 2]
   int seed = 1;
 
   bool IsValid(std::string* error) const;
@@ -34,7 +41,8 @@ struct RemeshDatasetSummary {
 
 // Reads the pairs_vts dataset under input_root and writes the remeshed copy under output_dir
 // (shapes/NAME.off, corres/NAME.vts and NAME.sym.vts where the input has it, test_pairs.txt with
-// the input's pairs, README.md with the options and the source). Throws ConfigError for invalid
+// the input's pairs, README.md with the options and the source). A shape with no more vertices
+// than the target (after the subdivision) is written as it is. Throws ConfigError for invalid
 // options, InvalidInputError / IoError naming the file for a dataset or mesh that cannot be read
 // or remeshed (a non-manifold mesh), IoError when the output cannot be written.
 RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,

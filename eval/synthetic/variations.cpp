@@ -4,6 +4,8 @@
 #include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.h"
@@ -141,6 +143,24 @@ TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t
   out.surface = ToSurface(mesh);
   out.rest_ids.resize(mesh.n_vertices());
   for (auto v : mesh.vertices()) out.rest_ids[v.idx()] = mesh.property(rest_id, v);
+  return out;
+}
+
+TrackedSurface Subdivide(const TrackedSurface& shape, int levels) {
+  SYMEMBED_CHECK(levels >= 0, "subdivision levels must be >= 0");
+  if (levels == 0) return shape;
+  int skipped = 0;
+  TriMesh mesh = FromSurface(shape.surface, &skipped);
+  SYMEMBED_CHECK(skipped == 0, "subdivision input is not a manifold mesh");
+  OpenMesh::Subdivider::Uniform::LoopT<TriMesh> loop;
+  loop.attach(mesh);
+  loop(static_cast<size_t>(levels));
+  loop.detach();
+  // LoopT only adds vertices (splitting edges), so the old ones keep their handles.
+  TrackedSurface out;
+  out.surface = ToSurface(mesh);
+  out.rest_ids.assign(mesh.n_vertices(), -1);
+  std::copy(shape.rest_ids.begin(), shape.rest_ids.end(), out.rest_ids.begin());
   return out;
 }
 

@@ -38,6 +38,13 @@ TrackedSurface Remesh(const TrackedSurface& shape, int target_vertices, uint32_t
                       double anisotropy = 1.0,
                       const Eigen::Vector3d& direction = Eigen::Vector3d::UnitX());
 
+// Loop subdivision, `levels` times (OpenMesh LoopT): each level splits every triangle into four,
+// a new vertex on every edge, and moves the old vertices by Loop's smoothing rule (a fraction of
+// the mean edge length on a smooth surface; boundaries by the 1-6-1 rule). The old vertices keep
+// their ids and rest ids; the new ones have rest id -1 (no rest vertex). levels >= 0; throws
+// InternalError for a non-manifold input.
+TrackedSurface Subdivide(const TrackedSurface& shape, int levels);
+
 // Moves every vertex along its normal by amplitude * mean_edge_length * u, u uniform in
 // [-1, 1) (seeded, drawn in vertex order).
 void AddNormalNoise(Surface* surface, double amplitude, uint32_t seed);

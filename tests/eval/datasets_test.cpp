@@ -541,6 +541,7 @@ TEST(RemeshedPairsVts, DefaultCacheFollowsTheOptionsAndTheInputFiles) {
   EXPECT_EQ(key(", max_pairs: 1"), a);  // restrictions do not change what is remeshed
   EXPECT_NE(key(", remesh_seed: 2"), a);
   EXPECT_NE(key(", remesh_anisotropy: 2"), a);
+  EXPECT_NE(key(", remesh_subdivide: 1"), a);
   WriteText(dir.File("in/corres/dog1.vts"), "1\n2\n3\n");  // an edited ground truth
   EXPECT_NE(key(""), a);
   // Without remesh the loader reads the files themselves; remeshing options alone are errors.
@@ -550,6 +551,9 @@ TEST(RemeshedPairsVts, DefaultCacheFollowsTheOptionsAndTheInputFiles) {
   ExpectError<ConfigError>(
       [&] { Create("{type: pairs_vts, root: " + dir.File("in") + ", remesh_anisotropy: 3}"); },
       {"remesh_anisotropy", "needs remesh > 0"});
+  ExpectError<ConfigError>(
+      [&] { Create("{type: pairs_vts, root: " + dir.File("in") + ", remesh_subdivide: 1}"); },
+      {"remesh_subdivide", "needs remesh > 0"});
   ExpectError<ConfigError>(
       [&] { Create("{type: pairs_vts, root: " + dir.File("in") + ", remesh: 20}"); },
       {"dataset.remesh", "below 50"});

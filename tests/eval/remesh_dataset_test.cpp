@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <vector>
 
 #include "core/errors.h"
 #include "core/mesh_io.h"
@@ -26,6 +27,39 @@ std::string WriteInput(const testing::TempDir& dir) {
   return dir.File("in");
 }
 
+// One shape of the input and of its remeshed copy, with their ground truth.
+struct ShapeBeforeAfter {
+  std::string name;
+  Surface a, b;
+  ShapeGroundTruth ga, gb;
+};
+
+// Every shape of the dataset under `in` beside its copy under `out`; the pair lists must agree.
+std::vector<ShapeBeforeAfter> ReadBeforeAfter(const std::string& in, const std::string& out) {
+  const PairsVtsDataset input(PairsVtsOptions{in, {}});
+  const PairsVtsDataset output(PairsVtsOptions{out, {}});
+  const DatasetIndex before = input.Load(), after = output.Load();
+  EXPECT_EQ(after.pairs.size(), before.pairs.size());
+  for (size_t p = 0; p < before.pairs.size() && p < after.pairs.size(); ++p) {
+    EXPECT_EQ(after.pairs[p].source, before.pairs[p].source);
+    EXPECT_EQ(after.pairs[p].target, before.pairs[p].target);
+  }
+  std::vector<ShapeBeforeAfter> shapes;
+  for (const DatasetShape& shape : before.shapes) {
+    const DatasetShape* copy = after.Find(shape.name);
+    EXPECT_NE(copy, nullptr) << shape.name;
+    if (!copy) continue;
+    ShapeBeforeAfter s{
+        shape.name, LoadSurface(shape.mesh_path), LoadSurface(copy->mesh_path), {}, {}};
+    s.ga = input.GroundTruth(shape, s.a.NumVertices());
+    s.gb = output.GroundTruth(*copy, s.b.NumVertices());
+    EXPECT_EQ(s.gb.ids.size(), s.ga.ids.size()) << shape.name;
+    EXPECT_EQ(s.gb.sym_ids.size(), s.ga.sym_ids.size()) << shape.name;
+    shapes.push_back(std::move(s));
+  }
+  return shapes;
+}
+
 TEST(RemeshDataset, KeptVerticesKeepTheirPositionsAndGroundTruthLines) {
   testing::TempDir dir;
   const std::string in = WriteInput(dir);
@@ -37,40 +71,63 @@ TEST(RemeshDataset, KeptVerticesKeepTheirPositionsAndGroundTruthLines) {
   EXPECT_EQ(summary.remeshed, 3);
   EXPECT_EQ(summary.pairs, 3);
 
-  const PairsVtsDataset input(PairsVtsOptions{in, {}});
-  const PairsVtsDataset output(PairsVtsOptions{dir.File("out"), {}});
-  const DatasetIndex before = input.Load(), after = output.Load();
-  ASSERT_EQ(after.pairs.size(), before.pairs.size());
-  for (size_t p = 0; p < before.pairs.size(); ++p) {
-    EXPECT_EQ(after.pairs[p].source, before.pairs[p].source);
-    EXPECT_EQ(after.pairs[p].target, before.pairs[p].target);
-  }
-  for (const DatasetShape& shape : before.shapes) {
-    const DatasetShape* out = after.Find(shape.name);
-    ASSERT_NE(out, nullptr) << shape.name;
-    const Surface a = LoadSurface(shape.mesh_path), b = LoadSurface(out->mesh_path);
+  const std::vector<ShapeBeforeAfter> shapes = ReadBeforeAfter(in, dir.File("out"));
+  ASSERT_EQ(shapes.size(), 3u);
+  for (const auto& [name, a, b, ga, gb] : shapes) {
     EXPECT_LE(b.NumVertices(), 520);
     EXPECT_GE(b.NumVertices(), 500);
-    const ShapeGroundTruth ga = input.GroundTruth(shape, a.NumVertices());
-    const ShapeGroundTruth gb = output.GroundTruth(*out, b.NumVertices());
-    ASSERT_EQ(gb.ids.size(), ga.ids.size());
-    ASSERT_EQ(gb.sym_ids.size(), ga.sym_ids.size());
     int kept = 0;
     for (size_t line = 0; line < ga.ids.size(); ++line) {
       // A kept line names the vertex at the same place; every vertex of the output is named.
       if (gb.ids[line] >= 0) {
         ASSERT_GE(ga.ids[line], 0);
-        ASSERT_EQ(b.V.row(gb.ids[line]), a.V.row(ga.ids[line])) << shape.name << " line " << line;
+        ASSERT_EQ(b.V.row(gb.ids[line]), a.V.row(ga.ids[line])) << name << " line " << line;
         ++kept;
       }
       if (gb.sym_ids[line] >= 0) {
         ASSERT_EQ(b.V.row(gb.sym_ids[line]), a.V.row(ga.sym_ids[line]));
       }
     }
-    EXPECT_EQ(kept, b.NumVertices()) << shape.name;
+    EXPECT_EQ(kept, b.NumVertices()) << name;
   }
   const std::string readme = testing::ReadText(dir.File("out/README.md"));
   EXPECT_NE(readme.find("4 times longer"), std::string::npos) << readme;
+}
+
+// Denser than the input: subdivided, then decimated to more vertices than the input has. The
+// ground truth names the old vertices, moved by a fraction of an edge; the new ones are unnamed.
+TEST(RemeshDataset, SubdivisionRemeshesDenserWithTheGroundTruthOnTheOldVertices) {
+  testing::TempDir dir;
+  const std::string in = WriteInput(dir);
+  RemeshDatasetOptions options;
+  options.vertices = 2500;
+  options.subdivide = 1;
+  const RemeshDatasetSummary summary = WriteRemeshedDataset(in, dir.File("out"), options);
+  EXPECT_EQ(summary.remeshed, 3);
+  const std::vector<ShapeBeforeAfter> shapes = ReadBeforeAfter(in, dir.File("out"));
+  ASSERT_EQ(shapes.size(), 3u);
+  for (const auto& [name, a, b, ga, gb] : shapes) {
+    EXPECT_GE(b.NumVertices(), 2500);
+    EXPECT_LE(b.NumVertices(), 2520);
+    const double edge = MeanEdgeLength(a);
+    int kept = 0;
+    double moved = 0.0;
+    for (size_t line = 0; line < ga.ids.size(); ++line) {
+      if (gb.ids[line] < 0) continue;
+      const double d = (b.V.row(gb.ids[line]) - a.V.row(ga.ids[line])).norm();
+      ASSERT_LT(d, 2.0 * edge) << line;  // more than the mean edge only at sharp tips
+      moved += d;
+      ++kept;
+    }
+    EXPECT_LT(moved / kept, 0.25 * edge) << name;
+    // About 2,500 of the ~4,800 subdivided vertices survive, old and new alike.
+    EXPECT_GT(kept, a.NumVertices() / 4) << name;
+    EXPECT_LT(kept, b.NumVertices() * 3 / 4) << name;
+  }
+  EXPECT_NE(testing::ReadText(dir.File("out/README.md")).find("Loop subdivision"),
+            std::string::npos);
+  options.subdivide = 3;
+  EXPECT_THROW(WriteRemeshedDataset(in, dir.File("out3"), options), ConfigError);
 }
 
 TEST(RemeshDataset, SameOptionsGiveTheSameFilesAndEachShapeItsOwnDirection) {
@@ -121,7 +178,7 @@ TEST(RemeshDataset, CommandWritesADatasetAndRejectsBadArguments) {
   const std::string bin = SYMEMBED_BINARY;
   std::string out;
   ASSERT_EQ(testing::RunShell(bin + " remesh --in " + in + " --out " + dir.File("r") +
-                                  " --vertices 600 --anisotropy 3",
+                                  " --vertices 600 --anisotropy 3 --subdivide 1",
                               &out),
             0)
       << out;

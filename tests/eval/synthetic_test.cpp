@@ -287,6 +287,35 @@ TEST_P(SyntheticKinds, AnisotropicRemeshingShortensTheEdgesAlongItsDirection) {
   EXPECT_EQ(SynthOptionsText(o).find("remesh_anisotropy"), std::string::npos);
 }
 
+// Loop subdivision: four triangles per triangle, a vertex per edge, the old vertices moved by a
+// fraction of an edge and keeping their ids, the new ones without a rest vertex; the surface
+// stays closed and its area nearly the same (Loop's limit surface lies inside a convex polygon
+// mesh, so the area can only shrink a little).
+TEST_P(SyntheticKinds, SubdivisionAddsAVertexPerEdgeAndKeepsTheOldIds) {
+  const TrackedSurface posed =
+      GenerateClass(GetParam(), Options(GetParam(), 1, 1000)).shapes[0].shape;
+  const Surface& s = posed.surface;
+  const int nv = s.NumVertices(), nf = s.NumFaces();
+  const int ne = nv + nf - 2;  // Euler characteristic 2
+  const TrackedSurface once = Subdivide(posed, 1);
+  EXPECT_EQ(once.surface.NumVertices(), nv + ne);
+  EXPECT_EQ(once.surface.NumFaces(), 4 * nf);
+  ExpectClosedGenusZero(once.surface, "subdivided");
+  ASSERT_EQ(once.rest_ids.size(), static_cast<size_t>(nv + ne));
+  const double edge = MeanEdgeLength(s);
+  double moved = 0.0;
+  for (int v = 0; v < nv; ++v) {
+    ASSERT_EQ(once.rest_ids[v], posed.rest_ids[v]) << v;
+    moved = std::max(moved, (once.surface.V.row(v) - s.V.row(v)).norm());
+  }
+  EXPECT_GT(moved, 0.0);
+  EXPECT_LT(moved, edge) << "Loop's rule moves a vertex by a fraction of its edges";
+  for (int v = nv; v < nv + ne; ++v) ASSERT_EQ(once.rest_ids[v], -1) << v;
+  EXPECT_NEAR(TotalArea(once.surface) / TotalArea(s), 1.0, 0.05);
+  EXPECT_EQ(Subdivide(posed, 2).surface.NumFaces(), 16 * nf);
+  EXPECT_EQ(Subdivide(posed, 0).surface.V, s.V);
+}
+
 TEST_P(SyntheticKinds, PartialShapesLoseOnePartAndKeepExactGroundTruth) {
   SynthOptions o = Options(GetParam(), 4, 1500);
   const SynthClass full = GenerateClass(GetParam(), o);
