@@ -91,8 +91,9 @@ ArgParser RunParser() {
                 "also write each shape's canonical embedding (symmetrized, in its frame, on the "
                 "preprocessed faces) as OUT/<variant>/embeddings/NAME.off");
   parser.Repeated("set",
-                  "override dotted.path=value in the base and every variant "
-                  "(e.g. --set evaluation.geodesics=fast_marching)");
+                  "override dotted.path=value in the base and every variant; a variant's own "
+                  "`set` of the same key wins there, with a note (e.g. --set "
+                  "evaluation.geodesics=fast_marching)");
   parser.Positionals("CONFIG", "the experiment's YAML file", 1, 1);
   return parser;
 }
@@ -184,6 +185,11 @@ int RunCommand(const Args& args) {
   const ExperimentConfig config =
       LoadExperimentConfig(parser.positionals()[0], registry, parser.GetAll("set"));
   options.out_dir = parser.Given("out") ? parser.Get("out") : "results/" + config.name;
+  for (const auto& [variant, line] : config.shadowed_overrides) {
+    if (options.variant.empty() || options.variant == variant) {
+      std::cerr << "symembed run: note: " << line << "\n";
+    }
+  }
 
   // A sharded run says in its folder whether it finished, so that merge can refuse a partial set.
   ShardMarker marker;

@@ -293,10 +293,19 @@ void ReadTopLevel(const YAML::Node& croot, const std::string& file, ExperimentCo
 // Variant i of the config's `variants` list: its name (unique in *names) and its tree, parsed
 // afresh by `parse`, with the command-line overrides and then its own `set` applied (type
 // changes first, so that options set next to them are kept). Throws ConfigError.
+// Whether dotted paths a and b name the same option or one holds the other.
+bool PathsOverlap(const std::string& a, const std::string& b) {
+  const std::string& shorter = a.size() <= b.size() ? a : b;
+  const std::string& longer = a.size() <= b.size() ? b : a;
+  return longer.compare(0, shorter.size(), shorter) == 0 &&
+         (longer.size() == shorter.size() || longer[shorter.size()] == '.');
+}
+
 template <typename Parse>
 VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& parse,
                           const std::vector<std::string>& overrides, const std::string& file,
-                          std::set<std::string>* names) {
+                          std::set<std::string>* names,
+                          std::vector<std::pair<std::string, std::string>>* shadowed) {
   const YAML::Node v = variants[i];
   const std::string path = "variants[" + std::to_string(i) + "]";
   if (!v.IsMap())
@@ -325,6 +334,15 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
     if (!set.IsMap())
       throw ConfigError(NodeLocation(file, set) + ": " + path +
                         ".set: expected a map of dotted.path: value");
+    for (const std::string& o : overrides) {
+      const std::string key = o.substr(0, o.find('='));
+      for (const auto& kv : set) {
+        if (!PathsOverlap(key, kv.first.Scalar())) continue;
+        shadowed->emplace_back(name, "variant '" + name + "' sets " + kv.first.Scalar() +
+                                         " itself (" + NodeLocation(file, kv.first) +
+                                         "), so --set " + o + " does not apply to it there");
+      }
+    }
     // Type changes first, so that options set next to them are kept.
     for (int pass = 0; pass < 2; ++pass) {
       for (const auto& kv : set) {
@@ -386,7 +404,8 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
     }
     std::set<std::string> names = {"base"};
     for (size_t i = 0; i < variants.size(); ++i) {
-      config.variants.push_back(ReadVariant(variants, i, parse, overrides, file, &names));
+      config.variants.push_back(
+          ReadVariant(variants, i, parse, overrides, file, &names, &config.shadowed_overrides));
     }
   }
   // Validate every variant completely before anything runs.

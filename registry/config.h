@@ -24,6 +24,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "registry/dataset.h"
@@ -90,13 +91,18 @@ struct ExperimentConfig {
   std::string description;
   std::string file;                     // where it was read from (for messages)
   std::vector<VariantConfig> variants;  // "base" first, then the file's variants in order
+  // Per command-line override that a variant's own `set` replaces for that variant (the same
+  // key, or one inside the other): the variant's name and a line naming both; the caller shows
+  // them.
+  std::vector<std::pair<std::string, std::string>> shadowed_overrides;
   const VariantConfig* Find(const std::string& variant) const;
 };
 
 // Reads, substitutes, resolves and validates (instantiating every stage of every variant).
 // Throws ConfigError (file:line:col, dotted path, expectation) or IoError.
 // `overrides` ("dotted.path=value", as `symembed run --set`) apply to the base and to every
-// variant, before the variant's own overrides.
+// variant, before the variant's own overrides (which win for the keys they set; see
+// ExperimentConfig::shadowed_overrides).
 ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry,
                                       const std::vector<std::string>& overrides = {});
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,

@@ -298,6 +298,18 @@ TEST(Config, CommandLineOverridesApplyToEveryVariant) {
   EXPECT_EQ(
       BuildPipeline(d, *d.Find("base"), registry).sampling->resolved_options()["count"].as<int>(),
       50);
+  // ... and says so, naming the variant, its key and the override; unrelated overrides do not.
+  ASSERT_EQ(d.shadowed_overrides.size(), 1u);
+  EXPECT_EQ(d.shadowed_overrides[0].first, "more_samples");
+  for (const char* part :
+       {"'more_samples'", "pipeline.sampling.count", "--set pipeline.sampling.count=50"}) {
+    const std::string& line = d.shadowed_overrides[0].second;
+    EXPECT_NE(line.find(part), std::string::npos) << line;
+  }
+  EXPECT_TRUE(c.shadowed_overrides.empty());
+  EXPECT_EQ(ParseExperimentConfig(kConfig, "exp.yaml", registry, {"pipeline.sampling={count: 9}"})
+                .shadowed_overrides.size(),
+            1u);
   EXPECT_THROW(ParseExperimentConfig(kConfig, "exp.yaml", registry, {"evaluation.geodesics"}),
                ConfigError);
   EXPECT_THROW(ParseExperimentConfig(kConfig, "exp.yaml", registry, {"pipline.x.y=1"}),
