@@ -290,9 +290,6 @@ void ReadTopLevel(const YAML::Node& croot, const std::string& file, ExperimentCo
   }
 }
 
-// Variant i of the config's `variants` list: its name (unique in *names) and its tree, parsed
-// afresh by `parse`, with the command-line overrides and then its own `set` applied (type
-// changes first, so that options set next to them are kept). Throws ConfigError.
 // Whether dotted paths a and b name the same option or one holds the other.
 bool PathsOverlap(const std::string& a, const std::string& b) {
   const std::string& shorter = a.size() <= b.size() ? a : b;
@@ -301,6 +298,10 @@ bool PathsOverlap(const std::string& a, const std::string& b) {
          (longer.size() == shorter.size() || longer[shorter.size()] == '.');
 }
 
+// Variant i of the config's `variants` list: its name (unique in *names) and its tree, parsed
+// afresh by `parse`, with the command-line overrides and then its own `set` applied (type
+// changes first, so that options set next to them are kept). Each override its `set` replaces
+// (PathsOverlap) is added to *shadowed. Throws ConfigError.
 template <typename Parse>
 VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& parse,
                           const std::vector<std::string>& overrides, const std::string& file,

@@ -55,23 +55,24 @@ RemeshDatasetSummary WriteRemeshedDataset(const std::string& input_root,
       const ShapeGroundTruth truth = dataset.GroundTruth(shape, nv);
       tracked.rest_ids.resize(nv);
       for (int v = 0; v < nv; ++v) tracked.rest_ids[v] = v;
-      try {
-        tracked = Subdivide(tracked, options.subdivide);
-      } catch (const Error& e) {
-        throw InvalidInputError(shape.mesh_path + ": cannot be subdivided (" + e.what() +
-                                "); `symembed validate` lists what is wrong with it");
-      }
+      // The mesh operations' errors say what failed, not in which file.
+      const auto named = [&](const char* what, auto&& operation) {
+        try {
+          tracked = operation();
+        } catch (const Error& e) {
+          throw InvalidInputError(shape.mesh_path + ": cannot be " + what + " (" + e.what() +
+                                  "); `symembed validate` lists what is wrong with it");
+        }
+      };
+      named("subdivided", [&] { return Subdivide(tracked, options.subdivide); });
       if (options.vertices < tracked.surface.NumVertices()) {
         const Eigen::Vector3d direction =
             options.anisotropy > 1.0 ? RandomUnitVector(DeriveSeed(seed, "remesh_direction", i))
                                      : Eigen::Vector3d::UnitX();
-        try {
-          tracked = Remesh(tracked, options.vertices, DeriveSeed(seed, "remesh", i),
-                           options.anisotropy, direction);
-        } catch (const Error& e) {
-          throw InvalidInputError(shape.mesh_path + ": cannot be remeshed (" + e.what() +
-                                  "); `symembed validate` lists what is wrong with it");
-        }
+        named("remeshed", [&] {
+          return Remesh(tracked, options.vertices, DeriveSeed(seed, "remesh", i),
+                        options.anisotropy, direction);
+        });
       }
       SaveMesh((root / "shapes" / (shape.name + ".off")).string(), tracked.surface);
       WriteDatasetFile(root / "corres" / (shape.name + ".vts"),

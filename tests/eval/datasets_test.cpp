@@ -588,6 +588,13 @@ TEST(RemeshedPairsVts, BadInputIsNamedAndLeavesNoCache) {
   ExpectError<InvalidInputError>([&] { bad_mesh->Load(); },
                                  {"humanoid1.off", "cannot be remeshed"});
   EXPECT_FALSE(fs::exists(dir.File("cache3")));
+  // With a subdivision first, the subdivision is what refuses it.
+  auto bad_subdivided =
+      Create("{type: pairs_vts, root: " + dir.File("synth") +
+             ", remesh: 4000, remesh_subdivide: 1, cache: " + dir.File("cache4") + "}");
+  ExpectError<InvalidInputError>([&] { bad_subdivided->Load(); },
+                                 {"humanoid1.off", "cannot be subdivided"});
+  EXPECT_FALSE(fs::exists(dir.File("cache4")));
 }
 
 }  // namespace

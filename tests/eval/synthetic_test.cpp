@@ -289,8 +289,7 @@ TEST_P(SyntheticKinds, AnisotropicRemeshingShortensTheEdgesAlongItsDirection) {
 
 // Loop subdivision: four triangles per triangle, a vertex per edge, the old vertices moved by a
 // fraction of an edge and keeping their ids, the new ones without a rest vertex; the surface
-// stays closed and its area nearly the same (Loop's limit surface lies inside a convex polygon
-// mesh, so the area can only shrink a little).
+// stays closed and its area nearly the same (Loop's smoothing moves it by a fraction of an edge).
 TEST_P(SyntheticKinds, SubdivisionAddsAVertexPerEdgeAndKeepsTheOldIds) {
   const TrackedSurface posed =
       GenerateClass(GetParam(), Options(GetParam(), 1, 1000)).shapes[0].shape;
