@@ -88,4 +88,16 @@ double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
 // sqrt((k1^2 + k2^2) / 2) [Koenderink & van Doorn 1992] is made scale-free by sqrt(total area).
 Eigen::MatrixXd ExtrinsicFeatures(const Surface& surface, const FeatureSmoothing& smoothing);
 
+// The features F (#V x 3, ExtrinsicFeatures layout) of `surface` with the shape index and
+// curvedness columns diffused by heat for the time `time` * total area: one implicit Euler step
+// (M + time A K) f' = M f of the cotangent stiffness K and lumped mass M (core/laplacian.h), which
+// keeps constants and the area-weighted mean of each column; the area column is kept. A diffusion
+// time is an extent on the surface (about sqrt(4 time) of sqrt(area)), and the Laplacian converges
+// under refinement, so two meshings of one surface, whose per-vertex estimates differ by the size
+// and shape of each vertex's neighbourhood, get diffused features that agree where the raw ones
+// do not; what is left is the body's shape at that scale. Throws ConfigError for a time that is
+// not > 0 and finite, InvalidInputError when F does not match the surface or the system cannot
+// be factored.
+Eigen::MatrixXd DiffuseFeatures(const Surface& surface, const Eigen::MatrixXd& F, double time);
+
 }  // namespace symembed

@@ -25,4 +25,19 @@ ProductNeed CurvatureFeaturesNeed(const FeatureSmoothing& smoothing) {
                      });
 }
 
+ProductKey<Eigen::MatrixXd> DiffusedFeaturesKey(const FeatureSmoothing& smoothing, double time) {
+  std::ostringstream text;
+  text.precision(17);
+  text << CurvatureFeaturesKey(smoothing).options << " diffusion_time=" << time;
+  return {"diffused_features", text.str()};
+}
+
+ProductNeed DiffusedFeaturesNeed(const FeatureSmoothing& smoothing, double time) {
+  return NeedProduct(DiffusedFeaturesKey(smoothing, time), ProductInput::kSurface, 0,
+                     [smoothing, time](const ShapeData& shape, const LaplaceBasis&) {
+                       return DiffuseFeatures(shape.surface,
+                                              ExtrinsicFeatures(shape.surface, smoothing), time);
+                     });
+}
+
 }  // namespace symembed

@@ -79,4 +79,9 @@ class FlipDecision {
 ProductKey<Eigen::MatrixXd> CurvatureFeaturesKey(const FeatureSmoothing& smoothing);
 ProductNeed CurvatureFeaturesNeed(const FeatureSmoothing& smoothing);
 
+// Those features diffused by heat for `time` (DiffuseFeatures, extrinsic.h), #V x 3, a product
+// of its surface.
+ProductKey<Eigen::MatrixXd> DiffusedFeaturesKey(const FeatureSmoothing& smoothing, double time);
+ProductNeed DiffusedFeaturesNeed(const FeatureSmoothing& smoothing, double time);
+
 }  // namespace symembed

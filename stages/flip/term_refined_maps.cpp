@@ -29,8 +29,12 @@ bool RefinedMapsTermOptions::IsValid(std::string* error) const {
   else if (targets < sources) out << "targets must be >= sources (" << sources << "), got " << targets;
   else if (targets > zoomout.samples)
     out << "targets must be <= zoomout.samples (" << zoomout.samples << "), got " << targets;
-  else if (!(distortion_weight >= 0.0 && disagreement_weight >= 0.0 && orientation_weight >= 0.0))
-    out << "distortion_weight, disagreement_weight and orientation_weight must be >= 0";
+  else if (!(distortion_weight >= 0.0 && disagreement_weight >= 0.0 && orientation_weight >= 0.0 &&
+             long_axis_weight >= 0.0))
+    out << "distortion_weight, disagreement_weight, orientation_weight and long_axis_weight must "
+           "be >= 0";
+  else if (!(long_axis_time > 0.0 && std::isfinite(long_axis_time)))
+    out << "long_axis_time must be > 0 and finite, got " << long_axis_time;
   else if (!smoothing.IsValid(&feature_error))
     out << feature_error;
   else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0";
@@ -89,6 +93,9 @@ void RefinedMapsTerm::AddNeeds(int, ShapeNeeds* needs) const {
         return DijkstraDistances(shape.surface, sources);
       }));
   needs->products.push_back(CurvatureFeaturesNeed(options_.smoothing));
+  if (options_.long_axis_weight > 0.0) {
+    needs->products.push_back(DiffusedFeaturesNeed(options_.smoothing, options_.long_axis_time));
+  }
 }
 
 void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4>* total,
@@ -112,21 +119,45 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
   const std::vector<int>& prefix = candidates.samples();
   const std::array<double, 2> scales = FeatureScales(Fs, Ft);
   const int targets = std::max(sources, std::min<int>(options_.targets, prefix.size()));
-  std::array<double, 4> distortion{}, disagreement{}, orientation{};
+  const bool long_axis = options_.long_axis_weight > 0.0;
+  const Eigen::MatrixXd* Cs = nullptr;
+  const Eigen::MatrixXd* Ct = nullptr;
+  std::array<double, 2> long_axis_scales{};
+  if (long_axis) {
+    const auto key = DiffusedFeaturesKey(options_.smoothing, options_.long_axis_time);
+    Cs = &ProductOf(source, key);
+    Ct = &ProductOf(target, key);
+    long_axis_scales = FeatureScales(*Cs, *Ct);
+  }
+  std::array<double, 4> distortion{}, disagreement{}, orientation{}, diffused{};
   for (int k = 0; k < 4; ++k) {
     const ZoomOutResult refined = candidates.Refine(k);
     distortion[k] =
         GeodesicDistortion(source_distances, target.surface, prefix, targets, refined.map);
     disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
     orientation[k] = candidates.Orientation(refined.map);
+    if (long_axis) {
+      diffused[k] = FeatureDisagreement(*Cs, *Ct, refined.map, long_axis_scales, prefix);
+    }
     (*total)[k] += weight() * (options_.distortion_weight * distortion[k] +
                                options_.disagreement_weight * disagreement[k] +
                                options_.orientation_weight * (1.0 - orientation[k]));
   }
-  // Distortion / disagreement / orientation of each candidate's refined map.
+  if (long_axis) {
+    for (int k = 0; k < 4; ++k) {
+      (*total)[k] += weight() * options_.long_axis_weight *
+                     (diffused[k] + diffused[FrontBackPartner(k)]) / 2.0;
+    }
+  }
+  // Distortion / disagreement / orientation of each candidate's refined map, and its disagreement
+  // of the diffused features.
   *detail << "; refined_maps";
   for (int k = 0; k < 4; ++k) {
     *detail << " " << distortion[k] << "/" << disagreement[k] << "/" << orientation[k];
+  }
+  if (long_axis) {
+    *detail << "; long_axis";
+    for (int k = 0; k < 4; ++k) *detail << " " << diffused[k];
   }
 }
 
@@ -138,6 +169,8 @@ std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
   r.distortion_weight = o.GetDouble("distortion_weight", r.distortion_weight, 0.0);
   r.disagreement_weight = o.GetDouble("disagreement_weight", r.disagreement_weight, 0.0);
   r.orientation_weight = o.GetDouble("orientation_weight", r.orientation_weight, 0.0);
+  r.long_axis_weight = o.GetDouble("long_axis_weight", r.long_axis_weight, 0.0);
+  r.long_axis_time = o.GetDouble("long_axis_time", r.long_axis_time, 0.0);
   r.smoothing = ReadFeatureSmoothing(o, r.smoothing);
   r.normal_weight = o.GetDouble("normal_weight", r.normal_weight, 0.0);
   std::string error;

@@ -20,14 +20,26 @@
 //                      and the chest on the back;
 //   orientation o_k  = the orientation of the map on the samples' triangles (orientation.h): the
 //                      left-right mirrored map preserves distances and curvature but reverses it.
+// and a fourth of the pair of candidates that share the direction of the long axis y of the
+// canonical frame (k and FrontBackPartner(k), refined_agreement.h):
+//   long axis   a_k  = (C_k + C_partner(k)) / 2, C_k the FeatureDisagreement over the samples of
+//                      the features diffused by heat for long_axis_time (DiffuseFeatures,
+//                      extrinsic.h).
+// Which end of the long axis is which (a human's head and feet, a quadruped's head and tail) shows
+// in the body's shape at a scale that heat diffusion keeps, and there the diffused features do
+// not depend on the meshing; the per-vertex curvature of c_k does, and on two independently
+// decimated meshes its noise compresses the margin between the right map and a head-to-tail one.
+// The partner swaps the two sides of the short in-plane axis: a quadruped's back and belly, which
+// c_k and g_k tell apart, and a human's front and back, which differ only in details (face,
+// chest, toes) that diffusion removes; so a_k scores both partners alike and leaves that decision
+// to the other measures.
 // It adds weight * (distortion_weight g_k + disagreement_weight c_k
-// + orientation_weight (1 - o_k)) to candidate k's total. The three measure different failures,
-// so none needs a threshold: each is a mean over the samples of a quantity near 0 for the right
-// map. The source's geodesics from its first `sources` samples are a per-shape product
-// (AddNeeds), with the curvature features; the target's geodesics are computed per candidate from
-// the images of the samples.
-// [Bronstein, Bronstein & Kimmel 2006] Generalized multidimensional scaling (distortion of a map
-// as the criterion of a correspondence).
+// + orientation_weight (1 - o_k) + long_axis_weight a_k) to candidate k's total. The four measure
+// different failures, so none needs a threshold: each is a mean over the samples of a quantity
+// near 0 for the right map. The source's geodesics from its first `sources` samples are a per-shape
+// product (AddNeeds), with the curvature features; the target's geodesics are computed per
+// candidate from the images of the samples. [Bronstein, Bronstein & Kimmel 2006] Generalized
+// multidimensional scaling (distortion of a map as the criterion of a correspondence).
 #pragma once
 
 #include <Eigen/Core>
@@ -53,6 +65,10 @@ struct RefinedMapsTermOptions {
   double distortion_weight = 0.5;
   double disagreement_weight = 1.0;
   double orientation_weight = 0.025;
+  // Of the long-axis measure, and the heat diffusion time of its features (relative to the
+  // area; about 0.2 sqrt(area) of extent at 0.01).
+  double long_axis_weight = 1.0;
+  double long_axis_time = 0.01;
   // Of the curvature features (ExtrinsicFeatures, extrinsic.h).
   FeatureSmoothing smoothing = {};
   // Weight of the embedded normals in the initial maps (RefinedAgreementOptions::normal_weight).
@@ -84,7 +100,8 @@ class RefinedMapsTerm : public FlipTerm {
 };
 
 // The term of weight `weight` from its YAML map {zoomout, sources, targets, distortion_weight,
-// disagreement_weight, orientation_weight, normal_weight, smoothing_rings, smoothing_radius}
+// disagreement_weight, orientation_weight, long_axis_weight, long_axis_time, normal_weight,
+// smoothing_rings, smoothing_radius}
 // (defaults: RefinedMapsTermOptions). Throws ConfigError.
 std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& options, double weight);
 

@@ -13,6 +13,7 @@
 #include "eval/synthetic/synthetic.h"
 #include "registry/registry.h"
 #include "stages/flip/flip_common.h"
+#include "stages/flip/refined_agreement.h"
 #include "stages/flip/term_refined_maps.h"
 #include "stages/geodesics/dijkstra.h"
 #include "stages/refine/functional_map.h"
@@ -119,6 +120,54 @@ TEST(RefinedMapsFlip, RightCandidateOfANonIsometricQuadrupedScoresLowest) {
   ExpectTermFindsTheOracle(FigureKind::kQuadruped);
 }
 
+// The long-axis measure scores a candidate and its front-back partner (the same direction of the
+// long axis y) alike, so it changes which way the long axis points and never which side of the
+// short one is the front; on a quadruped pair, whose ends differ at the scale of the body, it
+// separates the two directions, and the totals without it are those of the other three measures.
+TEST(RefinedMapsFlip, LongAxisMeasureScoresFrontBackPartnersAlike) {
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = 1500;
+  const SynthClass figures = GenerateClass(FigureKind::kQuadruped, synth);
+  ShapeData source = FlipShape("pose0", figures.shapes[0].shape.surface);
+  ShapeData target = FlipShape("pose1", figures.shapes[1].shape.surface);
+  RefinedMapsTermOptions off = SmallOptions();
+  off.long_axis_weight = 0.0;
+  RefinedMapsTermOptions on = SmallOptions();
+  on.long_axis_weight = 2.0;
+  const RefinedMapsTerm without(1.0, off), with(1.0, on);
+  ShapeNeeds needs;
+  with.AddNeeds(with.BasisSize(), &needs);
+  ComputeNeeds(needs, &source);
+  ComputeNeeds(needs, &target);
+  LaplaceBasisOptions basis_options;
+  basis_options.k = with.BasisSize();
+  const LaplaceBasis source_basis = ComputeLaplaceBasis(source.surface, basis_options);
+  const LaplaceBasis target_basis = ComputeLaplaceBasis(target.surface, basis_options);
+  const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
+  const PairInput pair{source, target};
+  const FlipTermContext context{pair, maps, source_basis, target_basis, nullptr, nullptr, 1};
+  std::array<double, 4> total_without{}, total_with{};
+  std::ostringstream detail_without, detail_with;
+  without.Score(context, &total_without, &detail_without);
+  with.Score(context, &total_with, &detail_with);
+  EXPECT_EQ(detail_without.str().find("long_axis"), std::string::npos);
+  ASSERT_NE(detail_with.str().find("; long_axis "), std::string::npos) << detail_with.str();
+  std::array<double, 4> added{};
+  for (int k = 0; k < 4; ++k) added[k] = total_with[k] - total_without[k];
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_GT(added[k], 0.0) << k;
+    EXPECT_NEAR(added[k], added[FrontBackPartner(k)], 1e-12) << k;
+  }
+  // The right direction of the long axis (the oracle's candidate and its partner) adds least.
+  const int right = OracleChoice(source, target);
+  const int other = right ^ 1;
+  EXPECT_LT(added[right], added[other]) << detail_with.str();
+  // Only the long-axis measure differs: the other three are those of the run without it.
+  const std::string values = detail_with.str().substr(0, detail_with.str().find("; long_axis"));
+  EXPECT_EQ(values, detail_without.str());
+}
+
 TEST(RefinedMapsFlip, BadOptionsAndInputsFailClearly) {
   RefinedMapsTermOptions options = SmallOptions();
   options.targets = 10;  // fewer than the sources
@@ -129,6 +178,18 @@ TEST(RefinedMapsFlip, BadOptionsAndInputsFailClearly) {
   options = SmallOptions();
   options.orientation_weight = -1.0;
   EXPECT_THROW(RefinedMapsTerm(1.0, options), ConfigError);
+  options = SmallOptions();
+  options.long_axis_weight = -1.0;
+  EXPECT_THROW(RefinedMapsTerm(1.0, options), ConfigError);
+  options = SmallOptions();
+  options.long_axis_time = 0.0;
+  try {
+    RefinedMapsTerm(1.0, options);
+    ADD_FAILURE() << "a diffusion time of 0 was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("long_axis_time must be > 0"), std::string::npos)
+        << e.what();
+  }
   // A shape without samples.
   ShapeData shape = FlipShape("rest", testing::SymmetricFigure());
   shape.samples.clear();
