@@ -66,9 +66,9 @@ struct RefinedMapsTermOptions {
   double disagreement_weight = 1.0;
   double orientation_weight = 0.025;
   // Of the long-axis measure, and the heat diffusion time of its features (relative to the
-  // area; about 0.2 sqrt(area) of extent at 0.01).
+  // area; an extent of about a third of sqrt(area) at 0.03: the body's scale).
   double long_axis_weight = 1.0;
-  double long_axis_time = 0.01;
+  double long_axis_time = 0.03;
   // Of the curvature features (ExtrinsicFeatures, extrinsic.h).
   FeatureSmoothing smoothing = {};
   // Weight of the embedded normals in the initial maps (RefinedAgreementOptions::normal_weight).
