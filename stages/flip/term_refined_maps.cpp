@@ -139,14 +139,16 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
     if (long_axis) {
       diffused[k] = FeatureDisagreement(*Cs, *Ct, refined.map, long_axis_scales, prefix);
     }
-    (*total)[k] += weight() * (options_.distortion_weight * distortion[k] +
+  }
+  for (int k = 0; k < 4; ++k) {
+    const int partner = FrontBackPartner(k);
+    const double g = options_.distortion_front_back ? distortion[k]
+                                                    : std::min(distortion[k], distortion[partner]);
+    (*total)[k] += weight() * (options_.distortion_weight * g +
                                options_.disagreement_weight * disagreement[k] +
                                options_.orientation_weight * (1.0 - orientation[k]));
-  }
-  if (long_axis) {
-    for (int k = 0; k < 4; ++k) {
-      (*total)[k] += weight() * options_.long_axis_weight *
-                     (diffused[k] + diffused[FrontBackPartner(k)]) / 2.0;
+    if (long_axis) {
+      (*total)[k] += weight() * options_.long_axis_weight * (diffused[k] + diffused[partner]) / 2.0;
     }
   }
   // Distortion / disagreement / orientation of each candidate's refined map, and its disagreement
@@ -167,6 +169,7 @@ std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
   r.sources = o.GetInt("sources", r.sources, 1, 100000);
   r.targets = o.GetInt("targets", r.targets, 1, 100000);
   r.distortion_weight = o.GetDouble("distortion_weight", r.distortion_weight, 0.0);
+  r.distortion_front_back = o.GetBool("distortion_front_back", r.distortion_front_back);
   r.disagreement_weight = o.GetDouble("disagreement_weight", r.disagreement_weight, 0.0);
   r.orientation_weight = o.GetDouble("orientation_weight", r.orientation_weight, 0.0);
   r.long_axis_weight = o.GetDouble("long_axis_weight", r.long_axis_weight, 0.0);

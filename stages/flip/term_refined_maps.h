@@ -33,8 +33,13 @@
 // c_k and g_k tell apart, and a human's front and back, which differ only in details (face,
 // chest, toes) that diffusion removes; so a_k scores both partners alike and leaves that decision
 // to the other measures.
-// It adds weight * (distortion_weight g_k + disagreement_weight c_k
-// + orientation_weight (1 - o_k) + long_axis_weight a_k) to candidate k's total. The four measure
+// It adds weight * (distortion_weight g'_k + disagreement_weight c_k
+// + orientation_weight (1 - o_k) + long_axis_weight a_k) to candidate k's total, where g'_k is
+// g_k, or with distortion_front_back false min(g_k, g_partner(k)): a human's front-back partner
+// is the right map reflected front to back, which preserves distances about as well, so there
+// g_k's difference between the partners is noise beside c_k's; the pair's lower distortion says
+// how well its direction of the long axis can be mapped, and keeps the right plane's best total
+// where the flip stage compares two symmetry planes. The four measure
 // different failures, so none needs a threshold: each is a mean over the samples of a quantity
 // near 0 for the right map. The source's geodesics from its first `sources` samples are a per-shape
 // product (AddNeeds), with the curvature features; the target's geodesics are computed per
@@ -63,6 +68,10 @@ struct RefinedMapsTermOptions {
   // body shapes); the orientation of a refined map can favour a front-back reflected map on a
   // body whose front and back are alike, so it only breaks near ties.
   double distortion_weight = 0.5;
+  // Whether g_k scores each candidate alone (true) or, like a_k, the pair of the candidate and its
+  // front-back partner (false: the lower of their two distortions), so that it decides the long
+  // axis only.
+  bool distortion_front_back = false;
   double disagreement_weight = 1.0;
   double orientation_weight = 0.025;
   // Of the long-axis measure, and the heat diffusion time of its features (relative to the
@@ -100,9 +109,9 @@ class RefinedMapsTerm : public FlipTerm {
 };
 
 // The term of weight `weight` from its YAML map {zoomout, sources, targets, distortion_weight,
-// disagreement_weight, orientation_weight, long_axis_weight, long_axis_time, normal_weight,
-// smoothing_rings, smoothing_radius}
-// (defaults: RefinedMapsTermOptions). Throws ConfigError.
+// distortion_front_back, disagreement_weight, orientation_weight, long_axis_weight, long_axis_time,
+// normal_weight, smoothing_rings, smoothing_radius} (defaults: RefinedMapsTermOptions). Throws
+// ConfigError.
 std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& options, double weight);
 
 }  // namespace symembed

@@ -77,8 +77,9 @@ TEST(RefinedMapsFlip, DistortionMatchesABruteForceSum) {
 // For each turn R_j of the target's canonical embedding, the term alone gives the oracle's
 // candidate the lowest total on two poses of a figure whose bones were scaled differently in each
 // pose (the generator's non-isometric option): the pair is not an isometry, yet the right
-// rotation's refined map distorts the geodesics and the curvature least.
-void ExpectTermFindsTheOracle(FigureKind kind) {
+// rotation's refined map distorts the geodesics and the curvature least. With each candidate's
+// distortion and with the lower one of front-back partners.
+void ExpectTermFindsTheOracle(FigureKind kind, bool distortion_front_back) {
   SynthOptions synth;
   synth.poses = 2;
   synth.vertices = 1500;
@@ -87,7 +88,9 @@ void ExpectTermFindsTheOracle(FigureKind kind) {
   ASSERT_EQ(figures.shapes.size(), 2u);
   ShapeData source = FlipShape("pose0", figures.shapes[0].shape.surface);
   ShapeData posed = FlipShape("pose1", figures.shapes[1].shape.surface);
-  const RefinedMapsTerm term(1.0, SmallOptions());
+  RefinedMapsTermOptions options = SmallOptions();
+  options.distortion_front_back = distortion_front_back;
+  const RefinedMapsTerm term(1.0, options);
   ShapeNeeds needs;
   term.AddNeeds(term.BasisSize(), &needs);
   ComputeNeeds(needs, &source);
@@ -113,11 +116,75 @@ void ExpectTermFindsTheOracle(FigureKind kind) {
 }
 
 TEST(RefinedMapsFlip, RightCandidateOfANonIsometricHumanoidScoresLowest) {
-  ExpectTermFindsTheOracle(FigureKind::kHumanoid);
+  ExpectTermFindsTheOracle(FigureKind::kHumanoid, true);
+  ExpectTermFindsTheOracle(FigureKind::kHumanoid, false);
 }
 
 TEST(RefinedMapsFlip, RightCandidateOfANonIsometricQuadrupedScoresLowest) {
-  ExpectTermFindsTheOracle(FigureKind::kQuadruped);
+  ExpectTermFindsTheOracle(FigureKind::kQuadruped, true);
+  ExpectTermFindsTheOracle(FigureKind::kQuadruped, false);
+}
+
+// Per candidate, the distortion, disagreement and orientation printed after "; refined_maps".
+std::array<std::array<double, 3>, 4> RefinedMapsMeasures(const std::string& detail) {
+  std::istringstream in(detail.substr(detail.find("; refined_maps ") + 15));
+  std::array<std::array<double, 3>, 4> measures{};
+  for (auto& m : measures) {
+    char slash = 0;
+    in >> m[0] >> slash >> m[1] >> slash >> m[2];
+  }
+  return measures;
+}
+
+// With distortion_front_back false a candidate and its front-back partner add the lower of their
+// two distortions: on a humanoid pair (whose front-back partner is the right map reflected front
+// to back) the totals differ from the per-candidate ones by exactly that, the measures themselves
+// are unchanged, and the partners' totals then differ by their disagreement and orientation
+// alone.
+TEST(RefinedMapsFlip, PartnersShareTheirLowerDistortionAndCurvatureDecidesBetweenThem) {
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = 1500;
+  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
+  ShapeData source = FlipShape("pose0", figures.shapes[0].shape.surface);
+  ShapeData target = FlipShape("pose1", figures.shapes[1].shape.surface);
+  RefinedMapsTermOptions alone = SmallOptions();
+  alone.distortion_front_back = true;
+  RefinedMapsTermOptions shared = SmallOptions();
+  shared.distortion_front_back = false;
+  const RefinedMapsTerm per_candidate(1.0, alone), per_axis(1.0, shared);
+  ShapeNeeds needs;
+  per_axis.AddNeeds(per_axis.BasisSize(), &needs);
+  ComputeNeeds(needs, &source);
+  ComputeNeeds(needs, &target);
+  LaplaceBasisOptions basis_options;
+  basis_options.k = per_axis.BasisSize();
+  const LaplaceBasis source_basis = ComputeLaplaceBasis(source.surface, basis_options);
+  const LaplaceBasis target_basis = ComputeLaplaceBasis(target.surface, basis_options);
+  const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
+  const PairInput pair{source, target};
+  const FlipTermContext context{pair, maps, source_basis, target_basis, nullptr, nullptr, 1};
+  std::array<double, 4> total_alone{}, total_shared{};
+  std::ostringstream detail_alone, detail_shared;
+  per_candidate.Score(context, &total_alone, &detail_alone);
+  per_axis.Score(context, &total_shared, &detail_shared);
+  EXPECT_EQ(detail_alone.str(), detail_shared.str());
+  const auto m = RefinedMapsMeasures(detail_alone.str());
+  // The printed values are rounded to 6 significant digits.
+  const double tolerance = 1e-5;
+  for (int k = 0; k < 4; ++k) {
+    const int partner = FrontBackPartner(k);
+    EXPECT_GT(m[k][0], 0.0) << k;
+    EXPECT_NEAR(total_shared[k] - total_alone[k],
+                alone.distortion_weight * (std::min(m[k][0], m[partner][0]) - m[k][0]), tolerance)
+        << k << detail_alone.str();
+    const double between_partners = total_shared[k] - total_shared[partner];
+    const double expected = alone.disagreement_weight * (m[k][1] - m[partner][1]) +
+                            alone.orientation_weight * (m[partner][2] - m[k][2]);
+    EXPECT_NEAR(between_partners, expected, tolerance) << k << detail_alone.str();
+  }
+  // The right candidate still scores lowest.
+  EXPECT_EQ(CandidateOrder(total_shared)[0], OracleChoice(source, target)) << detail_shared.str();
 }
 
 // The long-axis measure scores a candidate and its front-back partner (the same direction of the
