@@ -16,6 +16,18 @@ namespace symembed {
 namespace {
 // Nearest samples whose pairs make the triangles of the orientation (orientation.h).
 constexpr int kNeighbors = 6;
+
+// The rows of `points` (positions and normals) at the given vertices.
+EmbeddedPoints PointsAt(const EmbeddedPoints& points, const std::vector<int>& vertices) {
+  EmbeddedPoints out;
+  out.Y.resize(vertices.size(), 3);
+  out.N.resize(vertices.size(), 3);
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    out.Y.row(i) = points.Y.row(vertices[i]);
+    out.N.row(i) = points.N.row(vertices[i]);
+  }
+  return out;
+}
 }  // namespace
 
 bool RefinedAgreementOptions::IsValid(std::string* error) const {
@@ -32,29 +44,34 @@ RefinedCandidates::RefinedCandidates(const ShapeData& source, const ShapeData& t
                                      const LaplaceBasis& source_basis,
                                      const LaplaceBasis& target_basis,
                                      const FlipZoomOutSchedule& schedule, double normal_weight,
-                                     const std::string& what)
-    : source_(source), target_(target), normal_weight_(normal_weight) {
+                                     const std::string& what, const DeformOptions* deform)
+    : source_(source), target_(target), source_basis_(source_basis), normal_weight_(normal_weight) {
+  if (deform) deform_ = *deform;
   prefix_ = SamplePrefix(source.samples, schedule.samples, schedule.k_end,
                          what + ": shape '" + source.name + "'");
   target_prefix_ = schedule.TargetPrefix(target.samples, what + ": shape '" + target.name + "'");
   zoomout_ = std::make_unique<ZoomOutSetup>(source_basis, target_basis, prefix_,
                                             schedule.ZoomOut(), target_prefix_);
-  const EmbeddedPoints source_all = EmbeddedShape(source);
-  source_points_.Y.resize(prefix_.size(), 3);
-  source_points_.N.resize(prefix_.size(), 3);
-  for (size_t i = 0; i < prefix_.size(); ++i) {
-    source_points_.Y.row(i) = source_all.Y.row(prefix_[i]);
-    source_points_.N.row(i) = source_all.N.row(prefix_[i]);
-  }
+  source_all_ = EmbeddedShape(source);
+  source_points_ = PointsAt(source_all_, prefix_);
   target_points_ = EmbeddedShape(target);
   triangles_ = MakeSourceTriangles(source.surface, prefix_, kNeighbors);
   target_normals_ = VertexNormals(target.surface);
 }
 
 ZoomOutResult RefinedCandidates::Refine(int k) const {
-  const MatchResult matched =
-      MatchNearest(source_points_, Rotated(target_points_, CandidateRotations()[k]),
-                   normal_weight_, /*threads=*/1);
+  const EmbeddedPoints target = Rotated(target_points_, CandidateRotations()[k]);
+  MatchResult matched;
+  if (deform_) {
+    // The deformation fits the shapes' own samples (the first deform_->samples of each), as the
+    // matching stage does, so that the candidates start where the pipeline's map would.
+    DeformResult bent = DeformSource(source_all_, source_.surface.F, source_basis_, source_.samples,
+                                     target, target_.samples, *deform_);
+    const EmbeddedPoints moved{std::move(bent.Y), std::move(bent.N)};
+    matched = MatchNearest(PointsAt(moved, prefix_), target, normal_weight_, /*threads=*/1);
+  } else {
+    matched = MatchNearest(source_points_, target, normal_weight_, /*threads=*/1);
+  }
   std::vector<int> initial(source_.surface.NumVertices(), 0);
   for (size_t i = 0; i < prefix_.size(); ++i) initial[prefix_[i]] = matched.map[i];
   return zoomout_->Run(initial);

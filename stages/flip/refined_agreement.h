@@ -31,6 +31,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,8 +39,9 @@
 #include "registry/pair_pipeline.h"
 #include "registry/types.h"
 #include "stages/flip/orientation.h"
-#include "stages/refine/zoomout.h"
 #include "stages/flip/zoomout_schedule.h"
+#include "stages/matching/deformed.h"
+#include "stages/refine/zoomout.h"
 
 namespace symembed {
 
@@ -67,14 +69,18 @@ struct RefinedAgreementOptions {
 // InvalidInputError for too few samples (`what` names the part in the message).
 class RefinedCandidates {
  public:
+  // With `deform`, each candidate's initial map is that of the `deformed` matching stage
+  // (stages/matching/deformed.h): the source embedding bent onto the turned target's before the
+  // nearest neighbours; the source basis needs deform->k_end eigenpairs.
   RefinedCandidates(const ShapeData& source, const ShapeData& target,
                     const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,
                     const FlipZoomOutSchedule& schedule, double normal_weight,
-                    const std::string& what);
+                    const std::string& what, const DeformOptions* deform = nullptr);
 
   // Candidate k's map: nearest neighbours of the embedded points with normals (as the matching
-  // stage computes them, the target turned by CandidateRotations()[k]) on the samples, refined
-  // by ZoomOut. Only the samples' entries of the result are meaningful.
+  // stage computes them, the target turned by CandidateRotations()[k]; the source bent first
+  // with `deform`) on the samples, refined by ZoomOut. Only the samples' entries of the result
+  // are meaningful.
   ZoomOutResult Refine(int k) const;
   // The orientation of a refined map on the samples' triangles.
   double Orientation(const std::vector<int>& map) const;
@@ -83,7 +89,10 @@ class RefinedCandidates {
  private:
   const ShapeData& source_;
   const ShapeData& target_;
+  const LaplaceBasis& source_basis_;
   double normal_weight_;
+  std::optional<DeformOptions> deform_;
+  EmbeddedPoints source_all_;
   std::vector<int> prefix_;
   std::vector<int> target_prefix_;
   std::unique_ptr<ZoomOutSetup> zoomout_;

@@ -18,6 +18,13 @@ ProductKey<Eigen::MatrixXd> SampleGeodesicsKey(int sources) {
   return {"sample_geodesics", "dijkstra sources=" + std::to_string(sources)};
 }
 
+// The deformation of the initial maps: the matching stage's defaults with the term's normals.
+DeformOptions Deformation(const RefinedMapsTermOptions& options) {
+  DeformOptions deform;
+  deform.normal_weight = options.normal_weight;
+  return deform;
+}
+
 }  // namespace
 
 bool RefinedMapsTermOptions::IsValid(std::string* error) const {
@@ -98,6 +105,11 @@ void RefinedMapsTerm::AddNeeds(int, ShapeNeeds* needs) const {
   }
 }
 
+int RefinedMapsTerm::BasisSize() const {
+  return options_.deformed_start ? std::max(options_.zoomout.k_end, Deformation(options_).k_end)
+                                 : options_.zoomout.k_end;
+}
+
 void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4>* total,
                          std::ostringstream* detail) const {
   const ShapeData& source = context.pair.source;
@@ -113,9 +125,10 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
     throw InvalidInputError("flip refined_maps: shape '" + source.name +
                             "' has geodesics that do not match the options");
   }
+  const DeformOptions deform = Deformation(options_);
   const RefinedCandidates candidates(source, target, context.source_basis, context.target_basis,
-                                     options_.zoomout, options_.normal_weight,
-                                     "flip refined_maps");
+                                     options_.zoomout, options_.normal_weight, "flip refined_maps",
+                                     options_.deformed_start ? &deform : nullptr);
   const std::vector<int>& prefix = candidates.samples();
   const std::array<double, 2> scales = FeatureScales(Fs, Ft);
   const int targets = std::max(sources, std::min<int>(options_.targets, prefix.size()));
@@ -148,7 +161,8 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
                                options_.disagreement_weight * disagreement[k] +
                                options_.orientation_weight * (1.0 - orientation[k]));
     if (long_axis) {
-      (*total)[k] += weight() * options_.long_axis_weight * (diffused[k] + diffused[partner]) / 2.0;
+      (*total)[k] +=
+          weight() * options_.long_axis_weight * std::min(diffused[k], diffused[partner]);
     }
   }
   // Distortion / disagreement / orientation of each candidate's refined map, and its disagreement
@@ -176,6 +190,7 @@ std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
   r.long_axis_time = o.GetDouble("long_axis_time", r.long_axis_time, 0.0);
   r.smoothing = ReadFeatureSmoothing(o, r.smoothing);
   r.normal_weight = o.GetDouble("normal_weight", r.normal_weight, 0.0);
+  r.deformed_start = o.GetBool("deformed_start", r.deformed_start);
   std::string error;
   if (!r.IsValid(&error)) o.Fail("", error);
   return std::make_unique<RefinedMapsTerm>(weight, r);

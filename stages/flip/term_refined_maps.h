@@ -6,9 +6,10 @@
 // head onto the tail or the back onto the belly, and no refinement from there gives a map that
 // preserves distances along the surface, while the right rotation's map after ZoomOut [Melzi et
 // al. 2019] preserves them up to the pair's non-isometry. For each candidate k the term takes the
-// nearest-neighbour map of the embedded points with normals (as the matching stage computes it,
-// stages/matching/nearest.h) on the source samples, refines it with ZoomOut on the samples, and
-// measures three things of the refined map T of the samples:
+// map the matching stage would start from (with deformed_start, the source embedding bent onto
+// the turned target's, stages/matching/deformed.h, then the nearest neighbours of the embedded
+// points with normals, stages/matching/nearest.h) on the source samples, refines it with ZoomOut
+// on the samples, and measures three things of the refined map T of the samples:
 //   distortion g_k   = sum_ij |d_S(s_i, s_j) - d_T(T(s_i), T(s_j))| / sum_ij d_S(s_i, s_j)
 //                      over the first `sources` samples s_i and the first `targets` samples s_j,
 //                      with graph geodesics (stages/geodesics/dijkstra.h) of the unit-area
@@ -20,10 +21,14 @@
 //                      and the chest on the back;
 //   orientation o_k  = the orientation of the map on the samples' triangles (orientation.h): the
 //                      left-right mirrored map preserves distances and curvature but reverses it.
-// and a fourth of the pair of candidates that share the direction of the long axis y of the
-// canonical frame (k and FrontBackPartner(k), refined_agreement.h):
-//   long axis   a_k  = (C_k + C_partner(k)) / 2, C_k the FeatureDisagreement over the samples of
-//                      the features diffused by heat for long_axis_time (DiffuseFeatures,
+// The bend matters where the two embeddings differ by more than the parts' size (a pose that
+// LS-MDS keeps, a body of other proportions, an uneven meshing): the plain nearest neighbours of
+// the right candidate then mix parts, ZoomOut from them settles on a poor map, and the term would
+// judge the right rotation by it.
+// And a fourth of the pair of candidates that share the direction of the long axis y of the
+// canonical frame (k and p = FrontBackPartner(k), refined_agreement.h):
+//   long axis   a_k  = min(C_k, C_p), C_k the FeatureDisagreement over the samples of the
+//                      features diffused by heat for long_axis_time (DiffuseFeatures,
 //                      extrinsic.h).
 // Which end of the long axis is which (a human's head and feet, a quadruped's head and tail) shows
 // in the body's shape at a scale that heat diffusion keeps, and there the diffused features do
@@ -31,20 +36,21 @@
 // decimated meshes its noise compresses the margin between the right map and a head-to-tail one.
 // The partner swaps the two sides of the short in-plane axis: a quadruped's back and belly, which
 // c_k and g_k tell apart, and a human's front and back, which differ only in details (face,
-// chest, toes) that diffusion removes; so a_k scores both partners alike and leaves that decision
-// to the other measures.
+// chest, toes) that diffusion removes; so a_k scores both partners alike, by the better of their
+// two maps (how well that direction of the long axis can be mapped: a quadruped's back-belly swap
+// would otherwise count against its right direction), and leaves the choice between them to the
+// other measures.
 // It adds weight * (distortion_weight g'_k + disagreement_weight c_k
 // + orientation_weight (1 - o_k) + long_axis_weight a_k) to candidate k's total, where g'_k is
-// g_k, or with distortion_front_back false min(g_k, g_partner(k)): a human's front-back partner
-// is the right map reflected front to back, which preserves distances about as well, so there
-// g_k's difference between the partners is noise beside c_k's; the pair's lower distortion says
-// how well its direction of the long axis can be mapped, and keeps the right plane's best total
-// where the flip stage compares two symmetry planes. The four measure
-// different failures, so none needs a threshold: each is a mean over the samples of a quantity
-// near 0 for the right map. The source's geodesics from its first `sources` samples are a per-shape
-// product (AddNeeds), with the curvature features; the target's geodesics are computed per
-// candidate from the images of the samples. [Bronstein, Bronstein & Kimmel 2006] Generalized
-// multidimensional scaling (distortion of a map as the criterion of a correspondence).
+// min(g_k, g_p), or g_k with distortion_front_back: a human's partner is the right map reflected
+// front to back, which preserves distances about as well, so there g_k's difference between the
+// partners is noise beside c_k's; the lower of the two, like a_k, keeps the right plane's best
+// total where the flip stage compares two symmetry planes. The four measure different failures,
+// so none needs a threshold: each is a mean over the samples of a quantity near 0 for the right
+// map. The source's geodesics from its first `sources` samples are a per-shape product
+// (AddNeeds), with the curvature features; the target's geodesics are computed per candidate from
+// the images of the samples. [Bronstein, Bronstein & Kimmel 2006] Generalized multidimensional
+// scaling (distortion of a map as the criterion of a correspondence).
 #pragma once
 
 #include <Eigen/Core>
@@ -82,6 +88,10 @@ struct RefinedMapsTermOptions {
   FeatureSmoothing smoothing = {};
   // Weight of the embedded normals in the initial maps (RefinedAgreementOptions::normal_weight).
   double normal_weight = 0.1;
+  // Whether each candidate's initial map bends the source embedding onto the turned target's
+  // first, as the `deformed` matching stage does with its defaults (stages/matching/deformed.h),
+  // so that the candidates are judged from the maps the pipeline would start from.
+  bool deformed_start = true;
 
   bool IsValid(std::string* error) const;
 };
@@ -100,7 +110,7 @@ class RefinedMapsTerm : public FlipTerm {
   RefinedMapsTerm(double weight, const RefinedMapsTermOptions& options);
   void AddNeeds(int stage_basis, ShapeNeeds* needs) const override;
   std::optional<FeatureSmoothing> Features() const override { return options_.smoothing; }
-  int BasisSize() const override { return options_.zoomout.k_end; }
+  int BasisSize() const override;
   void Score(const FlipTermContext& context, std::array<double, 4>* total,
              std::ostringstream* detail) const override;
 

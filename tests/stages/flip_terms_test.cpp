@@ -55,7 +55,8 @@ TEST(FlipTermOptions, DefaultsFillEveryNestedMap) {
       "target_samples: 1000}, sources: 40, targets: 200, distortion_weight: 0.5, "
       "distortion_front_back: false, "
       "disagreement_weight: 1, orientation_weight: 0.025, long_axis_weight: 1, "
-      "long_axis_time: 0.03, smoothing_rings: 2, smoothing_radius: 0, normal_weight: 0.1}, "
+      "long_axis_time: 0.03, smoothing_rings: 2, smoothing_radius: 0, normal_weight: 0.1, "
+      "deformed_start: true}, "
       "orientation: {weight: 0, zoomout: {k_start: 6, k_end: 60, step: 5, samples: 200, "
       "target_samples: 1000}}}, "
       "decide: {type: argmin}}";
