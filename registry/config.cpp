@@ -246,6 +246,7 @@ EvaluationOptions ParseEvaluationOptions(const YAML::Node& node, const std::stri
     }
     e.points = static_cast<int>(n);
   }
+  e.refine_start = r.GetChoice("refine_start", e.refine_start, {"matching", "ground_truth"});
   r.Finish();
   return e;
 }
@@ -475,6 +476,10 @@ std::string ResolvedConfigYaml(const ExperimentConfig& config, const VariantConf
   out << YAML::Key << "step" << YAML::Value << FormatNumber(e.step);
   out << YAML::Key << "points" << YAML::Value
       << (e.points == 0 ? std::string("all") : std::to_string(e.points));
+  // Written only when set, so that the resolved configs of runs without it keep their text.
+  if (e.refine_start != EvaluationOptions().refine_start) {
+    out << YAML::Key << "refine_start" << YAML::Value << e.refine_start;
+  }
   out << YAML::EndMap;
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";

@@ -38,6 +38,10 @@ struct EvaluationOptions {
   double max_error = 0.25;                  // right end of the cumulative curve
   double step = 0.0025;                     // curve resolution
   int points = 0;                           // 0 = all ground-truth points; N = N FPS points
+  // Where the refine stage starts: "matching" (the matching stage's map) or "ground_truth" (the
+  // pair's ground truth, MapFromGroundTruth in registry/pair_pipeline.h), which measures how far
+  // a refinement drifts from the answer it should keep; a pair without ground truth then fails.
+  std::string refine_start = "matching";
 };
 
 // The `evaluation` section of a config (strict: unknown keys and bad values throw ConfigError

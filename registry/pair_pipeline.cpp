@@ -3,10 +3,13 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <limits>
+#include <queue>
 #include <sstream>
 
 #include "core/laplacian.h"
+#include "core/mesh_graph.h"
 #include "registry/hash.h"
 
 namespace symembed {
@@ -38,6 +41,71 @@ void CheckMap(const MatchResult& result, int source_vertices, int target_vertice
 
 }  // namespace
 
+std::vector<int> MapFromGroundTruth(const Surface& source, int target_vertices,
+                                    const PreprocessedGroundTruth& ground_truth) {
+  const int n = source.NumVertices();
+  if (ground_truth.source_ids.empty() ||
+      ground_truth.source_ids.size() != ground_truth.target_ids.size()) {
+    throw InvalidInputError("the pair has no ground truth to start from (" +
+                            std::to_string(ground_truth.source_ids.size()) + " source and " +
+                            std::to_string(ground_truth.target_ids.size()) + " target ids)");
+  }
+  std::vector<int> map(n, -1);
+  for (size_t i = 0; i < ground_truth.source_ids.size(); ++i) {
+    const int s = ground_truth.source_ids[i], t = ground_truth.target_ids[i];
+    if (s < 0 || s >= n || t < 0 || t >= target_vertices) {
+      throw InvalidInputError("ground truth line " + std::to_string(i + 1) + " (" +
+                              std::to_string(s) + " -> " + std::to_string(t) +
+                              ") is outside the meshes (" + std::to_string(n) + " and " +
+                              std::to_string(target_vertices) + " vertices)");
+    }
+    if (map[s] < 0) map[s] = t;
+  }
+  // Dijkstra from every lined vertex at once, each settled vertex taking its source's target:
+  // the graph distance keeps a vertex on its own part where a touching part is nearer in space.
+  const MeshGraph graph = BuildMeshGraph(source);
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  std::vector<int> label(n, -1);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int v = 0; v < n; ++v) {
+    if (map[v] < 0) continue;
+    dist[v] = 0.0;
+    label[v] = map[v];
+    queue.push({0.0, v});
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[v]) continue;
+    for (int e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+      const int u = graph.neighbors[e];
+      const double du = d + graph.lengths[e];
+      if (du < dist[u]) {
+        dist[u] = du;
+        label[u] = label[v];
+        queue.push({du, u});
+      }
+    }
+  }
+  std::vector<int> lined;
+  for (int v = 0; v < n; ++v) {
+    if (map[v] >= 0) lined.push_back(v);
+  }
+  for (int v = 0; v < n; ++v) {
+    if (label[v] >= 0) continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (int u : lined) {
+      const double d = (source.V.row(u) - source.V.row(v)).squaredNorm();
+      if (d < best) {
+        best = d;
+        label[v] = map[u];
+      }
+    }
+  }
+  return label;
+}
+
 EmbeddedPoints Rotated(const EmbeddedPoints& points, const Eigen::Matrix3d& R) {
   return {Rotated(points.Y, R), Rotated(points.N, R)};
 }
@@ -61,6 +129,10 @@ uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const P
   std::snprintf(numbers, sizeof numbers, "%.17g %.17g %d", pipeline.evaluation.max_error,
                 pipeline.evaluation.step, pipeline.evaluation.points);
   h.AddString(numbers);
+  // Only when set, so that the keys of pairs computed without it stay valid.
+  if (pipeline.evaluation.refine_start != EvaluationOptions().refine_start) {
+    h.AddString("refine_start " + pipeline.evaluation.refine_start);
+  }
   for (const std::vector<int>* ids :
        {&ground_truth.source_ids, &ground_truth.target_ids, &ground_truth.target_sym_ids}) {
     h.AddU64(ids->size()).AddBytes(ids->data(), ids->size() * sizeof(int));
@@ -155,6 +227,14 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   counters->Executed("matching");
   CheckMap(matched, a.surface.NumVertices(), nb, "matching");
   out.matching_status = matched.status;
+
+  if (pipeline.evaluation.refine_start == "ground_truth") {
+    if (!ground_truth) {
+      throw InvalidInputError(
+          "evaluation.refine_start: ground_truth: the dataset gives this pair no ground truth");
+    }
+    matched.map = MapFromGroundTruth(a.surface, nb, truth_pre);
+  }
 
   start = std::chrono::steady_clock::now();
   MatchResult refined = pipeline.refine->Run(

@@ -1,6 +1,8 @@
 // Per-pair work of one variant (DESIGN.md, "Data flow"), source A -> target B:
 //   flip scorer picks one of CandidateRotations() -> B's embedding rotated (y' = R y) ->
-//   matching(Y_A, R Y_B) -> refine(pair, map) -> map in input vertex ids.
+//   matching(Y_A, R Y_B) -> refine(pair, map) -> map in input vertex ids. With
+//   `evaluation.refine_start: ground_truth` the refine stage starts from the ground truth
+//   (MapFromGroundTruth) instead of the matching stage's map.
 // Source input vertices removed by preprocessing take the map of the nearest kept source vertex;
 // target ids are converted through the target's input_ids.
 //
@@ -53,6 +55,15 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
 // per-pair stages' options, the evaluation options and the ground truth.
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
                  const InputGroundTruth& ground_truth);
+
+// A map of every source vertex from the ground truth in preprocessed ids (ToPreprocessedIds):
+// a vertex with lines takes the target of its first line; one without takes that of the lined
+// vertex nearest along the surface's edges (graph distance), or, in a part of the surface with
+// no lined vertex, the Euclidean nearest. The refine stage's start under `evaluation.
+// refine_start: ground_truth`. Throws InvalidInputError when there are no lines or an id is out
+// of range.
+std::vector<int> MapFromGroundTruth(const Surface& source, int target_vertices,
+                                    const PreprocessedGroundTruth& ground_truth);
 
 // Ground truth in input ids -> preprocessed ids; lines whose source or target vertex was removed
 // are dropped (PairInput::ground_truth, used by the oracle flip scorer).

@@ -471,6 +471,41 @@ TEST(Config, EvaluationOptionsHaveOneStrictParser) {
   EXPECT_THROW(
       ParseEvaluationOptions(YAML::Load("{points: some}"), "run/base/config.yaml", nullptr),
       ConfigError);
+  EXPECT_EQ(defaults.refine_start, "matching");
+  EXPECT_EQ(ParseEvaluationOptions(YAML::Load("{refine_start: ground_truth}"),
+                                   "run/base/config.yaml", nullptr)
+                .refine_start,
+            "ground_truth");
+  try {
+    ParseEvaluationOptions(YAML::Load("{refine_start: truth}"), "run/base/config.yaml", nullptr);
+    FAIL() << "a bad refine_start was accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("refine_start"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("ground_truth"), std::string::npos) << error.what();
+  }
+}
+
+// evaluation.refine_start appears in a resolved config only when set (the resolved configs of
+// runs without it keep their text, which resuming compares) and reads back from it.
+TEST(Config, RefineStartIsWrittenOnlyWhenSetAndReadsBack) {
+  const Registry registry = FakeRegistry();
+  const ExperimentConfig c = ParseExperimentConfig(
+      Replace(kConfig, "variants:\n",
+              "variants:\n  - {name: truth, set: {evaluation.refine_start: ground_truth}}\n"),
+      "exp.yaml", registry);
+  int with_truth = 0;
+  for (const auto& v : c.variants) {
+    const Pipeline p = BuildPipeline(c, v, registry);
+    const std::string resolved = ResolvedConfigYaml(c, v, p);
+    const bool set = v.name == "truth";
+    with_truth += set;
+    EXPECT_EQ(p.evaluation.refine_start, set ? "ground_truth" : "matching") << v.name;
+    EXPECT_EQ(resolved.find("refine_start") != std::string::npos, set) << resolved;
+    const ExperimentConfig again = ParseExperimentConfig(resolved, "resolved.yaml", registry);
+    const Pipeline q = BuildPipeline(again, again.variants[0], registry);
+    EXPECT_EQ(q.evaluation.refine_start, p.evaluation.refine_start) << v.name;
+  }
+  EXPECT_EQ(with_truth, 1);
 }
 
 }  // namespace

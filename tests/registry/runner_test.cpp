@@ -8,6 +8,7 @@
 #include "core/procrustes.h"
 #include "registry/config.h"
 #include "registry/merge.h"
+#include "registry/pair_pipeline.h"
 #include "registry/shape_pipeline.h"
 #include "tests/registry/runner_fixture.h"
 
@@ -662,6 +663,57 @@ TEST(Runner, UnknownVariantAndBadShardAreErrors) {
   shard.shard_index = 2;
   shard.shard_count = 2;
   EXPECT_THROW(RunConfig(config, tmp.File("out"), "", shard), ConfigError);
+}
+
+// evaluation.refine_start: ground_truth hands the refine stage the ground truth instead of the
+// matching stage's map: with a wrong rotation (flip choose 2) the pipeline's map is not the
+// identity, the ground truth's is, and the identity refine stage keeps it. Both variants share
+// one cache, so the pair key must tell them apart.
+TEST(Runner, RefineStartGroundTruthStartsTheRefinementFromTheTruth) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(
+      tmp.File("data"), 2,
+      "variants:\n"
+      "  - {name: wrong, set: {pipeline.flip.choose: 2}}\n"
+      "  - {name: truth, set: {pipeline.flip.choose: 2, evaluation.refine_start: ground_truth}}\n");
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  EXPECT_TRUE(run.stats.ok());
+  std::string identity;
+  for (int v = 1; v <= 20; ++v) identity += std::to_string(v) + "\n";
+  EXPECT_EQ(ReadText(tmp.File("out/base/maps/s0_s1.map")), identity);
+  EXPECT_NE(ReadText(tmp.File("out/wrong/maps/s0_s1.map")), identity);
+  EXPECT_EQ(ReadText(tmp.File("out/truth/maps/s0_s1.map")), identity);
+  EXPECT_EQ(ReadText(tmp.File("out/truth/maps/s1_s0.map")), identity);
+  EXPECT_NE(ReadText(tmp.File("out/truth/config.yaml")).find("refine_start: ground_truth"),
+            std::string::npos);
+}
+
+// Lined vertices take their first line's target; the others that of the lined vertex nearest
+// along the edges, or the Euclidean nearest off the lined vertices' part of the surface.
+TEST(MapFromGroundTruth, FillsUnlinedVerticesFromTheNearestLinedOne) {
+  Surface grid = GridMesh(5, 4);  // vertex v at column v % 5, row v / 5
+  grid.V.conservativeResize(21, 3);
+  grid.V.row(20) = grid.V.row(4) + Eigen::RowVector3d(0.01, 0.0, 0.3);  // on no face
+  PreprocessedGroundTruth truth;
+  truth.source_ids = {0, 4, 0};
+  truth.target_ids = {7, 9, 3};
+  const std::vector<int> map = MapFromGroundTruth(grid, 10, truth);
+  ASSERT_EQ(map.size(), 21u);
+  EXPECT_EQ(map[0], 7);  // the first of its two lines
+  EXPECT_EQ(map[4], 9);
+  EXPECT_EQ(map[1], 7);
+  EXPECT_EQ(map[3], 9);
+  EXPECT_EQ(map[15], 7);  // three rows up from vertex 0
+  EXPECT_EQ(map[19], 9);
+  EXPECT_EQ(map[20], 9);  // unreached along edges: the Euclidean nearest lined vertex
+  EXPECT_THROW(MapFromGroundTruth(grid, 10, PreprocessedGroundTruth{}), InvalidInputError);
+  truth.target_ids[1] = 10;
+  try {
+    MapFromGroundTruth(grid, 10, truth);
+    FAIL() << "a target id out of range was accepted";
+  } catch (const InvalidInputError& error) {
+    EXPECT_NE(std::string(error.what()).find("line 2"), std::string::npos) << error.what();
+  }
 }
 
 TEST(Runner, RemovedInputVerticesTakeTheNearestKeptVertex) {
