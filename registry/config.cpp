@@ -415,7 +415,11 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
     try {
       BuildPipeline(config, v, registry);
     } catch (const ConfigError& e) {
-      throw ConfigError(WithSetArgument(e.what(), file, overrides));
+      // The base is validated first, so an error found later is one that a variant's own set
+      // (or a --set meeting it) makes: the message names that variant.
+      std::string message = WithSetArgument(e.what(), file, overrides);
+      if (v.name != "base") message += " (in variant '" + v.name + "')";
+      throw ConfigError(message);
     }
   }
   return config;

@@ -229,6 +229,11 @@ TEST(Config, VariantErrorsPointAtTheVariant) {
   EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("pipeline.sampling.count: value -3 is out of range"), std::string::npos)
       << msg;
+  EXPECT_NE(msg.find("(in variant 'more_samples')"), std::string::npos) << msg;
+  // An error of the base pipeline is every variant's: no variant is named.
+  msg = ErrorOf(Replace(kConfig, "count: 500", "count: -5"));
+  EXPECT_NE(msg.find("out of range"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("in variant"), std::string::npos) << msg;
   msg = ErrorOf(Replace(kConfig, "pipeline.sampling.count", "pipeline.smpling.count"));
   EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("unknown stage kind 'smpling'"), std::string::npos) << msg;
