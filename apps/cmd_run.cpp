@@ -92,8 +92,10 @@ ArgParser RunParser() {
                 "preprocessed faces) as OUT/<variant>/embeddings/NAME.off");
   parser.Repeated("set",
                   "override dotted.path=value in the base and every variant; a variant's own "
-                  "`set` of the same key wins there, with a note (e.g. --set "
-                  "evaluation.geodesics=fast_marching)");
+                  "`set` of the same key wins there, and one that changes the stage's type "
+                  "drops its options, with a note; with --variant only that variant is checked "
+                  "and such options apply on top (e.g. --variant refined --set "
+                  "pipeline.refine.k_end=160)");
   parser.Positionals("CONFIG", "the experiment's YAML file", 1, 1);
   return parser;
 }
@@ -182,8 +184,8 @@ int RunCommand(const Args& args) {
 
   Registry registry;
   RegisterBuiltinStages(registry);
-  const ExperimentConfig config =
-      LoadExperimentConfig(parser.positionals()[0], registry, parser.GetAll("set"));
+  const ExperimentConfig config = LoadExperimentConfig(parser.positionals()[0], registry,
+                                                       parser.GetAll("set"), options.variant);
   options.out_dir = parser.Given("out") ? parser.Get("out") : "results/" + config.name;
   for (const auto& [variant, line] : config.shadowed_overrides) {
     if (options.variant.empty() || options.variant == variant) {

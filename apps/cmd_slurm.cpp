@@ -179,7 +179,8 @@ int SlurmCommand(const Args& args) {
   if (!fs::is_regular_file(config_path)) throw ConfigError(config_path + ": no such config file");
   Registry registry;
   RegisterBuiltinStages(registry);
-  const ExperimentConfig config = LoadExperimentConfig(config_path, registry, options.sets);
+  const ExperimentConfig config =
+      LoadExperimentConfig(config_path, registry, options.sets, options.variant);
   const StudySize size = MeasureStudy(config, registry, options.variant, options.split);
   if (size.pairs == 0) throw ConfigError(config_path + ": the dataset has no pairs");
 

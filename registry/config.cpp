@@ -299,14 +299,26 @@ bool PathsOverlap(const std::string& a, const std::string& b) {
          (longer.size() == shorter.size() || longer[shorter.size()] == '.');
 }
 
+// Whether the dotted path names a node of tree.
+bool HasPath(const YAML::Node& tree, const std::string& path) {
+  YAML::Node node = tree;
+  std::stringstream parts(path);
+  for (std::string part; std::getline(parts, part, '.');) {
+    if (!node.IsMap() || !node[part].IsDefined()) return false;
+    node.reset(node[part]);
+  }
+  return true;
+}
+
 // Variant i of the config's `variants` list: its name (unique in *names) and its tree, parsed
 // afresh by `parse`, with the command-line overrides and then its own `set` applied (type
 // changes first, so that options set next to them are kept). Each override its `set` replaces
-// (PathsOverlap) is added to *shadowed. Throws ConfigError.
+// (PathsOverlap), or drops by changing its stage's type, is added to *shadowed, except that a
+// dropped one applies again on top when the variant is `only_variant`. Throws ConfigError.
 template <typename Parse>
 VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& parse,
                           const std::vector<std::string>& overrides, const std::string& file,
-                          std::set<std::string>* names,
+                          const std::string& only_variant, std::set<std::string>* names,
                           std::vector<std::pair<std::string, std::string>>* shadowed) {
   const YAML::Node v = variants[i];
   const std::string path = "variants[" + std::to_string(i) + "]";
@@ -354,6 +366,30 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
         if ((pass == 0) == is_type) ApplyOverride(tree, key, kv.second, kv.first, file);
       }
     }
+    // A type the set changes drops the old type's options, among them those --set gave to the
+    // stage. When this variant is the one asked for, they are meant for it and apply again on
+    // top (failing validation if the new type has no such option); otherwise they stay dropped,
+    // with a note, since a --set for every variant need not fit a stage one variant replaces.
+    for (const std::string& o : overrides) {
+      const std::string key = o.substr(0, o.find('='));
+      bool replaced = false;
+      std::string retyped;
+      for (const auto& kv : set) {
+        const std::string k = kv.first.Scalar();
+        replaced = replaced || PathsOverlap(key, k);
+        const size_t dot = k.rfind('.');
+        const bool type_key = k.size() > 5 && k.compare(k.size() - 5, 5, ".type") == 0;
+        if (type_key && key.compare(0, dot + 1, k.substr(0, dot + 1)) == 0) retyped = k;
+      }
+      if (replaced || retyped.empty() || HasPath(tree, key)) continue;
+      if (name == only_variant) {
+        ApplyCommandLineOverrides(tree, {o}, file);
+      } else {
+        shadowed->emplace_back(name, "variant '" + name + "' sets " + retyped +
+                                         ", which drops --set " + o + " there (with --variant " +
+                                         name + " it applies)");
+      }
+    }
   }
   return VariantConfig{name, tree};
 }
@@ -362,7 +398,8 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
 
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
                                        const Registry& registry,
-                                       const std::vector<std::string>& overrides) {
+                                       const std::vector<std::string>& overrides,
+                                       const std::string& only_variant) {
   const std::string text = SubstituteText(yaml_text, file);
   // Each variant gets its own parse of the text, so that every node keeps its file position
   // (YAML::Clone drops positions) and no node is shared between variants.
@@ -406,12 +443,14 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
     }
     std::set<std::string> names = {"base"};
     for (size_t i = 0; i < variants.size(); ++i) {
-      config.variants.push_back(
-          ReadVariant(variants, i, parse, overrides, file, &names, &config.shadowed_overrides));
+      config.variants.push_back(ReadVariant(variants, i, parse, overrides, file, only_variant,
+                                            &names, &config.shadowed_overrides));
     }
   }
-  // Validate every variant completely before anything runs.
+  // Validate every variant that will run completely before anything runs.
+  const bool one = config.Find(only_variant) != nullptr;
   for (const auto& v : config.variants) {
+    if (one && v.name != only_variant) continue;
     try {
       BuildPipeline(config, v, registry);
     } catch (const ConfigError& e) {
@@ -426,12 +465,13 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
 }
 
 ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry,
-                                      const std::vector<std::string>& overrides) {
+                                      const std::vector<std::string>& overrides,
+                                      const std::string& only_variant) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open config file");
   std::ostringstream text;
   text << in.rdbuf();
-  return ParseExperimentConfig(text.str(), path, registry, overrides);
+  return ParseExperimentConfig(text.str(), path, registry, overrides, only_variant);
 }
 
 Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& variant,

@@ -106,12 +106,17 @@ struct ExperimentConfig {
 // Throws ConfigError (file:line:col, dotted path, expectation) or IoError.
 // `overrides` ("dotted.path=value", as `symembed run --set`) apply to the base and to every
 // variant, before the variant's own overrides (which win for the keys they set; see
-// ExperimentConfig::shadowed_overrides).
+// ExperimentConfig::shadowed_overrides). With `only_variant` the name of one of the config's
+// variants (as `symembed run --variant`), only that variant is validated, so that an override
+// of a stage only it selects (`--variant refined --set pipeline.refine.k_end=160` where the
+// base has `refine: none`) need not fit the others; any other value validates every variant.
 ExperimentConfig LoadExperimentConfig(const std::string& path, const Registry& registry,
-                                      const std::vector<std::string>& overrides = {});
+                                      const std::vector<std::string>& overrides = {},
+                                      const std::string& only_variant = "");
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
                                        const Registry& registry,
-                                       const std::vector<std::string>& overrides = {});
+                                       const std::vector<std::string>& overrides = {},
+                                       const std::string& only_variant = "");
 
 // Instantiates the stages of one variant (throws ConfigError).
 Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& variant,

@@ -243,6 +243,39 @@ TEST(Config, VariantErrorsPointAtTheVariant) {
   EXPECT_NE(msg.find("variants[0].sett: unknown key"), std::string::npos) << msg;
 }
 
+// An override of an option that only one variant's stage has (isomap's fix_orientation) fails
+// the config as a whole, naming the --set, and loads when only that variant is asked for; a name
+// that is not a variant validates every variant.
+TEST(Config, AnOverrideForOneVariantLoadsWhenOnlyThatVariantRuns) {
+  const std::vector<std::string> set = {"pipeline.embedding.fix_orientation=true"};
+  try {
+    ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry(), set);
+    FAIL() << "an option of a stage the base does not select was accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("--set 'pipeline.embedding.fix_orientation=true'"),
+              std::string::npos)
+        << error.what();
+  }
+  // Asked for alone, the variant whose set changes the embedding's type gets the option on top.
+  const ExperimentConfig c =
+      ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry(), set, "isomap");
+  const Pipeline p = BuildPipeline(c, *c.Find("isomap"), FakeRegistry());
+  EXPECT_TRUE(p.embedding->resolved_options()["fix_orientation"].as<bool>());
+  EXPECT_TRUE(c.shadowed_overrides.empty());
+  // Among all variants the type change drops an override of the old type's option, and says so.
+  const std::vector<std::string> init = {"pipeline.embedding.init=random"};
+  const ExperimentConfig all = ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry(), init);
+  const Pipeline isomap = BuildPipeline(all, *all.Find("isomap"), FakeRegistry());
+  EXPECT_FALSE(isomap.embedding->resolved_options()["init"].IsDefined());
+  ASSERT_EQ(all.shadowed_overrides.size(), 1u);
+  EXPECT_EQ(all.shadowed_overrides[0].first, "isomap");
+  EXPECT_NE(all.shadowed_overrides[0].second.find("drops --set pipeline.embedding.init=random"),
+            std::string::npos)
+      << all.shadowed_overrides[0].second;
+  EXPECT_THROW(ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry(), set, "no_such_variant"),
+               ConfigError);
+}
+
 TEST(Config, YamlSyntaxErrorHasLocation) {
   const std::string msg = ErrorOf("name: x\ndataset: {format: [\n");
   EXPECT_NE(msg.find("exp.yaml:"), std::string::npos) << msg;
