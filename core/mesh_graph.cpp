@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <queue>
+#include <string>
 
 #include "core/errors.h"
 
@@ -212,6 +214,39 @@ int DijkstraUpdateMin(const MeshGraph& g, int source, std::vector<double>* min_d
     });
   }
   return changed;
+}
+
+std::vector<int> NearestSeeds(const MeshGraph& g, const std::vector<int>& seeds) {
+  const int n = g.NumVertices();
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  std::vector<int> label(n, -1);
+  // Ordered by (distance, vertex) rather than by distance alone, so that ties between seeds do
+  // not depend on the heap's layout.
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int k = 0; k < static_cast<int>(seeds.size()); ++k) {
+    const int v = seeds[k];
+    if (v < 0 || v >= n) {
+      throw InvalidInputError("seed " + std::to_string(k) + " is vertex " + std::to_string(v) +
+                              " of a graph with " + std::to_string(n) + " vertices");
+    }
+    if (label[v] >= 0) continue;
+    dist[v] = 0.0;
+    label[v] = k;
+  }
+  for (int v = 0; v < n; ++v) {
+    if (label[v] >= 0) queue.push({0.0, v});
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[v]) continue;
+    LowerNeighbours(g, v, d, dist.data(), [&](int w, double nd) {
+      label[w] = label[v];
+      queue.push({nd, w});
+    });
+  }
+  return label;
 }
 
 }  // namespace symembed

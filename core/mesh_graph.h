@@ -69,4 +69,11 @@ void DijkstraBall(const MeshGraph& graph, int source, double radius,
 int DijkstraUpdateMin(const MeshGraph& graph, int source, std::vector<double>* min_dist,
                       DijkstraWorkspace<double>* ws);
 
+// Multi-source shortest paths from `seeds` (vertex ids): for every vertex the index into seeds
+// of the seed nearest along the edges, -1 where no seed is reachable (another component). A
+// vertex listed as several seeds belongs to the first. Ties go to the seed whose path reaches
+// the vertex first in (distance, vertex id) order. Throws InvalidInputError for a seed id out
+// of range.
+std::vector<int> NearestSeeds(const MeshGraph& graph, const std::vector<int>& seeds);
+
 }  // namespace symembed

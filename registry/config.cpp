@@ -348,10 +348,13 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
     if (!set.IsMap())
       throw ConfigError(NodeLocation(file, set) + ": " + path +
                         ".set: expected a map of dotted.path: value");
-    for (const std::string& o : overrides) {
+    std::vector<bool> replaced(overrides.size(), false);
+    for (size_t i = 0; i < overrides.size(); ++i) {
+      const std::string& o = overrides[i];
       const std::string key = o.substr(0, o.find('='));
       for (const auto& kv : set) {
         if (!PathsOverlap(key, kv.first.Scalar())) continue;
+        replaced[i] = true;
         shadowed->emplace_back(name, "variant '" + name + "' sets " + kv.first.Scalar() +
                                          " itself (" + NodeLocation(file, kv.first) +
                                          "), so --set " + o + " does not apply to it there");
@@ -370,24 +373,17 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
     // stage. When this variant is the one asked for, they are meant for it and apply again on
     // top (failing validation if the new type has no such option); otherwise they stay dropped,
     // with a note, since a --set for every variant need not fit a stage one variant replaces.
-    for (const std::string& o : overrides) {
-      const std::string key = o.substr(0, o.find('='));
-      bool replaced = false;
-      std::string retyped;
-      for (const auto& kv : set) {
-        const std::string k = kv.first.Scalar();
-        replaced = replaced || PathsOverlap(key, k);
-        const size_t dot = k.rfind('.');
-        const bool type_key = k.size() > 5 && k.compare(k.size() - 5, 5, ".type") == 0;
-        if (type_key && key.compare(0, dot + 1, k.substr(0, dot + 1)) == 0) retyped = k;
-      }
-      if (replaced || retyped.empty() || HasPath(tree, key)) continue;
+    for (size_t i = 0; i < overrides.size(); ++i) {
+      const std::string& o = overrides[i];
+      // Only a type change removes a key from the tree: one the set does not name is gone
+      // exactly when the set retyped its stage.
+      if (replaced[i] || HasPath(tree, o.substr(0, o.find('=')))) continue;
       if (name == only_variant) {
         ApplyCommandLineOverrides(tree, {o}, file);
       } else {
-        shadowed->emplace_back(name, "variant '" + name + "' sets " + retyped +
-                                         ", which drops --set " + o + " there (with --variant " +
-                                         name + " it applies)");
+        shadowed->emplace_back(name, "variant '" + name +
+                                         "' changes the type of its stage, which drops --set " + o +
+                                         " there (with --variant " + name + " it applies)");
       }
     }
   }

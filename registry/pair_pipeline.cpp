@@ -1,11 +1,10 @@
 #include "registry/pair_pipeline.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <functional>
 #include <limits>
-#include <queue>
 #include <sstream>
 
 #include "core/laplacian.h"
@@ -61,49 +60,20 @@ std::vector<int> MapFromGroundTruth(const Surface& source, int target_vertices,
     }
     if (map[s] < 0) map[s] = t;
   }
-  // Dijkstra from every lined vertex at once, each settled vertex taking its source's target:
-  // the graph distance keeps a vertex on its own part where a touching part is nearer in space.
-  const MeshGraph graph = BuildMeshGraph(source);
-  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-  std::vector<int> label(n, -1);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (int v = 0; v < n; ++v) {
-    if (map[v] < 0) continue;
-    dist[v] = 0.0;
-    label[v] = map[v];
-    queue.push({0.0, v});
-  }
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[v]) continue;
-    for (int e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
-      const int u = graph.neighbors[e];
-      const double du = d + graph.lengths[e];
-      if (du < dist[u]) {
-        dist[u] = du;
-        label[u] = label[v];
-        queue.push({du, u});
-      }
-    }
-  }
   std::vector<int> lined;
   for (int v = 0; v < n; ++v) {
     if (map[v] >= 0) lined.push_back(v);
   }
-  for (int v = 0; v < n; ++v) {
-    if (label[v] >= 0) continue;
-    double best = std::numeric_limits<double>::infinity();
-    for (int u : lined) {
-      const double d = (source.V.row(u) - source.V.row(v)).squaredNorm();
-      if (d < best) {
-        best = d;
-        label[v] = map[u];
-      }
-    }
+  // Nearest along the edges, which keeps a vertex on its own part where a touching part is
+  // nearer in space; where no lined vertex is reachable, the nearest in space.
+  const std::vector<int> seed = NearestSeeds(BuildMeshGraph(source), lined);
+  std::vector<int> kept_of_lined, nearest_lined;
+  if (std::find(seed.begin(), seed.end(), -1) != seed.end()) {
+    InputToKept(source.V, lined, &kept_of_lined, &nearest_lined);
   }
-  return label;
+  std::vector<int> out(n);
+  for (int v = 0; v < n; ++v) out[v] = map[lined[seed[v] >= 0 ? seed[v] : nearest_lined[v]]];
+  return out;
 }
 
 EmbeddedPoints Rotated(const EmbeddedPoints& points, const Eigen::Matrix3d& R) {

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "core/errors.h"
 #include "core/primitives.h"
 #include "tests/test_util.h"
 
@@ -87,6 +88,32 @@ TEST(Dijkstra, EdgesOfVeryDifferentLengthsOrOfLengthZero) {
     EXPECT_EQ(d[v], std::numeric_limits<double>::infinity());
   }
   ExpectBucketsMatchTheHeap<double>(two, 5);
+}
+
+}  // namespace
+}  // namespace symembed
+
+namespace symembed {
+namespace {
+
+// Each vertex takes the seed nearest along the edges (a seed listed twice counts once, as the
+// first), a vertex on no edge none; a seed id out of range is refused.
+TEST(MeshGraph, NearestSeedsLabelsEachVertexByItsNearestSeedAlongTheEdges) {
+  Surface grid = GridMesh(5, 4);  // vertex v at column v % 5, row v / 5
+  grid.V.conservativeResize(21, 3);
+  grid.V.row(20) = grid.V.row(4);  // on no face
+  const MeshGraph graph = BuildMeshGraph(grid);
+  const std::vector<int> seed = NearestSeeds(graph, {0, 19, 0});
+  ASSERT_EQ(seed.size(), 21u);
+  EXPECT_EQ(seed[0], 0);
+  EXPECT_EQ(seed[19], 1);
+  EXPECT_EQ(seed[1], 0);
+  EXPECT_EQ(seed[5], 0);
+  EXPECT_EQ(seed[18], 1);
+  EXPECT_EQ(seed[14], 1);
+  EXPECT_EQ(seed[20], -1);
+  for (int v : seed) EXPECT_NE(v, 2);
+  EXPECT_THROW(NearestSeeds(graph, {0, 21}), InvalidInputError);
 }
 
 }  // namespace
