@@ -32,6 +32,8 @@ bool Plane2dOptions::IsValid(std::string* error) const {
     out << "min_self_map_displacement must be >= 0, got " << min_self_map_displacement;
   else if (!(second_plane_below >= 0.0))
     out << "second_plane_below must be >= 0, got " << second_plane_below;
+  else if (!(distance_confidence >= 0.0))
+    out << "distance_confidence must be >= 0, got " << distance_confidence;
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -174,6 +176,20 @@ class Plane2dSearch {
     result.offset = best.offset;
     result.sigma = best.sigma;
     result.confidence = best.confidence;
+    if (options_.distance_confidence > 0.0) {
+      // Redistribute the symmetrization's pull towards the pairs the self map is sure of,
+      // keeping its overall strength: a coarse self map (a sign flip of eigenfunctions on a
+      // shape whose eigenfunctions are not quite symmetric) pairs some samples wrongly, and
+      // pressing those into mirror images bends the whole embedding.
+      if (result.confidence.size() != Dss_.rows()) {
+        result.confidence = Eigen::VectorXd::Ones(Dss_.rows());
+      }
+      const double before = result.confidence.mean();
+      result.confidence.array() *=
+          DistanceConsistencyWeights(Dss_, best.sigma, options_.distance_confidence).array();
+      const double after = result.confidence.mean();
+      if (after > 0.0) result.confidence *= before / after;
+    }
     result.score = best.score;
     result.status.converged = best.converged;
     result.status.iterations = iterations_;
@@ -318,6 +334,42 @@ class Plane2dSearch {
 };
 
 }  // namespace
+
+Eigen::VectorXd DistanceConsistencyWeights(const Eigen::MatrixXd& Dss,
+                                           const std::vector<int>& sigma, double scale) {
+  const Eigen::Index S = Dss.rows();
+  if (Dss.cols() != S || static_cast<Eigen::Index>(sigma.size()) != S) {
+    throw InvalidInputError("symmetry plane2d: a self map of " + std::to_string(sigma.size()) +
+                            " entries for " + std::to_string(S) + " x " +
+                            std::to_string(Dss.cols()) + " sample distances");
+  }
+  for (int j : sigma) {
+    if (j < 0 || j >= S) {
+      throw InvalidInputError("symmetry plane2d: self map entry " + std::to_string(j) +
+                              " out of range 0.." + std::to_string(S - 1));
+    }
+  }
+  const Eigen::Index A = std::min<Eigen::Index>(S, 128);
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(S);
+  if (S == 0) return weights;
+  std::vector<double> d(S), r(A);
+  for (Eigen::Index i = 0; i < S; ++i) {
+    for (Eigen::Index a = 0; a < A; ++a) {
+      r[a] = std::abs(Dss(i, a) - Dss(sigma[i], sigma[a]));
+    }
+    std::nth_element(r.begin(), r.begin() + A / 2, r.end());
+    d[i] = r[A / 2];
+  }
+  std::vector<double> sorted = d;
+  std::nth_element(sorted.begin(), sorted.begin() + S / 2, sorted.end());
+  const double unit = scale * sorted[S / 2];
+  if (!(unit > 0.0)) return weights;
+  for (Eigen::Index i = 0; i < S; ++i) {
+    const double x = d[i] / unit;
+    weights(i) = 1.0 / (1.0 + x * x);
+  }
+  return weights;
+}
 
 double SampleSelfMapDisplacement(const Eigen::MatrixXd& Y, const std::vector<int>& samples,
                                  const std::vector<int>& sigma) {

@@ -73,12 +73,27 @@ struct Plane2dOptions {
   // RunAlternative), and each pair chooses between the shape's two planes by its flip score;
   // 0: off. Unlike min_self_map_displacement it decides nothing for the shape alone.
   double second_plane_below = 0.4;
+  // > 0: each sample's confidence (the weight of its symmetry term in the symmetrize stage) is
+  // multiplied by how well its self map keeps geodesic distances (DistanceConsistencyWeights
+  // with this scale) and rescaled to the mean it had; 0: off.
+  double distance_confidence = 0.0;
   // Threads of the 2D embedding's SMACOF and of the refinement of the line directions and of the
   // 3D candidates (0: all cores). The result does not depend on it.
   int threads = 0;
 
   bool IsValid(std::string* error) const;
 };
+
+// Per sample i, how well the self map keeps its geodesic distances: d_i, the median over the
+// anchors a (the first min(#S, 128) samples; farthest-point samples spread over the shape) of
+// |Dss(i, a) - Dss(sigma(i), sigma(a))|, and the weight 1 / (1 + (d_i / (scale * median_i
+// d_i))^2). A sample the self map sends to the wrong part of the body has distances to the
+// anchors' images unlike its own, and a sample paired right has them alike up to the shape's own
+// asymmetry, so the weights single out the wrong pairs without a threshold. All ones when every
+// d_i is 0 (an exact symmetry). Dss: #S x #S sample distances; sigma: #S sample indices; scale >
+// 0. Throws InvalidInputError when sigma does not match Dss or an index is out of range.
+Eigen::VectorXd DistanceConsistencyWeights(const Eigen::MatrixXd& Dss,
+                                           const std::vector<int>& sigma, double scale);
 
 // The 2D embedding of step 1: Dss #S x #S symmetric distances -> #S x 2 (centred). SMACOF runs on
 // `threads` threads (0: all cores); its result does not depend on them.

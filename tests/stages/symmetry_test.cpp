@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.h"
@@ -211,6 +212,95 @@ TEST(Plane2d, ASelfMapNearTheIdentityLosesToOneThatMovesTheSamples) {
   EXPECT_NE(r.status.message.find("self map displacement"), std::string::npos);
   options.min_self_map_displacement = -1.0;
   EXPECT_THROW(DetectSymmetryPlane2d(D, samples, Y, options), ConfigError);
+}
+
+// The figure made slightly asymmetric: x > 0 stretched by 3%, so that rightly paired samples
+// keep their distances only nearly.
+Surface StretchedFigure(bool with_left_arm, std::vector<int>* mirror) {
+  Surface figure = testing::SymmetricFigure(1, with_left_arm, mirror);
+  for (int i = 0; i < figure.NumVertices(); ++i) {
+    if (figure.V(i, 0) > 0.0) figure.V(i, 0) *= 1.03;
+  }
+  return figure;
+}
+
+// The stretched figure with 40 samples paired with themselves instead of their
+// mirror images (a self map wrong there, as a coarse sign-flip map is on part of a body): their
+// weights fall far below those of the rightly paired samples.
+TEST(Plane2d, DistanceConsistencyWeightsSingleOutTheSamplesTheSelfMapPairsWrongly) {
+  std::vector<int> mirror;
+  const Surface figure = StretchedFigure(true, &mirror);
+  const std::vector<int> samples = AllVertices(figure.NumVertices());
+  const Eigen::MatrixXd D = EuclideanDistances(figure.V, samples);
+  std::vector<int> sigma = mirror;
+  std::vector<int> wrong;
+  for (int i = 0; i < figure.NumVertices() && wrong.size() < 40; ++i) {
+    if (std::abs(figure.V(i, 0)) > 0.3) {
+      sigma[i] = i;
+      wrong.push_back(i);
+    }
+  }
+  ASSERT_EQ(wrong.size(), 40u);
+  const Eigen::VectorXd w = DistanceConsistencyWeights(D, sigma, 1.0);
+  ASSERT_EQ(w.size(), figure.NumVertices());
+  std::vector<double> right;
+  double worst_wrong = 0.0;
+  for (int i = 0; i < figure.NumVertices(); ++i) {
+    if (std::find(wrong.begin(), wrong.end(), i) != wrong.end()) {
+      worst_wrong = std::max(worst_wrong, w(i));
+    } else {
+      right.push_back(w(i));
+    }
+  }
+  std::sort(right.begin(), right.end());
+  EXPECT_LT(worst_wrong, 0.05);
+  EXPECT_GT(right[right.size() / 2], 0.4);  // the median sample's weight is 1/2 by definition
+  // An exact symmetry: every distance kept, every weight 1.
+  const Eigen::MatrixXd exact = EuclideanDistances(testing::SymmetricFigure(1, true).V, samples);
+  EXPECT_EQ(DistanceConsistencyWeights(exact, mirror, 1.0),
+            Eigen::VectorXd::Ones(figure.NumVertices()));
+  EXPECT_THROW(DistanceConsistencyWeights(D, std::vector<int>(3, 0), 1.0), InvalidInputError);
+  sigma[0] = figure.NumVertices();
+  EXPECT_THROW(DistanceConsistencyWeights(D, sigma, 1.0), InvalidInputError);
+}
+
+// Through the stage: the weights multiply the chosen candidate's confidence, whose mean stays.
+TEST(Plane2d, DistanceConfidenceKeepsTheMeanConfidence) {
+  std::vector<int> mirror;
+  const Surface figure = StretchedFigure(false, &mirror);
+  const std::vector<int> samples = AllVertices(figure.NumVertices());
+  const Eigen::MatrixXd D = EuclideanDistances(figure.V, samples);
+  const SymmetryResult plain = DetectSymmetryPlane2d(D, samples, figure.V, Plane2dOptions{});
+  Plane2dOptions options;
+  options.distance_confidence = 1.0;
+  const SymmetryResult weighted = DetectSymmetryPlane2d(D, samples, figure.V, options);
+  EXPECT_EQ(weighted.sigma, plain.sigma);
+  EXPECT_NEAR(weighted.confidence.mean(), plain.confidence.mean(), 1e-12);
+  EXPECT_GT((weighted.confidence - plain.confidence).cwiseAbs().maxCoeff(), 0.01);
+  const Eigen::VectorXd expected =
+      (plain.confidence.array() * DistanceConsistencyWeights(D, plain.sigma, 1.0).array()).matrix();
+  EXPECT_LT((weighted.confidence - expected * (plain.confidence.mean() / expected.mean()))
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-12);
+  options.distance_confidence = -1.0;
+  EXPECT_THROW(DetectSymmetryPlane2d(D, samples, figure.V, options), ConfigError);
+}
+
+// Off by default and then absent from the resolved options, so that the stage's cache keys and
+// resolved config stay those of the configs written before the option; given, it is recorded.
+TEST(Plane2d, DistanceConfidenceIsResolvedOnlyWhenGiven) {
+  Registry registry;
+  RegisterBuiltinStages(registry);
+  auto resolved = [&](const std::string& yaml) {
+    return registry.Create("symmetry", YAML::Load(yaml), "t.yaml", "pipeline.symmetry")
+        ->resolved_options();
+  };
+  EXPECT_FALSE(resolved("{type: plane2d}")["distance_confidence"]);
+  EXPECT_EQ(
+      resolved("{type: plane2d, distance_confidence: 1.5}")["distance_confidence"].as<double>(),
+      1.5);
+  EXPECT_THROW(resolved("{type: plane2d, distance_confidence: -1}"), ConfigError);
 }
 
 TEST(Plane3d, RegisteredStageRunsAndRejectsBadOptions) {
