@@ -90,12 +90,6 @@ TEST(Dijkstra, EdgesOfVeryDifferentLengthsOrOfLengthZero) {
   ExpectBucketsMatchTheHeap<double>(two, 5);
 }
 
-}  // namespace
-}  // namespace symembed
-
-namespace symembed {
-namespace {
-
 // Each vertex takes the seed nearest along the edges (a seed listed twice counts once, as the
 // first), a vertex on no edge none; a seed id out of range is refused.
 TEST(MeshGraph, NearestSeedsLabelsEachVertexByItsNearestSeedAlongTheEdges) {
