@@ -128,7 +128,8 @@ ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preproc
     maps_read.fetch_add(1);
     const double read_seconds = Seconds(read_start);
     out = evaluator.Evaluate(job.source, job.target, target.eval, map,
-                             PairLines(source.truth, target.truth));
+                             PairGroundTruth(source.truth, source.shape->name, target.truth,
+                                                 target.shape->name));
     out.stage_seconds["read_map"] = read_seconds;
   }, options.threads);
 

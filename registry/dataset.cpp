@@ -25,4 +25,16 @@ InputGroundTruth PairLines(const ShapeGroundTruth& source, const ShapeGroundTrut
   return gt;
 }
 
+InputGroundTruth PairGroundTruth(const ShapeGroundTruth& source, const std::string& source_name,
+                                 const ShapeGroundTruth& target, const std::string& target_name) {
+  if (!source.onto.empty() && source.onto == target_name) return source.onto_lines;
+  if (!target.onto.empty() && target.onto == source_name) {
+    InputGroundTruth reversed;
+    reversed.source_ids = target.onto_lines.target_ids;
+    reversed.target_ids = target.onto_lines.source_ids;
+    return reversed;
+  }
+  return PairLines(source, target);
+}
+
 }  // namespace symembed

@@ -296,7 +296,8 @@ class VariantRun {
     PairSetup setup;
     setup.source = source->second.get();
     setup.target = target->second.get();
-    setup.truth = PairLines(setup.source->ground_truth, setup.target->ground_truth);
+    setup.truth = PairGroundTruth(setup.source->ground_truth, setup.source->name,
+                                  setup.target->ground_truth, setup.target->name);
     setup.inputs = {setup.source->key, setup.target->key,
                     PairKey(*setup.source, *setup.target, pipeline_, setup.truth)};
     return setup;

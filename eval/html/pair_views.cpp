@@ -76,7 +76,7 @@ std::vector<double> RecordErrors(const ShapeView& source, const ShapeView& targe
     *note = std::string("no per-point errors: ") + e.what();
     return {};
   }
-  const size_t lines = PairLines(source.truth, target.truth).source_ids.size();
+  const size_t lines = PairGroundTruth(source.truth, source.name, target.truth, target.name).source_ids.size();
   if (record.errors_direct.size() != lines) {
     *note = "no per-point errors: " + path + " has " + std::to_string(record.errors_direct.size()) +
             " errors, the ground truth " + std::to_string(lines) +

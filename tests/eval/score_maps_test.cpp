@@ -115,5 +115,49 @@ TEST(ScoreMaps, ReverseScoresTheFileAsTheOppositePair) {
   EXPECT_NEAR(ba->mean_direct, 2.0 / 3.0, 1e-6);  // float cache
 }
 
+// "part" has ground truth onto "whole" only (as SHREC'16's partial shapes onto their null
+// shape): its vertex v is the whole's vertex v + kN (the grid one row up).
+class OntoDataset : public Dataset {
+ public:
+  DatasetIndex Load() const override {
+    DatasetIndex index;
+    for (const char* name : {"part", "whole"}) index.shapes.push_back({name, "grid", name});
+    index.pairs = {{"part", "whole"}};
+    return index;
+  }
+  ShapeGroundTruth GroundTruth(const DatasetShape& shape, int) const override {
+    ShapeGroundTruth gt;
+    if (shape.name != "part") return gt;
+    gt.onto = "whole";
+    for (int v = 0; v < kN * (kN - 1); ++v) {
+      gt.onto_lines.source_ids.push_back(v);
+      gt.onto_lines.target_ids.push_back(v + kN);
+    }
+    return gt;
+  }
+};
+
+TEST(ScoreMaps, GroundTruthOntoAnotherShapeScoresThroughItsLines) {
+  testing::TempDir dir;
+  std::vector<int> up(kN * kN);
+  for (int v = 0; v < kN * kN; ++v) up[v] = std::min(v + kN, kN * kN - 1);
+  WriteMapFile(dir.File("part_whole.map"), Identity());
+  OntoDataset dataset;
+  IdentityPreprocess preprocess;
+  testing::EuclideanGeodesics geodesics;
+  Evaluator evaluator(EvaluationOptions{}, geodesics);
+  ScoreMapsOptions options;
+  options.maps_dir = dir.path();
+  ScoreMapsResult r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  ASSERT_EQ(r.pairs.size(), 1u);
+  ASSERT_TRUE(r.pairs[0].ok) << r.pairs[0].message;
+  EXPECT_EQ(r.pairs[0].points, kN * (kN - 1));
+  EXPECT_NEAR(r.pairs[0].mean_direct, 1.0 / 3.0, 1e-6);  // one row off, over sqrt(area 9)
+  WriteMapFile(dir.File("part_whole.map"), up);
+  r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  ASSERT_TRUE(r.pairs[0].ok) << r.pairs[0].message;
+  EXPECT_NEAR(r.pairs[0].mean_direct, 0.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace symembed
