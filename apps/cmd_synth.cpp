@@ -48,6 +48,12 @@ int SynthCommand(const Args& args) {
   parser.Option("nonisometric", "per-pose bone length/thickness factors in [1-R, 1+R] (0: off)", "0");
   parser.Option("noise", "normal noise amplitude, fraction of the mean edge length (0: off)", "0");
   parser.Option("partial", "fraction of poses with a hand, foot or head cut away (0: off)", "0");
+  parser.Option("plane-cuts", "fraction of poses cut by a plane (10-40% of the vertices; 0: off)",
+                "0");
+  parser.Option("holes", "fraction of poses with 1-3 holes of several sizes (0: off)", "0");
+  parser.Option("glue", "fraction of poses posed for contact and glued there (topological "
+                "noise; 0: off)", "0");
+  parser.Option("glue-bridges", "tubes per glued pose (0: the contact poses unglued)", "8");
   parser.Option("pairs", "pairs per class in test_pairs.txt (0: all unordered pairs)", "0");
   parser.Switch("force", "write into a non-empty output directory (replaces shapes/, corres/, "
                          "test_pairs.txt, README.md)");
@@ -64,6 +70,10 @@ int SynthCommand(const Args& args) {
   options.nonisometric = parser.GetDouble("nonisometric");
   options.noise = parser.GetDouble("noise");
   options.partial = parser.GetDouble("partial");
+  options.plane_cuts = parser.GetDouble("plane-cuts");
+  options.holes = parser.GetDouble("holes");
+  options.glue = parser.GetDouble("glue");
+  options.glue_bridges = parser.GetInt("glue-bridges");
   options.pairs = parser.GetInt("pairs");
   std::string error;
   if (!options.IsValid(&error)) throw UsageError{error};

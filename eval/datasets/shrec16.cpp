@@ -60,7 +60,8 @@ int OneBasedIndex(const std::string& token, int count, const std::string& path, 
     ThrowAtLine(path, line, what + " '" + token + "' is not an integer");
   }
   if (v < 1 || v > count) {
-    ThrowAtLine(path, line, what + " " + token + " out of range [1, " + std::to_string(count) + "]");
+    ThrowAtLine(path, line,
+                what + " " + token + " out of range [1, " + std::to_string(count) + "]");
   }
   return static_cast<int>(v) - 1;
 }
@@ -131,8 +132,10 @@ DatasetIndex Shrec16PartialDataset::Load() const {
   const std::string track = Track();
   const std::string track_dir = (fs::path(root) / track).string();
   const std::string null_dir = (fs::path(root) / "null").string();
-  if (!fs::is_directory(track_dir)) throw InvalidInputError("shrec16_partial: missing folder " + track_dir);
-  if (!fs::is_directory(null_dir)) throw InvalidInputError("shrec16_partial: missing folder " + null_dir);
+  if (!fs::is_directory(track_dir))
+    throw InvalidInputError("shrec16_partial: missing folder " + track_dir);
+  if (!fs::is_directory(null_dir))
+    throw InvalidInputError("shrec16_partial: missing folder " + null_dir);
 
   std::vector<DatasetShape> shapes;
   std::map<std::string, size_t> by_name;
@@ -173,7 +176,8 @@ DatasetIndex Shrec16PartialDataset::Load() const {
     if (s.name == s.class_name) continue;  // a null shape
     const std::string gt = (fs::path(track_dir) / (s.name + ".baryc_gt")).string();
     if (!fs::exists(gt)) {
-      throw InvalidInputError("shrec16_partial: missing ground truth " + gt + " of shape " + s.name);
+      throw InvalidInputError("shrec16_partial: missing ground truth " + gt + " of shape " +
+                              s.name);
     }
   }
   return index;
@@ -218,8 +222,8 @@ ShapeGroundTruth Shrec16PartialDataset::GroundTruth(const DatasetShape& shape,
   ShapeGroundTruth gt;
   if (shape.name == shape.class_name) return gt;  // a null shape: the partial shapes carry it
   const std::string track_dir = (fs::path(options_.root) / Track()).string();
-  const std::string null_path = MeshOfStem((fs::path(options_.root) / "null").string(),
-                                           shape.class_name);
+  const std::string null_path =
+      MeshOfStem((fs::path(options_.root) / "null").string(), shape.class_name);
   if (null_path.empty()) {
     throw InvalidInputError("shrec16_partial: no null shape for class " + shape.class_name);
   }
@@ -298,7 +302,8 @@ ShapeGroundTruth TopKidsDataset::GroundTruth(const DatasetShape& shape, int num_
     const int line = static_cast<int>(i + 1);
     const std::vector<std::string> f = Fields(lines[i]);
     if (f.size() != 2) {
-      ThrowAtLine(path, line, std::to_string(f.size()) + " fields; expected 'KID_VERTEX NULL_VERTEX'");
+      ThrowAtLine(path, line,
+                  std::to_string(f.size()) + " fields; expected 'KID_VERTEX NULL_VERTEX'");
     }
     gt.onto_lines.source_ids.push_back(
         OneBasedIndex(f[0], num_vertices, path, line, "vertex of " + shape.name));

@@ -43,6 +43,12 @@ std::unique_ptr<SyntheticDataset> CreateSyntheticDataset(OptionReader& options) 
   g.noise = options.GetDouble("noise", 0.0, 0.0, 1.0);
   g.partial = options.GetDouble("partial", 0.0, 0.0, 1.0);
   g.pairs = options.GetInt("pairs", 0, 0);
+  // The failure modes are read (and so resolved) only when given, so that the resolved config of
+  // every dataset without them stays what it was.
+  if (options.Has("plane_cuts")) g.plane_cuts = options.GetDouble("plane_cuts", 0.0, 0.0, 1.0);
+  if (options.Has("holes")) g.holes = options.GetDouble("holes", 0.0, 0.0, 1.0);
+  if (options.Has("glue")) g.glue = options.GetDouble("glue", 0.0, 0.0, 1.0);
+  if (options.Has("glue_bridges")) g.glue_bridges = options.GetInt("glue_bridges", 8, 0, 1000);
   std::string error;
   if (!g.IsValid(&error)) options.Fail("", error);
   std::string cache = options.GetString("cache", "");

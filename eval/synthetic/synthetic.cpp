@@ -43,6 +43,10 @@ bool SynthOptions::IsValid(std::string* error) const {
   if (!(nonisometric >= 0.0 && nonisometric < 0.5)) return fail("nonisometric: must be in [0, 0.5)");
   if (!(noise >= 0.0 && noise <= 1.0)) return fail("noise: must be in [0, 1]");
   if (!(partial >= 0.0 && partial <= 1.0)) return fail("partial: must be in [0, 1]");
+  if (!(plane_cuts >= 0.0 && plane_cuts <= 1.0)) return fail("plane_cuts: must be in [0, 1]");
+  if (!(holes >= 0.0 && holes <= 1.0)) return fail("holes: must be in [0, 1]");
+  if (!(glue >= 0.0 && glue <= 1.0)) return fail("glue: must be in [0, 1]");
+  if (glue_bridges < 0 || glue_bridges > 1000) return fail("glue_bridges: must be in [0, 1000]");
   if (pairs < 0) return fail("pairs: must be >= 0 (0 = all pairs)");
   return true;
 }
@@ -66,10 +70,23 @@ std::string SynthOptionsText(const SynthOptions& o) {
   out << "\nnoise: " << buffer;
   std::snprintf(buffer, sizeof buffer, "%.17g", o.partial);
   out << "\npartial: " << buffer << "\npairs: " << o.pairs << "\n";
+  // Also written only when set (see remesh_anisotropy).
+  auto optional = [&](const char* key, double value) {
+    if (value == 0.0) return;
+    std::snprintf(buffer, sizeof buffer, "%.17g", value);
+    out << key << ": " << buffer << "\n";
+  };
+  optional("plane_cuts", o.plane_cuts);
+  optional("holes", o.holes);
+  optional("glue", o.glue);
+  if (o.glue > 0.0 && o.glue_bridges != 8) out << "glue_bridges: " << o.glue_bridges << "\n";
   return out.str();
 }
 
 namespace {
+
+// The poses (of n) that a variation applied to `fraction` of them touches: a seeded subset.
+std::vector<bool> ChosenPoses(int n, double fraction, uint32_t seed);
 
 // Fisher-Yates shuffle with the platform-independent generator.
 template <typename T>
@@ -77,6 +94,18 @@ void Shuffle(std::vector<T>& items, SynthRandom& random) {
   for (int i = static_cast<int>(items.size()) - 1; i > 0; --i) {
     std::swap(items[i], items[random.Index(i + 1)]);
   }
+}
+
+std::vector<bool> ChosenPoses(int n, double fraction, uint32_t seed) {
+  std::vector<bool> chosen(n, false);
+  const int count = static_cast<int>(std::floor(fraction * n + 0.5));
+  if (count == 0) return chosen;
+  SynthRandom random(seed);
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  Shuffle(order, random);
+  for (int i = 0; i < count; ++i) chosen[order[i]] = true;
+  return chosen;
 }
 
 }  // namespace
@@ -106,19 +135,68 @@ SynthClass GenerateClass(FigureKind kind, const SynthOptions& options) {
     }
   }
 
+  const std::vector<bool> glued = ChosenPoses(n, options.glue, DeriveSeed(seed, "glue", k));
+  const std::vector<bool> plane_cut =
+      ChosenPoses(n, options.plane_cuts, DeriveSeed(seed, "plane_cuts", k));
+  const std::vector<bool> holed = ChosenPoses(n, options.holes, DeriveSeed(seed, "holes", k));
+
   out.shapes.resize(n);
   ParallelFor(n, [&](int p) {
     SynthShape& shape = out.shapes[p];
     shape.name = out.name + std::to_string(p);
-    const Pose pose = RandomPose(rest.figure.bones, DeriveSeed(seed, "angles", k, p),
-                                 options.nonisometric, DeriveSeed(seed, "scales", k, p));
-    shape.shape.surface = Surface{SkinVertices(rest, pose), rest.surface.F};
     shape.shape.rest_ids.resize(rest.surface.V.rows());
     for (int i = 0; i < rest.surface.NumVertices(); ++i) shape.shape.rest_ids[i] = i;
     std::vector<std::string> notes;
+    auto posed = [&](uint64_t draw) {
+      const uint64_t index = draw == 0 ? p : (static_cast<uint64_t>(p) << 8) + draw;
+      const Pose pose = RandomPose(rest.figure.bones, DeriveSeed(seed, "angles", k, index),
+                                   options.nonisometric, DeriveSeed(seed, "scales", k, index));
+      return Surface{SkinVertices(rest, pose), rest.surface.F};
+    };
+    shape.shape.surface = posed(0);
+    if (glued[p]) {
+      // The draw whose parts come closest to touching.
+      double best_gap = GlueGap(shape.shape, rest.weights, rest.figure.bones);
+      for (int draw = 1; draw < kContactDraws; ++draw) {
+        TrackedSurface candidate{posed(draw), shape.shape.rest_ids};
+        const double gap = GlueGap(candidate, rest.weights, rest.figure.bones);
+        if (gap < best_gap) {
+          best_gap = gap;
+          shape.shape = std::move(candidate);
+        }
+      }
+      shape.shape = PullIntoContact(shape.shape, rest.weights, rest.figure.bones);
+      std::ostringstream note;
+      note << "contact pose (gap " << best_gap << " closed)";
+      if (options.glue_bridges > 0) {
+        shape.shape = GlueParts(shape.shape, rest.weights, rest.figure.bones, options.glue_bridges);
+        note << ", glued by " << (shape.shape.surface.NumFaces() - rest.surface.NumFaces()) / 4
+             << " tubes";
+      }
+      notes.push_back(note.str());
+    }
     if (cut_bone[p] >= 0) {
       shape.shape = CutPart(shape.shape, rest.weights, rest.figure.bones, cut_bone[p]);
       notes.push_back("cut " + rest.figure.bones[cut_bone[p]].name);
+    }
+    if (plane_cut[p]) {
+      SynthRandom random(DeriveSeed(seed, "plane_cut", k, p));
+      const Eigen::Vector3d normal = RandomUnitVector(DeriveSeed(seed, "plane_normal", k, p));
+      const double removed = random.Uniform(0.1, 0.4);
+      shape.shape = CutByPlane(shape.shape, normal, removed);
+      std::ostringstream note;
+      note << "plane cut (" << static_cast<int>(100 * removed + 0.5) << "% of the vertices)";
+      notes.push_back(note.str());
+    }
+    if (holed[p]) {
+      SynthRandom random(DeriveSeed(seed, "hole", k, p));
+      const int count = 1 + random.Index(3);
+      const double scale = std::sqrt(FaceAreas(shape.shape.surface).sum());
+      for (int h = 0; h < count; ++h) {
+        const int center = random.Index(shape.shape.surface.NumVertices());
+        shape.shape = CutHole(shape.shape, center, random.Uniform(0.03, 0.12) * scale);
+      }
+      notes.push_back(std::to_string(count) + (count == 1 ? " hole" : " holes"));
     }
     if (options.remesh > 0 && options.remesh < shape.shape.surface.NumVertices()) {
       Eigen::Vector3d direction = Eigen::Vector3d::UnitX();

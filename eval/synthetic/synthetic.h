@@ -36,10 +36,26 @@ struct SynthOptions {
   double nonisometric = 0.0; // > 0: per-pose bone length/thickness factors in [1-R, 1+R], < 0.5
   double noise = 0.0;        // > 0: normal noise amplitude as a fraction of the mean edge length
   double partial = 0.0;      // in [0, 1]: fraction of poses with a hand, foot or head cut away
+  // in [0, 1]: fraction of poses with a part of the surface cut away by a plane, removing a
+  // fraction of the vertices uniform in [0.1, 0.4] (SHREC'16 partial "cuts")
+  double plane_cuts = 0.0;
+  // in [0, 1]: fraction of poses with 1 to 3 holes, each of graph radius uniform in
+  // [0.03, 0.12] x sqrt(area) around a random vertex (SHREC'16 partial "holes")
+  double holes = 0.0;
+  // in [0, 1]: fraction of poses with topological noise: each is the closest to contact of
+  // kContactDraws seeded pose draws (two parts far apart in the skeleton coming closest,
+  // GlueGap), pulled into contact there (PullIntoContact) and glued by glue_bridges tubes
+  // (GlueParts); glue_bridges = 0 keeps the same contact poses unglued, the control of the
+  // same shapes without the noise
+  double glue = 0.0;
+  int glue_bridges = 8;
   int pairs = 0;             // > 0: pairs per class in test_pairs.txt; 0: all unordered pairs
 
   bool IsValid(std::string* error) const;
 };
+
+// Pose draws per glued pose (SynthOptions::glue).
+constexpr int kContactDraws = 24;
 
 struct SynthShape {
   std::string name;

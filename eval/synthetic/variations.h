@@ -24,6 +24,45 @@ struct TrackedSurface {
 TrackedSurface CutPart(const TrackedSurface& shape, const Eigen::MatrixXd& weights,
                        const std::vector<Bone>& bones, int bone);
 
+// Topological noise, as in scanned bodies whose touching parts merge (TOPKIDS [Lähner et al.
+// 2016]): joins the regions where two parts of the body that are not neighbours in the skeleton
+// come closest. A face's part is the bone with the largest summed skinning weight of its
+// vertices (weights: #rest vertices x #bones); two parts may be glued when their bones are at
+// least three bones apart, or two apart without being siblings (a hand and the torso, an arm
+// and the hip, two shins; not the two thighs), and when the faces are at least three times
+// their gap apart along the surface's edges (a short circuit, not a crease). The closest such
+// pair of facing faces is found, then up to max_bridges such pairs whose centroids are within
+// that gap plus two mean edge lengths, closest first, vertex-disjoint; each pair of faces is
+// replaced by a triangulated tube between them (6 triangles). No vertex is added or moved, so
+// rest ids and the ground truth stay exact; each tube adds a handle (genus + 1) and a short
+// circuit of the surface. *gap (when given) receives the closest gap found; the shape is
+// returned unchanged, with *gap = +inf, when no two such parts face each other.
+TrackedSurface GlueParts(const TrackedSurface& shape, const Eigen::MatrixXd& weights,
+                         const std::vector<Bone>& bones, int max_bridges, double* gap = nullptr);
+
+// Closes the closest gap GlueParts would bridge: the two regions around it move towards each
+// other by half the gap each, fading out smoothly over a graph distance of twice the gap (at
+// least three mean edge lengths), so that they touch, as a hand resting on a hip. Vertices
+// keep their ids. *gap (when given) receives the gap closed (+inf, shape unchanged: none).
+TrackedSurface PullIntoContact(const TrackedSurface& shape, const Eigen::MatrixXd& weights,
+                               const std::vector<Bone>& bones, double* gap = nullptr);
+
+// The closest gap GlueParts would bridge (+inf when none).
+double GlueGap(const TrackedSurface& shape, const Eigen::MatrixXd& weights,
+               const std::vector<Bone>& bones);
+
+// Cuts a hole: removes the faces with a vertex within graph distance `radius` (along the mesh's
+// edges, core/mesh_graph.h) of vertex `center`, then vertices left without faces, then every
+// connected component but the largest (a hole around a thin limb takes what it severs).
+TrackedSurface CutHole(const TrackedSurface& shape, int center, double radius);
+
+// Cuts the shape by the plane normal . x = offset, the offset placed so that a fraction
+// `removed` (in [0, 1)) of the vertices lies below it: removes the faces with a vertex below,
+// then vertices left without faces, then every connected component but the largest (the one
+// partial surface a scanner would see).
+TrackedSurface CutByPlane(const TrackedSurface& shape, const Eigen::Vector3d& normal,
+                          double removed);
+
 // Independent remeshing by decimation to target_vertices (OpenMesh DecimaterT): halfedge
 // collapses only, so every surviving vertex keeps its position and rest id. The collapse order
 // is the squared edge length times a random factor in [0.5, 1.5) of the removed vertex (seeded),

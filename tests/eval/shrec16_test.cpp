@@ -1,10 +1,11 @@
+#include "eval/datasets/shrec16.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <functional>
 
 #include "core/errors.h"
-#include "eval/datasets/shrec16.h"
 #include "registry/registry.h"
 #include "tests/test_util.h"
 
@@ -46,9 +47,9 @@ void WritePartialTree(const std::string& root) {
   WriteText(root + "/null/dog.off", Tetrahedron(1));
   WriteText(root + "/cuts/cuts_cat_shape_10.off", Tetrahedron());
   WriteText(root + "/cuts/cuts_cat_shape_10.baryc_gt",
-            "   1.0000000e+00   0.1 0.7 0.2\n"   // face 0 = (0 2 1): weight 0.7 -> vertex 2
-            "   4.0000000e+00   0.6 0.2 0.2\n"   // face 3 = (1 2 3) -> vertex 1
-            "   2.0000000e+00   0.0 0.0 1.0\n"   // face 1 = (0 1 3) -> vertex 3
+            "   1.0000000e+00   0.1 0.7 0.2\n"      // face 0 = (0 2 1): weight 0.7 -> vertex 2
+            "   4.0000000e+00   0.6 0.2 0.2\n"      // face 3 = (1 2 3) -> vertex 1
+            "   2.0000000e+00   0.0 0.0 1.0\n"      // face 1 = (0 1 3) -> vertex 3
             "   3.0000000e+00   0.2 0.5 0.3\n\n");  // face 2 = (0 3 2) -> vertex 3
   WriteText(root + "/cuts/cuts_cat_shape_10.baryc_gt_sym",
             "1 1 0 0\n1 0 1 0\n1 0 0 1\n4 0 0 1\n");  // vertices 0 2 1 3
@@ -89,8 +90,7 @@ TEST(Shrec16Partial, GroundTruthIsTheLargestWeightVertexOfTheNullTriangle) {
   EXPECT_EQ(partial.onto, "cat");
   EXPECT_TRUE(partial.ids.empty());
   EXPECT_TRUE(null_shape.ids.empty());
-  const InputGroundTruth pair =
-      PairGroundTruth(partial, "cuts_cat_shape_10", null_shape, "cat");
+  const InputGroundTruth pair = PairGroundTruth(partial, "cuts_cat_shape_10", null_shape, "cat");
   EXPECT_EQ(pair.source_ids, (std::vector<int>{0, 1, 2, 3}));
   EXPECT_EQ(pair.target_ids, (std::vector<int>{2, 1, 3, 3}));
   EXPECT_EQ(pair.target_sym_ids, (std::vector<int>{0, 2, 1, 3}));

@@ -347,6 +347,91 @@ TEST_P(SyntheticKinds, PartialShapesLoseOnePartAndKeepExactGroundTruth) {
   EXPECT_EQ(num_cut, 2);
 }
 
+TEST_P(SyntheticKinds, GluedPosesShortCircuitTheSurfaceAndKeepTheirVertices) {
+  SynthOptions o = Options(GetParam(), 4, 1500);
+  o.glue = 0.5;
+  o.glue_bridges = 0;
+  const SynthClass control = GenerateClass(GetParam(), o);
+  o.glue_bridges = 8;
+  const SynthClass glued = GenerateClass(GetParam(), o);
+  const int rest_vertices = glued.rest.surface.NumVertices();
+  int num_glued = 0;
+  for (size_t p = 0; p < glued.shapes.size(); ++p) {
+    const Surface& g = glued.shapes[p].shape.surface;
+    const Surface& c = control.shapes[p].shape.surface;
+    // Gluing changes the faces only: the same vertices, at the same (contact) positions.
+    ASSERT_EQ(g.NumVertices(), rest_vertices);
+    ASSERT_TRUE(g.V == c.V) << glued.shapes[p].name;
+    EXPECT_EQ(glued.shapes[p].shape.rest_ids, control.shapes[p].shape.rest_ids);
+    if (g.NumFaces() == c.NumFaces()) {
+      EXPECT_EQ(glued.shapes[p].note.find("glued"), std::string::npos);
+      continue;
+    }
+    ++num_glued;
+    EXPECT_NE(glued.shapes[p].note.find("contact pose"), std::string::npos);
+    EXPECT_NE(control.shapes[p].note.find("contact pose"), std::string::npos);
+    // Closed, manifold and consistently oriented, with one handle per tube.
+    const int tubes = (g.NumFaces() - c.NumFaces()) / 4;
+    const MeshReport report = ValidateMesh(g, glued.shapes[p].name);
+    EXPECT_TRUE(report.clean()) << report.ToString();
+    EXPECT_TRUE(report.closed_manifold) << report.ToString();
+    EXPECT_EQ(report.components, 1) << report.ToString();
+    EXPECT_EQ(report.genus, tubes) << report.ToString();
+    // A short circuit: some pair of vertices is far closer along the glued surface's edges than
+    // along the control's. Every tube edge is such a pair.
+    double shortest_ratio = 1.0;
+    for (int f = c.NumFaces() - 2 * tubes; f < g.NumFaces(); ++f) {
+      if (f < 0) continue;
+      const int a = g.F(f, 0), b = g.F(f, 1);
+      const std::vector<double> dg = Dijkstra(g, a), dc = Dijkstra(c, a);
+      shortest_ratio = std::min(shortest_ratio, dg[b] / dc[b]);
+    }
+    EXPECT_LT(shortest_ratio, 0.34) << glued.shapes[p].name;
+  }
+  EXPECT_EQ(num_glued, 2);
+}
+
+TEST_P(SyntheticKinds, HolesAndPlaneCutsRemoveSurfaceAndKeepExactGroundTruth) {
+  SynthOptions o = Options(GetParam(), 6, 1500);
+  const SynthClass full = GenerateClass(GetParam(), o);
+  for (const char* mode : {"holes", "plane_cuts"}) {
+    SynthOptions m = o;
+    (std::string(mode) == "holes" ? m.holes : m.plane_cuts) = 0.5;
+    const SynthClass cut = GenerateClass(GetParam(), m);
+    int changed = 0;
+    for (size_t p = 0; p < cut.shapes.size(); ++p) {
+      const TrackedSurface& c = cut.shapes[p].shape;
+      const Surface& f = full.shapes[p].shape.surface;
+      if (c.surface.NumVertices() == f.NumVertices()) continue;
+      ++changed;
+      const MeshReport t = ValidateMesh(c.surface, cut.shapes[p].name);
+      EXPECT_GE(t.boundary_loops, 1) << t.ToString();
+      EXPECT_EQ(t.non_manifold_edges, 0) << t.ToString();
+      EXPECT_EQ(t.inconsistent_edges, 0) << t.ToString();
+      EXPECT_EQ(t.components, 1) << t.ToString();
+      const double removed = 1.0 - static_cast<double>(c.surface.NumVertices()) / f.NumVertices();
+      if (std::string(mode) == "plane_cuts") {
+        EXPECT_NE(cut.shapes[p].note.find("plane cut"), std::string::npos);
+        // 10-40% below the plane, and what the largest piece leaves of the rest.
+        EXPECT_GE(removed, 0.1 - 0.02) << cut.shapes[p].name;
+        EXPECT_LE(removed, 0.7) << cut.shapes[p].name;
+      } else {
+        EXPECT_NE(cut.shapes[p].note.find("hole"), std::string::npos);
+        EXPECT_GT(removed, 0.0);
+        EXPECT_LT(removed, 0.6) << cut.shapes[p].name;
+      }
+      for (int v = 0; v < c.surface.NumVertices(); ++v) {
+        ASSERT_TRUE(c.surface.V.row(v) == f.V.row(c.rest_ids[v])) << v;
+      }
+    }
+    EXPECT_EQ(changed, 3) << mode;
+  }
+  // Off, the options leave the text (and so every cache folder named by its hash) as it was.
+  EXPECT_EQ(SynthOptionsText(o).find("glue"), std::string::npos);
+  EXPECT_EQ(SynthOptionsText(o).find("holes"), std::string::npos);
+  EXPECT_EQ(SynthOptionsText(o).find("plane_cuts"), std::string::npos);
+}
+
 TEST_P(SyntheticKinds, NoiseMovesVerticesAlongNormalsWithinTheAmplitude) {
   SynthOptions o = Options(GetParam(), 2, 1500);
   const SynthClass clean = GenerateClass(GetParam(), o);
