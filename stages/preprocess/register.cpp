@@ -26,7 +26,8 @@ void RegisterPreprocessStages(Registry& registry) {
   registry.Add("preprocess", "standard",
                "weld boundary duplicates, drop degenerate/duplicate faces, keep the largest "
                "component (failing past max_removed_area), orient consistently "
-               "(outward when closed), drop unreferenced vertices, centre and scale to unit area",
+               "(outward when closed), drop unreferenced vertices, centre and scale to unit area, "
+               "cut the handles of a surface of genus > 0 (topological noise)",
                [](OptionReader& reader) -> std::unique_ptr<Stage> {
                  StandardPreprocessOptions options;
                  options.orient = reader.GetBool("orient", options.orient);
@@ -39,6 +40,7 @@ void RegisterPreprocessStages(Registry& registry) {
                  options.normalize = reader.GetBool("normalize", options.normalize);
                  options.degenerate_tolerance = reader.GetDouble(
                      "degenerate_tolerance", options.degenerate_tolerance, 0.0, 0.5);
+                 options.cut_handles = reader.GetBool("cut_handles", options.cut_handles);
                  return std::make_unique<StandardPreprocessStage>(options);
                });
 }

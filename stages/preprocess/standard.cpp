@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/handles.h"
 
 namespace symembed {
 
@@ -349,6 +350,17 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   report.emplace_back("centre_x", centre(0));
   report.emplace_back("centre_y", centre(1));
   report.emplace_back("centre_z", centre(2));
+
+  // Step 6: cut the handles of a surface that should be genus 0 (topological noise).
+  if (options.cut_handles) {
+    const HandleCutResult cut = CutHandles(out);
+    out.F = cut.F;
+    report.emplace_back("genus", cut.genus_before);
+    report.emplace_back("handles_cut", cut.cuts);
+    report.emplace_back("handle_faces_removed", cut.removed_faces);
+  } else {
+    report.emplace_back("genus", SurfaceGenus(out));
+  }
   return result;
 }
 

@@ -6,7 +6,9 @@
 #include <map>
 
 #include "core/errors.h"
+#include "core/handles.h"
 #include "core/primitives.h"
+#include "eval/synthetic/synthetic.h"
 #include "registry/registry.h"
 
 namespace symembed {
@@ -236,6 +238,37 @@ TEST(StandardPreprocess, NamesTheVertexWithNonFiniteCoordinates) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST(StandardPreprocess, CutsTheHandlesOfAGluedBodyKeepingEveryVertex) {
+  SynthOptions o;
+  o.poses = 2;
+  o.vertices = 1500;
+  o.glue = 1.0;
+  const SynthClass glued = GenerateClass(FigureKind::kHumanoid, o);
+  const Surface& body = glued.shapes[0].shape.surface;
+  const int genus = SurfaceGenus(body);
+  ASSERT_GT(genus, 0) << glued.shapes[0].note;
+  const PreprocessResult r = StandardPreprocess(body);
+  EXPECT_EQ(Get(r.report, "genus"), genus);
+  EXPECT_EQ(Get(r.report, "handles_cut"), genus);
+  EXPECT_GT(Get(r.report, "handle_faces_removed"), 0);
+  EXPECT_EQ(r.surface.NumVertices(), body.NumVertices());
+  EXPECT_EQ(SurfaceGenus(r.surface), 0);
+  EXPECT_EQ(r.surface.NumFaces(), body.NumFaces() - Get(r.report, "handle_faces_removed"));
+
+  StandardPreprocessOptions off;
+  off.cut_handles = false;
+  const PreprocessResult kept = StandardPreprocess(body, off);
+  EXPECT_EQ(Get(kept.report, "genus"), genus);
+  EXPECT_EQ(kept.surface.NumFaces(), body.NumFaces());
+  EXPECT_EQ(SurfaceGenus(kept.surface), genus);
+  // A genus-0 surface is left exactly as it was.
+  const Surface sphere = Icosphere(2);
+  StandardPreprocessOptions no_cut;
+  no_cut.cut_handles = false;
+  EXPECT_TRUE(StandardPreprocess(sphere).surface.F == StandardPreprocess(sphere, no_cut).surface.F);
+  EXPECT_EQ(Get(StandardPreprocess(sphere).report, "handles_cut"), 0);
 }
 
 }  // namespace

@@ -1,0 +1,52 @@
+// Cutting the handles of a surface: topological noise removal for shapes that should be genus
+// 0 (bodies whose touching parts were merged by the scan or its reconstruction, as in the
+// SHREC'16 topology benchmark).
+//
+// A handle is found as in [Guskov & Wood 2001, "Topological noise removal", Graphics
+// Interface]: geodesic balls (Dijkstra along the mesh's edges) grow from every vertex, the first
+// `seeds` in farthest-point order, each stopping at the smallest radius found so far;
+// a ball's induced subcomplex gains a 1-cycle exactly when its front meets itself (its Euler
+// characteristic drops), and that cycle is a handle's when it does not split off a new
+// component of the unreached vertices (on a sphere every such cycle separates). Of all seeds'
+// first handle cycles, the one reached at the smallest radius is taken: the cycle through the
+// meeting vertex and the seed's shortest-path tree, a short loop around the handle
+// (Erickson & Whittlesey's shortest loop through a basepoint). The faces along the loop on one
+// side of it (the side of less area) are removed, which severs the handle (its genus drops by one, two boundary
+// loops appear) without removing or renumbering any vertex. Repeated until the genus is 0, no
+// handle is found, or max_cuts. Each boundary loop counts as filled in, so that a loop around a
+// hole is not taken for a handle.
+//
+// Needs a consistently oriented manifold (every edge in one or two faces, every vertex's faces
+// one fan); otherwise nothing is cut and the report says why. A genus-0 surface is returned
+// unchanged without any search. Positions are not read except for edge lengths.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace symembed {
+
+struct HandleCutOptions {
+  int max_cuts = 32;  // at most this many handles cut
+  int seeds = 64;     // balls grown first, from farthest-point seeds (then every vertex)
+};
+
+struct HandleCutResult {
+  Eigen::MatrixX3i F;            // the faces kept, in input order (input F when nothing was cut)
+  int genus_before = 0;          // -1 when the surface is not an oriented manifold
+  int genus_after = 0;
+  int cuts = 0;                  // handles cut
+  int removed_faces = 0;
+  double longest_loop = 0.0;     // the longest cut loop's length (edge lengths summed)
+  std::string skipped;           // why nothing was searched, when it was not (non-manifold)
+};
+
+// The genus of a surface from its Euler characteristic, boundary loops and components
+// (2 - 2g = chi + b per component, summed); -1 when some edge has more than two faces.
+int SurfaceGenus(const Surface& surface);
+
+HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& options = {});
+
+}  // namespace symembed
