@@ -24,12 +24,12 @@ uint64_t Key(int a, int b) {
 // edge graph, boundary vertices and connected components.
 struct Topology {
   int nv = 0;
-  std::unordered_map<uint64_t, int> directed;  // (a, b) -> the face that runs a -> b
-  std::vector<std::vector<int>> faces_of;      // vertex -> faces
-  std::vector<char> boundary;                  // vertex on an edge with one face
-  std::vector<int> component;                  // vertex -> component (-1: unreferenced)
-  std::vector<int> hole;                       // boundary vertex -> its boundary loop, else -1
-  std::vector<std::vector<int>> hole_vertices; // boundary loop -> its vertices
+  std::unordered_map<uint64_t, int> directed;   // (a, b) -> the face that runs a -> b
+  std::vector<std::vector<int>> faces_of;       // vertex -> faces
+  std::vector<char> boundary;                   // vertex on an edge with one face
+  std::vector<int> component;                   // vertex -> component (-1: unreferenced)
+  std::vector<int> hole;                        // boundary vertex -> its boundary loop, else -1
+  std::vector<std::vector<int>> hole_vertices;  // boundary loop -> its vertices
   int components = 0;
   int genus = 0;
   bool manifold = true;  // every directed edge once, every undirected edge in <= 2 faces
@@ -178,21 +178,40 @@ int CountComponents(const Topology& t, int component, const std::vector<char>& b
 struct Event {
   double radius = kInf;
   int seed = -1, meet = -1;
-  std::vector<int> pred;       // the seed's shortest-path tree at the event
+  std::vector<int> pred;  // the seed's shortest-path tree at the event
   std::vector<char> in_ball;
 };
 
 // Grows the ball of `seed` until its front closes a cycle that splits off no component of the
 // unreached vertices and holes (a handle's) at a vertex not `banned`, or past `limit`.
+// Per-thread state of GrowBall, reset through the vertices it touched.
+struct BallWorkspace {
+  std::vector<double> dist;
+  std::vector<int> pred;
+  std::vector<char> in_ball;
+  std::vector<int> touched;
+  explicit BallWorkspace(int nv) : dist(nv, kInf), pred(nv, -1), in_ball(nv, 0) {}
+  void Reset() {
+    for (int v : touched) {
+      dist[v] = kInf;
+      pred[v] = -1;
+      in_ball[v] = 0;
+    }
+    touched.clear();
+  }
+};
+
 Event GrowBall(const Surface& s, const Topology& t, int seed, double limit,
-               const std::vector<char>& banned) {
+               const std::vector<char>& banned, BallWorkspace* ws) {
   Event e;
-  std::vector<double> dist(t.nv, kInf);
-  std::vector<int> pred(t.nv, -1);
-  std::vector<char> in_ball(t.nv, 0);
+  ws->Reset();
+  std::vector<double>& dist = ws->dist;
+  std::vector<int>& pred = ws->pred;
+  std::vector<char>& in_ball = ws->in_ball;
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
   dist[seed] = 0.0;
+  ws->touched.push_back(seed);
   heap.push({0.0, seed});
   int outside_components = 1;
   const int component = t.component[seed];
@@ -226,8 +245,8 @@ Event GrowBall(const Surface& s, const Topology& t, int seed, double limit,
         e.radius = d;
         e.seed = seed;
         e.meet = x;
-        e.pred = std::move(pred);
-        e.in_ball = std::move(in_ball);
+        e.pred = pred;
+        e.in_ball = in_ball;
         return e;
       }
     }
@@ -235,6 +254,7 @@ Event GrowBall(const Surface& s, const Topology& t, int seed, double limit,
       const int w = t.graph.neighbors[i];
       const double dw = d + t.graph.lengths[i];
       if (!in_ball[w] && dw < dist[w]) {
+        if (dist[w] == kInf) ws->touched.push_back(w);
         dist[w] = dw;
         pred[w] = x;
         heap.push({dw, w});
@@ -305,16 +325,15 @@ std::vector<int> LeftStrip(const Surface& s, const Topology& t, const std::vecto
   return strip;
 }
 
-// Whether removing `faces` leaves every referenced vertex with a face.
-bool KeepsEveryVertex(const Surface& s, const Topology& t, const std::vector<int>& faces) {
+// The vertices that removing `faces` leaves without a face.
+int IsolatedBy(const Surface& s, const Topology& t, const std::vector<int>& faces) {
   std::vector<int> left(t.nv, 0);
   for (int v = 0; v < t.nv; ++v) left[v] = static_cast<int>(t.faces_of[v].size());
+  int isolated = 0;
   for (int f : faces) {
-    for (int k = 0; k < 3; ++k) {
-      if (--left[s.F(f, k)] == 0) return false;
-    }
+    for (int k = 0; k < 3; ++k) isolated += --left[s.F(f, k)] == 0;
   }
-  return true;
+  return isolated;
 }
 
 // Seeds: `count` spread over every component by farthest-point sampling along the edges, then
@@ -362,19 +381,21 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
   Topology t = BuildTopology(s);
   r.genus_before = r.genus_after = t.genus;
   if (!t.manifold) {
-    r.skipped = "not an oriented manifold (an edge in more than two faces, or run twice in "
-                "one direction)";
+    r.skipped =
+        "not an oriented manifold (an edge in more than two faces, or run twice in "
+        "one direction)";
     return r;
   }
-  // Meeting vertices whose loop could not be cut (its strip would leave the surface or a vertex
-  // without faces): their events are passed over, a few times per cut at most.
+  // The vertices of loops that could not be cut (no strip, or one that would split the surface
+  // or not lower its genus): events meeting there are passed over, a few times per cut at most.
   std::vector<char> banned(t.nv, 0);
   int failures = 0;
   while (t.genus > 0 && r.cuts < options.max_cuts && failures <= 4 * options.max_cuts) {
     const Eigen::VectorXd face_areas = FaceAreas(s);
     Event best;
+    BallWorkspace workspace(t.nv);
     for (int seed : Seeds(t, options.seeds)) {
-      Event e = GrowBall(s, t, seed, best.radius, banned);
+      Event e = GrowBall(s, t, seed, best.radius, banned, &workspace);
       if (e.radius < best.radius) best = std::move(e);
     }
     if (best.seed < 0) break;
@@ -398,7 +419,8 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
     std::vector<int> loop;
     for (size_t i = 0; i < arcs.size() && loop.empty(); ++i) {
       for (size_t j = i + 1; j < arcs.size() && loop.empty(); ++j) {
-        std::vector<int> candidate = TreeLoop(best.pred, best.meet, arcs[i].front(), arcs[j].front());
+        std::vector<int> candidate =
+            TreeLoop(best.pred, best.meet, arcs[i].front(), arcs[j].front());
         if (candidate.size() < 3) continue;
         std::vector<char> on_loop(t.nv, 0);
         for (int v : candidate) on_loop[v] = 1;
@@ -410,23 +432,24 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
       ++failures;
       continue;
     }
-    // Of the strips on the two sides of the loop, the one of less area that leaves every
-    // vertex a face (a thin bridge goes rather than the body around its end).
+    // Of the strips on the two sides of the loop, the one that leaves fewer vertices without a
+    // face, then the one of less area (a thin bridge goes rather than the body around its end).
     std::vector<int> strip;
-    double strip_area = kInf;
+    std::pair<int, double> strip_cost(std::numeric_limits<int>::max(), kInf);
     for (int side = 0; side < 2; ++side) {
       if (side == 1) std::reverse(loop.begin(), loop.end());
       std::vector<int> candidate = LeftStrip(s, t, loop);
-      if (candidate.empty() || !KeepsEveryVertex(s, t, candidate)) continue;
+      if (candidate.empty()) continue;
       double area = 0.0;
       for (int f : candidate) area += face_areas(f);
-      if (area < strip_area) {
-        strip_area = area;
+      const std::pair<int, double> cost(IsolatedBy(s, t, candidate), area);
+      if (cost < strip_cost) {
+        strip_cost = cost;
         strip = std::move(candidate);
       }
     }
     if (strip.empty()) {
-      banned[best.meet] = 1;
+      for (int v : loop) banned[v] = 1;
       ++failures;
       continue;
     }
@@ -440,12 +463,13 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
     Topology after = BuildTopology(cut);
     if (after.components != t.components || after.genus >= t.genus) {
       // The strip would split the surface (or not lower its genus): pass this loop over.
-      banned[best.meet] = 1;
+      for (int v : loop) banned[v] = 1;
       ++failures;
       continue;
     }
     r.longest_loop = std::max(r.longest_loop, LoopLength(s, loop));
     r.removed_faces += static_cast<int>(strip.size());
+    r.removed_vertices += strip_cost.first;
     ++r.cuts;
     s.F = cut.F;
     t = std::move(after);

@@ -11,10 +11,12 @@
 // first handle cycles, the one reached at the smallest radius is taken: the cycle through the
 // meeting vertex and the seed's shortest-path tree, a short loop around the handle
 // (Erickson & Whittlesey's shortest loop through a basepoint). The faces along the loop on one
-// side of it (the side of less area) are removed, which severs the handle (its genus drops by one, two boundary
-// loops appear) without removing or renumbering any vertex. Repeated until the genus is 0, no
-// handle is found, or max_cuts. Each boundary loop counts as filled in, so that a loop around a
-// hole is not taken for a handle.
+// side of it are removed (the side that leaves fewer vertices without a face, then the side of
+// less area), which severs the handle: its genus drops by one and two boundary loops appear.
+// No vertex is renumbered; the few a strip leaves without a face (on a thin bridge) become
+// unreferenced. A cut that would split the surface or not lower its genus is passed over.
+// Repeated until the genus is 0, no handle is found, or max_cuts. Each boundary loop counts as
+// filled in, so that a loop around a hole is not taken for a handle.
 //
 // Needs a consistently oriented manifold (every edge in one or two faces, every vertex's faces
 // one fan); otherwise nothing is cut and the report says why. A genus-0 surface is returned
@@ -34,13 +36,14 @@ struct HandleCutOptions {
 };
 
 struct HandleCutResult {
-  Eigen::MatrixX3i F;            // the faces kept, in input order (input F when nothing was cut)
-  int genus_before = 0;          // -1 when the surface is not an oriented manifold
+  Eigen::MatrixX3i F;    // the faces kept, in input order (input F when nothing was cut)
+  int genus_before = 0;  // -1 when the surface is not an oriented manifold
   int genus_after = 0;
-  int cuts = 0;                  // handles cut
+  int cuts = 0;  // handles cut
   int removed_faces = 0;
-  double longest_loop = 0.0;     // the longest cut loop's length (edge lengths summed)
-  std::string skipped;           // why nothing was searched, when it was not (non-manifold)
+  int removed_vertices = 0;   // vertices the cuts left without a face
+  double longest_loop = 0.0;  // the longest cut loop's length (edge lengths summed)
+  std::string skipped;        // why nothing was searched, when it was not (non-manifold)
 };
 
 // The genus of a surface from its Euler characteristic, boundary loops and components

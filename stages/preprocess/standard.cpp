@@ -269,6 +269,30 @@ void Orient(const Eigen::MatrixX3d& V, std::vector<Face>* faces_ptr, bool orient
   report->emplace_back("boundary_edges", boundary);
 }
 
+// Step 3b: cut the handles of a surface that should be genus 0 (topological noise). Vertices a
+// cut leaves without a face are dropped by step 4 like any unreferenced vertex.
+void CutTopologicalNoise(const Eigen::MatrixX3d& V, std::vector<Face>* faces, bool cut,
+                         Report* report) {
+  Surface surface;
+  surface.V = V;
+  surface.F.resize(static_cast<int>(faces->size()), 3);
+  for (size_t f = 0; f < faces->size(); ++f) {
+    surface.F.row(f) << (*faces)[f][0], (*faces)[f][1], (*faces)[f][2];
+  }
+  if (!cut) {
+    report->emplace_back("genus", SurfaceGenus(surface));
+    return;
+  }
+  const HandleCutResult r = CutHandles(surface);
+  report->emplace_back("genus", r.genus_before);
+  report->emplace_back("handles_cut", r.cuts);
+  report->emplace_back("handle_faces_removed", r.removed_faces);
+  report->emplace_back("handle_vertices_removed", r.removed_vertices);
+  if (r.cuts == 0) return;
+  faces->resize(r.F.rows());
+  for (int f = 0; f < r.F.rows(); ++f) (*faces)[f] = {r.F(f, 0), r.F(f, 1), r.F(f, 2)};
+}
+
 }  // namespace
 
 PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessOptions& options) {
@@ -306,6 +330,7 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   faces = LargestComponent(in.V, faces, options.keep_largest_component, options.max_removed_area,
                            &report);
   Orient(in.V, &faces, options.orient, &report);
+  CutTopologicalNoise(in.V, &faces, options.cut_handles, &report);
 
   // Step 4: keep referenced vertices in input order.
   std::vector<int> new_id(nv, -1);
@@ -351,16 +376,6 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   report.emplace_back("centre_y", centre(1));
   report.emplace_back("centre_z", centre(2));
 
-  // Step 6: cut the handles of a surface that should be genus 0 (topological noise).
-  if (options.cut_handles) {
-    const HandleCutResult cut = CutHandles(out);
-    out.F = cut.F;
-    report.emplace_back("genus", cut.genus_before);
-    report.emplace_back("handles_cut", cut.cuts);
-    report.emplace_back("handle_faces_removed", cut.removed_faces);
-  } else {
-    report.emplace_back("genus", SurfaceGenus(out));
-  }
   return result;
 }
 

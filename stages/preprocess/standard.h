@@ -12,12 +12,13 @@
 //      neighbour is flipped when it runs the shared edge in the same direction), then choose
 //      each edge-connected patch's orientation: outward (positive signed volume) when the patch
 //      is closed, otherwise the orientation of the majority of its input faces;
-//   4. drop unreferenced vertices (input_ids maps kept vertices to input ids);
-//   5. translate the area-weighted centroid to the origin and scale to unit total area;
-//   6. cut the handles (core/handles.h): bodies are genus 0, so a handle is topological noise,
+//   3b. cut the handles (core/handles.h): bodies are genus 0, so a handle is topological noise,
 //      touching parts merged by the scan, whose short circuit every geodesic would take; the
-//      faces along a short loop around each handle are removed (no vertex is), until the
-//      genus is 0. A genus-0 surface, or one that is not an oriented manifold, is unchanged.
+//      faces along a short loop around each handle are removed until the genus is 0 (the few
+//      vertices a cut leaves without a face go in step 4). A genus-0 surface, or one that is
+//      not an oriented manifold, is unchanged;
+//   4. drop unreferenced vertices (input_ids maps kept vertices to input ids);
+//   5. translate the area-weighted centroid to the origin and scale to unit total area.
 // Output coordinates are (input - centre) * scale; `scale` and the centre are reported so
 // results can be given in input units.
 //
@@ -25,8 +26,8 @@
 // components, removed_component_faces, removed_component_area (fraction), flipped_faces, orientation_conflicts (edges still run in the same
 // direction by both faces: a non-orientable patch), non_manifold_edges, boundary_edges,
 // unreferenced_vertices, output_vertices, output_faces, input_area, scale, centre_x, centre_y,
-// centre_z, genus (before step 6; -1: not an oriented manifold), handles_cut,
-// handle_faces_removed.
+// centre_z, genus (before step 3b; -1: not an oriented manifold), handles_cut,
+// handle_faces_removed, handle_vertices_removed (the last three only with cut_handles).
 #pragma once
 
 #include <string>
@@ -43,7 +44,7 @@ struct StandardPreprocessOptions {
   double max_removed_area = 0.05;       // step 2: fraction of the area other components may hold
   bool normalize = true;                // step 5 (centre and unit area)
   double degenerate_tolerance = 1e-12;  // step 1, relative to the longest edge squared
-  bool cut_handles = true;              // step 6
+  bool cut_handles = true;              // step 3b
 
   bool IsValid(std::string* error) const;
 };

@@ -20,8 +20,8 @@ Surface Torus(int n, int m, double R, double r) {
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < m; ++j) {
       const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
-      s.V.row(i * m + j) << (R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
-          r * std::sin(v);
+      s.V.row(i * m + j) << (R + r * std::cos(v)) * std::cos(u),
+          (R + r * std::cos(v)) * std::sin(u), r * std::sin(v);
       const int a = i * m + j, b = ((i + 1) % n) * m + j, c = ((i + 1) % n) * m + (j + 1) % m,
                 d = i * m + (j + 1) % m;
       s.F.row(2 * (i * m + j)) << a, b, c;
@@ -105,7 +105,11 @@ TEST_P(GluedKinds, GluedLimbsLoseTheirShortCircuit) {
     EXPECT_EQ(r.genus_after, 0);
     Surface cut = g;
     cut.F = r.F;
-    for (int n : FacesPerVertex(cut)) ASSERT_GT(n, 0);
+    // A strip may leave a vertex of a thin bridge without faces, not more than a few.
+    int isolated = 0;
+    for (int n : FacesPerVertex(cut)) isolated += n == 0;
+    EXPECT_EQ(isolated, r.removed_vertices);
+    EXPECT_LE(isolated, 3 * tubes);
     // Across every tube (its faces are the last 6 per tube), the body's vertices next to its
     // two ends are at least half the control's distance apart along the cut surface: no short
     // circuit is left (the tube's own end vertices may stay on it, cut off from the body).
