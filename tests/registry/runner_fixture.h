@@ -96,8 +96,18 @@ class TestDataset : public Dataset {
     for (std::string a, b; in >> a >> b;) index.pairs.push_back({a, b});
     return index;
   }
-  ShapeGroundTruth GroundTruth(const DatasetShape&, int num_vertices) const override {
+  // A shape whose name starts with 'p' has its ground truth onto s0 instead (as a SHREC'16
+  // partial shape onto its null shape): vertex i onto s0's GridMirror(i).
+  ShapeGroundTruth GroundTruth(const DatasetShape& shape, int num_vertices) const override {
     ShapeGroundTruth gt;
+    if (shape.name[0] == 'p') {
+      gt.onto = "s0";
+      for (int i = 0; i < num_vertices; ++i) {
+        gt.onto_lines.source_ids.push_back(i);
+        gt.onto_lines.target_ids.push_back(GridMirror(i));
+      }
+      return gt;
+    }
     for (int i = 0; i < num_vertices; ++i) gt.ids.push_back(i);
     if (num_vertices == 20) {
       for (int i = 0; i < num_vertices; ++i) gt.sym_ids.push_back(GridMirror(i));

@@ -220,6 +220,31 @@ TEST(Runner, WritesMapsRecordsAndSummaries) {
   EXPECT_EQ(ReadText(tmp.File("out/variants.txt")), "base\n");
 }
 
+// A shape's ground truth given onto another shape (SHREC'16 partial shapes, TOPKIDS) reaches
+// its pair: p0's vertex i is s0's mirror of i, so the identity map is off by the mirror.
+TEST(Runner, GroundTruthOntoAnotherShapeReachesItsPair) {
+  TempDir tmp;
+  std::string config = WriteTestDataset(tmp.File("data"), 1);
+  fs::copy_file(tmp.File("data/shapes/s0.off"), tmp.File("data/shapes/p0.off"));
+  WriteText(tmp.File("data/pairs.txt"), "p0 s0\n");
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  ASSERT_TRUE(run.stats.ok());
+  ASSERT_EQ(run.stats.pairs_done, 1);
+  std::istringstream record(
+      TestEvaluation::RecordBody(ReadText(tmp.File("out/base/pairs/p0_s0.rec"))));
+  std::string source, target;
+  int chosen = 0, oracle = 0;
+  double mean = -1;
+  record >> source >> target >> chosen >> oracle >> mean;
+  const Surface grid = GridMesh(5, 4);
+  double expected = 0;
+  for (int i = 0; i < grid.NumVertices(); ++i) {
+    expected += (grid.V.row(i) - grid.V.row(testing::runner::GridMirror(i))).norm() / grid.NumVertices();
+  }
+  EXPECT_GT(expected, 0.1);
+  EXPECT_NEAR(mean, expected, 1e-12);
+}
+
 // --write-embeddings: each shape's canonical embedding on its faces, loadable as a mesh; none
 // without it.
 TEST(Runner, WritesTheCanonicalEmbeddingsWhenAsked) {
