@@ -432,9 +432,13 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
       ++failures;
       continue;
     }
-    // Of the strips on the two sides of the loop, the one that leaves fewer vertices without a
-    // face, then the one of less area (a thin bridge goes rather than the body around its end).
+    // Of the strips on the two sides of the loop that sever the handle (the genus drops, the
+    // surface stays in one piece; where the loop runs along an earlier cut, only the side away
+    // from the hole can), the one that leaves fewer vertices without a face, then the one of
+    // less area (a thin bridge goes rather than the body around its end).
     std::vector<int> strip;
+    Surface cut;
+    Topology after;
     std::pair<int, double> strip_cost(std::numeric_limits<int>::max(), kInf);
     for (int side = 0; side < 2; ++side) {
       if (side == 1) std::reverse(loop.begin(), loop.end());
@@ -443,26 +447,22 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
       double area = 0.0;
       for (int f : candidate) area += face_areas(f);
       const std::pair<int, double> cost(IsolatedBy(s, t, candidate), area);
-      if (cost < strip_cost) {
-        strip_cost = cost;
-        strip = std::move(candidate);
+      if (!(cost < strip_cost)) continue;
+      std::vector<char> removed(s.NumFaces(), 0);
+      for (int f : candidate) removed[f] = 1;
+      Surface candidate_cut = s;
+      candidate_cut.F.resize(s.NumFaces() - static_cast<int>(candidate.size()), 3);
+      for (int f = 0, row = 0; f < s.NumFaces(); ++f) {
+        if (!removed[f]) candidate_cut.F.row(row++) = s.F.row(f);
       }
+      Topology candidate_after = BuildTopology(candidate_cut);
+      if (candidate_after.components != t.components || candidate_after.genus >= t.genus) continue;
+      strip_cost = cost;
+      strip = std::move(candidate);
+      cut = std::move(candidate_cut);
+      after = std::move(candidate_after);
     }
     if (strip.empty()) {
-      for (int v : loop) banned[v] = 1;
-      ++failures;
-      continue;
-    }
-    std::vector<char> removed(s.NumFaces(), 0);
-    for (int f : strip) removed[f] = 1;
-    Surface cut = s;
-    cut.F.resize(s.NumFaces() - static_cast<int>(strip.size()), 3);
-    for (int f = 0, row = 0; f < s.NumFaces(); ++f) {
-      if (!removed[f]) cut.F.row(row++) = s.F.row(f);
-    }
-    Topology after = BuildTopology(cut);
-    if (after.components != t.components || after.genus >= t.genus) {
-      // The strip would split the surface (or not lower its genus): pass this loop over.
       for (int v : loop) banned[v] = 1;
       ++failures;
       continue;
