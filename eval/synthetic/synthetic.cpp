@@ -148,9 +148,13 @@ SynthClass GenerateClass(FigureKind kind, const SynthOptions& options) {
     for (int i = 0; i < rest.surface.NumVertices(); ++i) shape.shape.rest_ids[i] = i;
     std::vector<std::string> notes;
     auto posed = [&](uint64_t draw) {
-      const uint64_t index = draw == 0 ? p : (static_cast<uint64_t>(p) << 8) + draw;
-      const Pose pose = RandomPose(rest.figure.bones, DeriveSeed(seed, "angles", k, index),
-                                   options.nonisometric, DeriveSeed(seed, "scales", k, index));
+      // Draw 0 is the pose's own; the others come from streams of their own, so that no
+      // contact pose repeats another pose of the class.
+      const uint64_t index = draw == 0 ? p : static_cast<uint64_t>(p) * kContactDraws + draw;
+      const std::string prefix = draw == 0 ? "" : "contact_";
+      const Pose pose =
+          RandomPose(rest.figure.bones, DeriveSeed(seed, prefix + "angles", k, index),
+                     options.nonisometric, DeriveSeed(seed, prefix + "scales", k, index));
       return Surface{SkinVertices(rest, pose), rest.surface.F};
     };
     shape.shape.surface = posed(0);

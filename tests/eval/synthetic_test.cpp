@@ -389,6 +389,13 @@ TEST_P(SyntheticKinds, GluedPosesShortCircuitTheSurfaceAndKeepTheirVertices) {
     EXPECT_LT(shortest_ratio, 0.34) << glued.shapes[p].name;
   }
   EXPECT_EQ(num_glued, 2);
+  // A contact pose is drawn for its own pose, never another pose of the class.
+  for (size_t p = 0; p < glued.shapes.size(); ++p) {
+    for (size_t q = 0; q < p; ++q) {
+      EXPECT_FALSE(control.shapes[p].shape.surface.V == control.shapes[q].shape.surface.V)
+          << p << " " << q;
+    }
+  }
 }
 
 TEST_P(SyntheticKinds, HolesAndPlaneCutsRemoveSurfaceAndKeepExactGroundTruth) {
