@@ -370,6 +370,112 @@ double LoopLength(const Surface& s, const std::vector<int>& loop) {
   return length;
 }
 
+// A cut of the handle an event found: the loop, the strip of faces along it, and the surface
+// and topology after the strip is removed. strip is empty when no strip severs the handle.
+struct CutPlan {
+  std::vector<int> loop;
+  std::vector<int> strip;
+  Surface cut;
+  Topology after;
+  int isolated = 0;     // vertices the strip leaves without a face
+  double detour = 0.0;  // median distance, after the cut, between the vertices it separates
+};
+
+constexpr size_t kCandidates = 6;
+
+CutPlan PlanCut(const Surface& s, const Topology& t, const Event& event,
+                const Eigen::VectorXd& face_areas) {
+  CutPlan plan;
+  // The meeting vertex's neighbours in the ball form two or more arcs around it; the loop
+  // through one vertex of each of two arcs is the handle's when it does not separate.
+  std::vector<std::vector<int>> arcs;
+  for (const LinkPath& path : Link(s, t, event.meet)) {
+    const std::vector<int>& link = path.vertices;
+    const size_t first = arcs.size();
+    for (size_t i = 0; i < link.size(); ++i) {
+      if (!event.in_ball[link[i]]) continue;
+      if (i == 0 || !event.in_ball[link[i - 1]]) arcs.push_back({});
+      arcs.back().push_back(link[i]);
+    }
+    if (path.closed && arcs.size() > first + 1 && event.in_ball[link.front()] &&
+        event.in_ball[link.back()]) {
+      arcs[first].insert(arcs[first].end(), arcs.back().begin(), arcs.back().end());
+      arcs.pop_back();
+    }
+  }
+  for (size_t i = 0; i < arcs.size() && plan.loop.empty(); ++i) {
+    for (size_t j = i + 1; j < arcs.size() && plan.loop.empty(); ++j) {
+      std::vector<int> candidate =
+          TreeLoop(event.pred, event.meet, arcs[i].front(), arcs[j].front());
+      if (candidate.size() < 3) continue;
+      std::vector<char> on_loop(t.nv, 0);
+      for (int v : candidate) on_loop[v] = 1;
+      if (CountComponents(t, t.component[event.meet], on_loop) == 1) {
+        plan.loop = std::move(candidate);
+      }
+    }
+  }
+  if (plan.loop.empty()) return plan;
+  // Of the strips on the two sides of the loop that sever the handle (the genus drops, the
+  // surface stays in one piece; where the loop runs along an earlier cut, only the side away
+  // from the hole can), the one that leaves fewer vertices without a face, then the one of
+  // less area (a thin bridge goes rather than the body around its end).
+  std::vector<int> loop = plan.loop;
+  std::pair<int, double> best_cost(std::numeric_limits<int>::max(), kInf);
+  for (int side = 0; side < 2; ++side) {
+    if (side == 1) std::reverse(loop.begin(), loop.end());
+    std::vector<int> candidate = LeftStrip(s, t, loop);
+    if (candidate.empty()) continue;
+    double area = 0.0;
+    for (int f : candidate) area += face_areas(f);
+    const std::pair<int, double> cost(IsolatedBy(s, t, candidate), area);
+    if (!(cost < best_cost)) continue;
+    std::vector<char> removed(s.NumFaces(), 0);
+    for (int f : candidate) removed[f] = 1;
+    Surface cut = s;
+    cut.F.resize(s.NumFaces() - static_cast<int>(candidate.size()), 3);
+    for (int f = 0, row = 0; f < s.NumFaces(); ++f) {
+      if (!removed[f]) cut.F.row(row++) = s.F.row(f);
+    }
+    Topology after = BuildTopology(cut);
+    if (after.components != t.components || after.genus >= t.genus) continue;
+    best_cost = cost;
+    plan.strip = std::move(candidate);
+    plan.cut = std::move(cut);
+    plan.after = std::move(after);
+    plan.isolated = cost.first;
+  }
+  if (plan.strip.empty()) return plan;
+  // How far apart the cut puts the vertices of each removed face: loop vertex to strip vertex.
+  std::vector<char> on_loop(t.nv, 0);
+  for (int v : plan.loop) on_loop[v] = 1;
+  std::vector<double> dist(t.nv);
+  DijkstraWorkspace<double> workspace;
+  std::vector<double> separations;
+  std::unordered_map<int, std::vector<int>> across;  // loop vertex -> strip vertices
+  for (int f : plan.strip) {
+    for (int k = 0; k < 3; ++k) {
+      const int g = s.F(f, k);
+      if (!on_loop[g]) continue;
+      for (int m = 0; m < 3; ++m) {
+        const int l = s.F(f, m);
+        if (!on_loop[l] && !plan.after.faces_of[l].empty()) across[g].push_back(l);
+      }
+    }
+  }
+  for (const auto& [g, others] : across) {
+    if (plan.after.faces_of[g].empty()) continue;
+    Dijkstra(plan.after.graph, g, dist.data(), &workspace);
+    for (int l : others) separations.push_back(dist[l]);
+  }
+  if (!separations.empty()) {
+    std::nth_element(separations.begin(), separations.begin() + separations.size() / 2,
+                     separations.end());
+    plan.detour = separations[separations.size() / 2];
+  }
+  return plan;
+}
+
 }  // namespace
 
 int SurfaceGenus(const Surface& surface) { return BuildTopology(surface).genus; }
@@ -392,87 +498,41 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
   int failures = 0;
   while (t.genus > 0 && r.cuts < options.max_cuts && failures <= 4 * options.max_cuts) {
     const Eigen::VectorXd face_areas = FaceAreas(s);
-    Event best;
+    // The kCandidates events of smallest radius (each seed's first), smallest first.
+    std::vector<Event> events;
     BallWorkspace workspace(t.nv);
     for (int seed : Seeds(t, options.seeds)) {
-      Event e = GrowBall(s, t, seed, best.radius, banned, &workspace);
-      if (e.radius < best.radius) best = std::move(e);
+      const double limit = events.size() < kCandidates ? kInf : events.back().radius;
+      Event e = GrowBall(s, t, seed, limit, banned, &workspace);
+      if (e.seed < 0) continue;
+      auto at = std::upper_bound(events.begin(), events.end(), e.radius,
+                                 [](double radius, const Event& x) { return radius < x.radius; });
+      events.insert(at, std::move(e));
+      if (events.size() > kCandidates) events.pop_back();
     }
-    if (best.seed < 0) break;
-    // The meeting vertex's neighbours in the ball form two or more arcs around it; the loop
-    // through one vertex of each of two arcs is the handle's when it does not separate.
-    std::vector<std::vector<int>> arcs;
-    for (const LinkPath& path : Link(s, t, best.meet)) {
-      const std::vector<int>& link = path.vertices;
-      const size_t first = arcs.size();
-      for (size_t i = 0; i < link.size(); ++i) {
-        if (!best.in_ball[link[i]]) continue;
-        if (i == 0 || !best.in_ball[link[i - 1]]) arcs.push_back({});
-        arcs.back().push_back(link[i]);
-      }
-      if (path.closed && arcs.size() > first + 1 && best.in_ball[link.front()] &&
-          best.in_ball[link.back()]) {
-        arcs[first].insert(arcs[first].end(), arcs.back().begin(), arcs.back().end());
-        arcs.pop_back();
-      }
+    if (events.empty()) break;
+    // Of the events' cuts that sever their handle, the one whose cut lengthens the distance
+    // across it most: a loop around a bridge, not a loop through two bridges side by side,
+    // which would slit both and leave them joining what they join.
+    CutPlan chosen;
+    for (const Event& e : events) {
+      CutPlan plan = PlanCut(s, t, e, face_areas);
+      if (plan.strip.empty()) continue;
+      if (chosen.strip.empty() || plan.detour > chosen.detour) chosen = std::move(plan);
     }
-    std::vector<int> loop;
-    for (size_t i = 0; i < arcs.size() && loop.empty(); ++i) {
-      for (size_t j = i + 1; j < arcs.size() && loop.empty(); ++j) {
-        std::vector<int> candidate =
-            TreeLoop(best.pred, best.meet, arcs[i].front(), arcs[j].front());
-        if (candidate.size() < 3) continue;
-        std::vector<char> on_loop(t.nv, 0);
-        for (int v : candidate) on_loop[v] = 1;
-        if (CountComponents(t, t.component[best.meet], on_loop) == 1) loop = std::move(candidate);
-      }
-    }
-    if (loop.empty()) {
-      banned[best.meet] = 1;
+    if (chosen.strip.empty()) {
+      const CutPlan first = PlanCut(s, t, events.front(), face_areas);
+      if (first.loop.empty()) banned[events.front().meet] = 1;
+      for (int v : first.loop) banned[v] = 1;
       ++failures;
       continue;
     }
-    // Of the strips on the two sides of the loop that sever the handle (the genus drops, the
-    // surface stays in one piece; where the loop runs along an earlier cut, only the side away
-    // from the hole can), the one that leaves fewer vertices without a face, then the one of
-    // less area (a thin bridge goes rather than the body around its end).
-    std::vector<int> strip;
-    Surface cut;
-    Topology after;
-    std::pair<int, double> strip_cost(std::numeric_limits<int>::max(), kInf);
-    for (int side = 0; side < 2; ++side) {
-      if (side == 1) std::reverse(loop.begin(), loop.end());
-      std::vector<int> candidate = LeftStrip(s, t, loop);
-      if (candidate.empty()) continue;
-      double area = 0.0;
-      for (int f : candidate) area += face_areas(f);
-      const std::pair<int, double> cost(IsolatedBy(s, t, candidate), area);
-      if (!(cost < strip_cost)) continue;
-      std::vector<char> removed(s.NumFaces(), 0);
-      for (int f : candidate) removed[f] = 1;
-      Surface candidate_cut = s;
-      candidate_cut.F.resize(s.NumFaces() - static_cast<int>(candidate.size()), 3);
-      for (int f = 0, row = 0; f < s.NumFaces(); ++f) {
-        if (!removed[f]) candidate_cut.F.row(row++) = s.F.row(f);
-      }
-      Topology candidate_after = BuildTopology(candidate_cut);
-      if (candidate_after.components != t.components || candidate_after.genus >= t.genus) continue;
-      strip_cost = cost;
-      strip = std::move(candidate);
-      cut = std::move(candidate_cut);
-      after = std::move(candidate_after);
-    }
-    if (strip.empty()) {
-      for (int v : loop) banned[v] = 1;
-      ++failures;
-      continue;
-    }
-    r.longest_loop = std::max(r.longest_loop, LoopLength(s, loop));
-    r.removed_faces += static_cast<int>(strip.size());
-    r.removed_vertices += strip_cost.first;
+    r.longest_loop = std::max(r.longest_loop, LoopLength(s, chosen.loop));
+    r.removed_faces += static_cast<int>(chosen.strip.size());
+    r.removed_vertices += chosen.isolated;
     ++r.cuts;
-    s.F = cut.F;
-    t = std::move(after);
+    s.F = chosen.cut.F;
+    t = std::move(chosen.after);
   }
   r.F = s.F;
   r.genus_after = t.genus;

@@ -4,14 +4,16 @@
 //
 // A handle is found as in [Guskov & Wood 2001, "Topological noise removal", Graphics
 // Interface]: geodesic balls (Dijkstra along the mesh's edges) grow from every vertex, the first
-// `seeds` in farthest-point order, each stopping at the smallest radius found so far;
+// `seeds` in farthest-point order, each stopping at the sixth smallest radius found so far;
 // a ball's induced subcomplex gains a 1-cycle exactly when its front meets itself (its Euler
 // characteristic drops), and that cycle is a handle's when it does not split off a new
-// component of the unreached vertices (on a sphere every such cycle separates). Of all seeds'
-// first handle cycles, the one reached at the smallest radius is taken: the cycle through the
-// meeting vertex and the seed's shortest-path tree, a short loop around the handle
-// (Erickson & Whittlesey's shortest loop through a basepoint). The faces along the loop on one
-// side of it are removed (the side that leaves fewer vertices without a face, then the side of
+// component of the unreached vertices (on a sphere every such cycle separates). Each seed's first
+// handle cycle gives a loop through the meeting vertex and the seed's shortest-path tree, a short
+// loop around the handle (Erickson & Whittlesey's shortest loop through a basepoint); of the six
+// reached at the smallest radii, the one whose cut puts the vertices it separates farthest apart
+// (median distance along the cut surface) is cut: a loop around a bridge rather than one
+// through two bridges side by side, whose cut would only slit them. The faces along the loop on
+// one side of it are removed (the side that leaves fewer vertices without a face, then the side of
 // less area), which severs the handle: its genus drops by one and two boundary loops appear.
 // No vertex is renumbered; the few a strip leaves without a face (on a thin bridge) become
 // unreferenced. A cut that would split the surface or not lower its genus is passed over.

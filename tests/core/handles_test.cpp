@@ -114,8 +114,8 @@ TEST_P(GluedKinds, GluedLimbsLoseTheirShortCircuit) {
     // ends are at least half the control's distance apart along the cut surface once its short
     // circuit is gone (the tube's own end vertices may stay on it, cut off from the body).
     // Known limit (docs/failure-modes.md): where tubes sit side by side, a loop through two of
-    // them is as short as a loop around one, and cutting it slits both tubes without severing
-    // them; the glued humanoids lose every short circuit, the quadrupeds some.
+    // them is as short as a loop around one; of the shortest loops the cut that separates most
+    // is taken, which severs all but at most one tube here (the humanoids: all).
     std::vector<char> on_tube(g.NumVertices(), 0);
     for (int f = g.NumFaces() - 6 * tubes; f < g.NumFaces(); ++f) {
       for (int k = 0; k < 3; ++k) on_tube[g.F(f, k)] = 1;
@@ -140,7 +140,7 @@ TEST_P(GluedKinds, GluedLimbsLoseTheirShortCircuit) {
       }
       short_circuited += short_circuit;
     }
-    EXPECT_LT(short_circuited, tubes) << glued.shapes[p].name;
+    EXPECT_LE(short_circuited, 1) << glued.shapes[p].name << ": " << tubes << " tubes";
     if (GetParam() == FigureKind::kHumanoid) EXPECT_EQ(short_circuited, 0) << glued.shapes[p].name;
   }
   EXPECT_EQ(checked, 2);
