@@ -36,7 +36,8 @@ struct Topology {
   MeshGraph graph;
 };
 
-Topology BuildTopology(const Surface& s) {
+// with_graph: also the edge graph (the search needs it; the genus does not).
+Topology BuildTopology(const Surface& s, bool with_graph = true) {
   Topology t;
   t.nv = s.NumVertices();
   t.faces_of.assign(t.nv, {});
@@ -67,13 +68,11 @@ Topology BuildTopology(const Surface& s) {
     while (loop_parent[v] != v) v = loop_parent[v] = loop_parent[loop_parent[v]];
     return v;
   };
-  long long boundary_edges = 0;
   for (const auto& [key, count] : undirected) {
     if (count != 1) continue;
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
     t.boundary[a] = t.boundary[b] = 1;
     loop_parent[find_loop(a)] = find_loop(b);
-    ++boundary_edges;
   }
   std::unordered_map<int, int> label;
   long long referenced = 0, loops = 0;
@@ -96,8 +95,7 @@ Topology BuildTopology(const Surface& s) {
   t.components = static_cast<int>(label.size());
   const long long chi = referenced - static_cast<long long>(undirected.size()) + s.NumFaces();
   t.genus = t.manifold ? static_cast<int>((2 * t.components - chi - loops) / 2) : -1;
-  (void)boundary_edges;
-  t.graph = BuildMeshGraph(s);
+  if (with_graph) t.graph = BuildMeshGraph(s);
   return t;
 }
 
@@ -478,13 +476,13 @@ CutPlan PlanCut(const Surface& s, const Topology& t, const Event& event,
 
 }  // namespace
 
-int SurfaceGenus(const Surface& surface) { return BuildTopology(surface).genus; }
+int SurfaceGenus(const Surface& surface) { return BuildTopology(surface, false).genus; }
 
 HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& options) {
   HandleCutResult r;
   r.F = surface.F;
   Surface s = surface;
-  Topology t = BuildTopology(s);
+  Topology t = BuildTopology(s, false);
   r.genus_before = r.genus_after = t.genus;
   if (!t.manifold) {
     r.skipped =
@@ -492,6 +490,8 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
         "one direction)";
     return r;
   }
+  if (t.genus <= 0) return r;
+  t.graph = BuildMeshGraph(s);
   // The vertices of loops that could not be cut (no strip, or one that would split the surface
   // or not lower its genus): events meeting there are passed over, a few times per cut at most.
   std::vector<char> banned(t.nv, 0);

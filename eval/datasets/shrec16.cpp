@@ -217,25 +217,36 @@ std::vector<int> ReadBarycentricTruth(const std::string& path, const Eigen::Matr
   return ids;
 }
 
+std::shared_ptr<const Eigen::MatrixX3i> Shrec16PartialDataset::NullFaces(
+    const std::string& class_name) const {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = null_faces_.find(class_name);
+    if (it != null_faces_.end()) return it->second;
+  }
+  const std::string path = MeshOfStem((fs::path(options_.root) / "null").string(), class_name);
+  if (path.empty()) {
+    throw InvalidInputError("shrec16_partial: no null shape for class " + class_name);
+  }
+  auto faces = std::make_shared<const Eigen::MatrixX3i>(LoadSurface(path).F);
+  std::lock_guard<std::mutex> lock(mutex_);
+  return null_faces_.emplace(class_name, std::move(faces)).first->second;
+}
+
 ShapeGroundTruth Shrec16PartialDataset::GroundTruth(const DatasetShape& shape,
                                                     int num_vertices) const {
   ShapeGroundTruth gt;
   if (shape.name == shape.class_name) return gt;  // a null shape: the partial shapes carry it
   const std::string track_dir = (fs::path(options_.root) / Track()).string();
-  const std::string null_path =
-      MeshOfStem((fs::path(options_.root) / "null").string(), shape.class_name);
-  if (null_path.empty()) {
-    throw InvalidInputError("shrec16_partial: no null shape for class " + shape.class_name);
-  }
-  const Surface null_shape = LoadSurface(null_path);
+  const std::shared_ptr<const Eigen::MatrixX3i> null_faces = NullFaces(shape.class_name);
   const std::string base = (fs::path(track_dir) / shape.name).string();
   gt.onto = shape.class_name;
-  gt.onto_lines.target_ids = ReadBarycentricTruth(base + ".baryc_gt", null_shape.F, num_vertices);
+  gt.onto_lines.target_ids = ReadBarycentricTruth(base + ".baryc_gt", *null_faces, num_vertices);
   gt.onto_lines.source_ids.resize(num_vertices);
   for (int i = 0; i < num_vertices; ++i) gt.onto_lines.source_ids[i] = i;
   if (fs::exists(base + ".baryc_gt_sym")) {
     gt.onto_lines.target_sym_ids =
-        ReadBarycentricTruth(base + ".baryc_gt_sym", null_shape.F, num_vertices);
+        ReadBarycentricTruth(base + ".baryc_gt_sym", *null_faces, num_vertices);
   }
   return gt;
 }

@@ -30,6 +30,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 
 #include "eval/datasets/dataset_files.h"
@@ -52,7 +55,11 @@ class Shrec16PartialDataset : public Dataset {
  private:
   // The track folder in use ("auto" resolved).
   std::string Track() const;
+  // The faces of a class's null shape, read once (every partial shape of the class needs them).
+  std::shared_ptr<const Eigen::MatrixX3i> NullFaces(const std::string& class_name) const;
   Shrec16PartialOptions options_;
+  mutable std::mutex mutex_;
+  mutable std::map<std::string, std::shared_ptr<const Eigen::MatrixX3i>> null_faces_;
 };
 
 Shrec16PartialOptions ReadShrec16PartialOptions(OptionReader& options);

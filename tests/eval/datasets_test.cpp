@@ -14,6 +14,7 @@
 #include "eval/datasets/synthetic_dataset.h"
 #include "eval/synthetic/synthetic.h"
 #include "registry/registry.h"
+#include "tests/eval/dataset_test_util.h"
 #include "tests/test_util.h"
 
 namespace symembed {
@@ -23,30 +24,9 @@ namespace fs = std::filesystem;
 using testing::TempDir;
 using testing::WriteText;
 
-// A tetrahedron with `extra` isolated vertices appended (vertex count 4 + extra).
-std::string Tetrahedron(int extra = 0) {
-  std::string off = "OFF\n" + std::to_string(4 + extra) + " 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
-  for (int i = 0; i < extra; ++i) off += "2 2 2\n";
-  return off + "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
-}
-
-// Expects `fn` to throw E whose message contains every fragment.
-template <typename E>
-void ExpectError(const std::function<void()>& fn, const std::vector<std::string>& fragments) {
-  try {
-    fn();
-    ADD_FAILURE() << "no exception; expected one containing '" << fragments[0] << "'";
-  } catch (const E& e) {
-    const std::string msg = e.what();
-    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << msg;
-  }
-}
-
-std::unique_ptr<Dataset> Create(const std::string& yaml) {
-  Registry registry;
-  RegisterBuiltinStages(registry);
-  return registry.CreateAs<Dataset>("dataset", YAML::Load(yaml), "test.yaml", "dataset");
-}
+const auto Create = testing::CreateDataset;
+using testing::ExpectError;
+using testing::Tetrahedron;
 
 // --- pairs_vts -------------------------------------------------------------------------------
 

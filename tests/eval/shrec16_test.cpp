@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "registry/registry.h"
+#include "tests/eval/dataset_test_util.h"
 #include "tests/test_util.h"
 
 namespace symembed {
@@ -15,29 +16,9 @@ namespace {
 using testing::TempDir;
 using testing::WriteText;
 
-// A tetrahedron with `extra` isolated vertices appended: 4 faces, 4 + extra vertices.
-std::string Tetrahedron(int extra = 0) {
-  std::string off = "OFF\n" + std::to_string(4 + extra) + " 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
-  for (int i = 0; i < extra; ++i) off += "2 2 2\n";
-  return off + "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
-}
-
-template <typename E>
-void ExpectError(const std::function<void()>& fn, const std::vector<std::string>& fragments) {
-  try {
-    fn();
-    ADD_FAILURE() << "no exception; expected one containing '" << fragments[0] << "'";
-  } catch (const E& e) {
-    const std::string msg = e.what();
-    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << msg;
-  }
-}
-
-std::unique_ptr<Dataset> Create(const std::string& yaml) {
-  Registry registry;
-  RegisterBuiltinStages(registry);
-  return registry.CreateAs<Dataset>("dataset", YAML::Load(yaml), "test.yaml", "dataset");
-}
+const auto Create = testing::CreateDataset;
+using testing::ExpectError;
+using testing::Tetrahedron;
 
 // The SHREC'16 partial layout: null shapes cat (tetrahedron, 4 vertices) and dog (5 vertices);
 // cat partial shapes 2 and 10 (4 vertices each, so the natural order differs from the
