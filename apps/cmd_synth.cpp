@@ -54,7 +54,12 @@ int SynthCommand(const Args& args) {
   parser.Option("glue", "fraction of poses posed for contact and glued there (topological "
                 "noise; 0: off)", "0");
   parser.Option("glue-bridges", "tubes per glued pose (0: the contact poses unglued)", "8");
-  parser.Option("pairs", "pairs per class in test_pairs.txt (0: all unordered pairs)", "0");
+  parser.Option("cross-class",
+                "R > 0: every kind also gets a class KIND_cross of another body plan (bone "
+                "factors in [1-R, 1+R], bent forwards) and the pairs cross classes (0: off)",
+                "0");
+  parser.Option("pairs", "pairs per class in test_pairs.txt (0: all unordered pairs; with "
+                "--cross-class, per kind)", "0");
   parser.Switch("force", "write into a non-empty output directory (replaces shapes/, corres/, "
                          "test_pairs.txt, README.md)");
   if (!parser.Parse(args)) return 0;
@@ -74,6 +79,7 @@ int SynthCommand(const Args& args) {
   options.holes = parser.GetDouble("holes");
   options.glue = parser.GetDouble("glue");
   options.glue_bridges = parser.GetInt("glue-bridges");
+  options.cross_class = parser.GetDouble("cross-class");
   options.pairs = parser.GetInt("pairs");
   std::string error;
   if (!options.IsValid(&error)) throw UsageError{error};
@@ -82,7 +88,9 @@ int SynthCommand(const Args& args) {
   const fs::path out = parser.Get("out");
   PrepareDatasetOutput(out, parser.Flag("force"));
   WriteSyntheticDataset(out.string(), options);
-  std::cout << "wrote " << options.poses * options.kinds.size() << " shapes to " << out.string()
+  std::cout << "wrote "
+            << options.poses * options.kinds.size() * (options.cross_class > 0.0 ? 2 : 1)
+            << " shapes to " << out.string()
             << "\n";
   return 0;
 }

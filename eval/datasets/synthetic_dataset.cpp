@@ -49,6 +49,7 @@ std::unique_ptr<SyntheticDataset> CreateSyntheticDataset(OptionReader& options) 
   if (options.Has("holes")) g.holes = options.GetDouble("holes", 0.0, 0.0, 1.0);
   if (options.Has("glue")) g.glue = options.GetDouble("glue", 0.0, 0.0, 1.0);
   if (options.Has("glue_bridges")) g.glue_bridges = options.GetInt("glue_bridges", 8, 0, 1000);
+  if (options.Has("cross_class")) g.cross_class = options.GetDouble("cross_class", 0.0, 0.0, 0.49);
   std::string error;
   if (!g.IsValid(&error)) options.Fail("", error);
   std::string cache = options.GetString("cache", "");

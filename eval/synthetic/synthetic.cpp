@@ -40,13 +40,15 @@ bool SynthOptions::IsValid(std::string* error) const {
   if (remesh_anisotropy > 1.0 && remesh == 0) {
     return fail("remesh_anisotropy: needs remesh > 0 (the anisotropy is the remeshing's)");
   }
-  if (!(nonisometric >= 0.0 && nonisometric < 0.5)) return fail("nonisometric: must be in [0, 0.5)");
+  if (!(nonisometric >= 0.0 && nonisometric < 0.5))
+    return fail("nonisometric: must be in [0, 0.5)");
   if (!(noise >= 0.0 && noise <= 1.0)) return fail("noise: must be in [0, 1]");
   if (!(partial >= 0.0 && partial <= 1.0)) return fail("partial: must be in [0, 1]");
   if (!(plane_cuts >= 0.0 && plane_cuts <= 1.0)) return fail("plane_cuts: must be in [0, 1]");
   if (!(holes >= 0.0 && holes <= 1.0)) return fail("holes: must be in [0, 1]");
   if (!(glue >= 0.0 && glue <= 1.0)) return fail("glue: must be in [0, 1]");
   if (glue_bridges < 0 || glue_bridges > 1000) return fail("glue_bridges: must be in [0, 1000]");
+  if (!(cross_class >= 0.0 && cross_class < 0.5)) return fail("cross_class: must be in [0, 0.5)");
   if (pairs < 0) return fail("pairs: must be >= 0 (0 = all pairs)");
   return true;
 }
@@ -80,6 +82,7 @@ std::string SynthOptionsText(const SynthOptions& o) {
   optional("holes", o.holes);
   optional("glue", o.glue);
   if (o.glue > 0.0 && o.glue_bridges != 8) out << "glue_bridges: " << o.glue_bridges << "\n";
+  optional("cross_class", o.cross_class);
   return out.str();
 }
 
@@ -108,16 +111,78 @@ std::vector<bool> ChosenPoses(int n, double fraction, uint32_t seed) {
   return chosen;
 }
 
+// Offset of a cross class's stream index from its kind's (FigureKind values are small).
+constexpr uint64_t kCrossStreams = 64;
+
+// The cross class's body plan (SynthOptions::cross_class): per-bone length and thickness
+// factors, equal on mirrored bones, and the forward bend applied to the rest shape.
+struct CrossBody {
+  std::vector<double> length, thickness;
+};
+
+CrossBody DrawCrossBody(const std::vector<Bone>& bones, double spread, uint32_t seed) {
+  CrossBody body;
+  body.length.assign(bones.size(), 1.0);
+  body.thickness.assign(bones.size(), 1.0);
+  SynthRandom random(seed);
+  for (size_t b = 0; b < bones.size(); ++b) {
+    const size_t m = static_cast<size_t>(bones[b].mirror);
+    if (m < b) {
+      body.length[b] = body.length[m];
+      body.thickness[b] = body.thickness[m];
+      continue;
+    }
+    body.length[b] = random.Uniform(1.0 - spread, 1.0 + spread);
+    body.thickness[b] = random.Uniform(1.0 - spread, 1.0 + spread);
+  }
+  return body;
+}
+
+void BendForwards(Surface* rest, double spread) {
+  const double y0 = rest->V.col(1).minCoeff();
+  const double height = rest->V.col(1).maxCoeff() - y0;
+  for (int i = 0; i < rest->NumVertices(); ++i) {
+    const double y = rest->V(i, 1) - y0;
+    rest->V(i, 2) += 0.5 * spread * y * y / height;
+  }
+}
+
 }  // namespace
 
-SynthClass GenerateClass(FigureKind kind, const SynthOptions& options) {
+std::vector<std::pair<int, int>> CrossClassPairs(FigureKind kind, const SynthOptions& options) {
+  const int n = options.poses;
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) pairs.push_back({i, j});
+  }
+  if (options.pairs > 0 && options.pairs < static_cast<int>(pairs.size())) {
+    SynthRandom random(DeriveSeed(static_cast<uint64_t>(options.seed), "cross_pairs",
+                                  static_cast<uint64_t>(kind)));
+    Shuffle(pairs, random);
+    pairs.resize(options.pairs);
+    std::sort(pairs.begin(), pairs.end());
+  }
+  return pairs;
+}
+
+SynthClass GenerateClass(FigureKind kind, const SynthOptions& options, ClassBody body) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("synthetic options: " + error);
+  const bool cross = body == ClassBody::kCross;
+  if (cross && options.cross_class == 0.0) {
+    throw ConfigError("synthetic options: a cross class needs cross_class > 0");
+  }
   const uint64_t seed = static_cast<uint64_t>(options.seed);
-  const uint64_t k = static_cast<uint64_t>(kind);
+  const uint64_t k = static_cast<uint64_t>(kind) + (cross ? kCrossStreams : 0);
   SynthClass out;
-  out.name = FigureKindName(kind);
+  out.name = FigureKindName(kind) + (cross ? "_cross" : "");
   out.rest = MakeRestFigure(kind, options.vertices);
+  CrossBody cross_body;
+  if (cross) {
+    cross_body = DrawCrossBody(out.rest.figure.bones, options.cross_class,
+                               DeriveSeed(seed, "cross_body", k));
+    BendForwards(&out.rest.surface, options.cross_class);
+  }
   const RestFigure& rest = out.rest;
   const int n = options.poses;
 
@@ -152,9 +217,12 @@ SynthClass GenerateClass(FigureKind kind, const SynthOptions& options) {
       // contact pose repeats another pose of the class.
       const uint64_t index = draw == 0 ? p : static_cast<uint64_t>(p) * kContactDraws + draw;
       const std::string prefix = draw == 0 ? "" : "contact_";
-      const Pose pose =
-          RandomPose(rest.figure.bones, DeriveSeed(seed, prefix + "angles", k, index),
-                     options.nonisometric, DeriveSeed(seed, prefix + "scales", k, index));
+      Pose pose = RandomPose(rest.figure.bones, DeriveSeed(seed, prefix + "angles", k, index),
+                             options.nonisometric, DeriveSeed(seed, prefix + "scales", k, index));
+      for (size_t b = 0; cross && b < pose.length_scale.size(); ++b) {
+        pose.length_scale[b] *= cross_body.length[b];
+        pose.thickness_scale[b] *= cross_body.thickness[b];
+      }
       return Surface{SkinVertices(rest, pose), rest.surface.F};
     };
     shape.shape.surface = posed(0);
@@ -241,11 +309,10 @@ void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) 
   const fs::path root(dir);
   CreateDatasetFolders(root);
   std::string pairs_text, shapes_text;
-  for (FigureKind kind : options.kinds) {
-    const SynthClass c = GenerateClass(kind, options);
+  auto write_class = [&](const SynthClass& c) {
     const int num_rest = c.rest.surface.NumVertices();
-    shapes_text += "## " + c.name + "\n\nRest shape: " + std::to_string(num_rest) +
-                   " vertices (" + std::to_string(c.rest.levels) + " Catmull-Clark levels, " +
+    shapes_text += "## " + c.name + "\n\nRest shape: " + std::to_string(num_rest) + " vertices (" +
+                   std::to_string(c.rest.levels) + " Catmull-Clark levels, " +
                    std::to_string(c.rest.rings_per_segment) + " rings per segment), " +
                    std::to_string(c.rest.figure.bones.size()) +
                    " bones.\n\n| shape | vertices | what |\n| --- | --- | --- |\n";
@@ -257,13 +324,25 @@ void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) 
                        VtsText(s.shape.rest_ids, direct, num_rest));
       WriteDatasetFile(root / "corres" / (s.name + ".sym.vts"),
                        VtsText(s.shape.rest_ids, c.rest.mirror, num_rest));
-      shapes_text += "| " + s.name + " | " + std::to_string(s.shape.surface.NumVertices()) +
-                     " | " + (s.note.empty() ? "posed" : "posed, " + s.note) + " |\n";
-    }
-    for (const auto& [a, b] : c.pairs) {
-      pairs_text += c.shapes[a].name + "\t" + c.shapes[b].name + "\n";
+      shapes_text += "| " + s.name + " | " + std::to_string(s.shape.surface.NumVertices()) + " | " +
+                     (s.note.empty() ? "posed" : "posed, " + s.note) + " |\n";
     }
     shapes_text += "\n";
+  };
+  for (FigureKind kind : options.kinds) {
+    const SynthClass c = GenerateClass(kind, options);
+    write_class(c);
+    if (options.cross_class == 0.0) {
+      for (const auto& [a, b] : c.pairs) {
+        pairs_text += c.shapes[a].name + "\t" + c.shapes[b].name + "\n";
+      }
+      continue;
+    }
+    const SynthClass cross = GenerateClass(kind, options, ClassBody::kCross);
+    write_class(cross);
+    for (const auto& [a, b] : CrossClassPairs(kind, options)) {
+      pairs_text += c.shapes[a].name + "\t" + cross.shapes[b].name + "\n";
+    }
   }
   WriteDatasetFile(root / "test_pairs.txt", pairs_text);
   std::ostringstream readme;
@@ -273,8 +352,9 @@ void WriteSyntheticDataset(const std::string& dir, const SynthOptions& options) 
          << "Layout (pairs_vts): `shapes/NAME.off`; `corres/NAME.vts`: line i is the 1-based "
             "id in NAME of rest vertex i, 0 when NAME does not have it (remeshed away or cut "
             "off); `corres/NAME.sym.vts`: the same for the mirror image of rest vertex i; "
-            "`test_pairs.txt`: tab-separated pairs within a class. The class of a shape is its "
-            "name without the trailing digits.\n\n"
+            "`test_pairs.txt`: tab-separated pairs, within a class or, with cross_class, from "
+            "each kind's class onto its cross class KIND_cross (another body plan on the same "
+            "mesh). The class of a shape is its name without the trailing digits.\n\n"
          << shapes_text;
   WriteDatasetFile(root / "README.md", readme.str());
 }

@@ -9,7 +9,9 @@
 //                        or 0 when NAME does not have it (remeshed away or cut off)
 //   corres/NAME.sym.vts  the same for rest vertex mirror[i]
 //   test_pairs.txt       "A<TAB>B" per line: all unordered pairs within a class in pose order,
-//                        or a seeded subset of `pairs` per class (kept in that order)
+//                        or a seeded subset of `pairs` per class (kept in that order); with
+//                        cross_class, every pose of a kind onto every pose of its cross class
+//                        (or a seeded subset of `pairs` per kind) instead
 //   README.md            the generator options and seed, and this description
 // The same options give byte-identical files: random numbers come from std::mt19937 through
 // platform-independent conversions (random.h), meshes are written by SaveMesh (shortest
@@ -27,15 +29,15 @@ namespace symembed {
 
 struct SynthOptions {
   std::vector<FigureKind> kinds = {FigureKind::kHumanoid};  // one class per kind
-  int poses = 8;             // shapes per class, >= 1
-  int vertices = 5000;       // approximate rest vertex count (see ChooseResolution), >= 100
-  int seed = 1;              // >= 0
-  int remesh = 0;            // > 0: decimate every pose independently to this many vertices
+  int poses = 8;                                            // shapes per class, >= 1
+  int vertices = 5000;             // approximate rest vertex count (see ChooseResolution), >= 100
+  int seed = 1;                    // >= 0
+  int remesh = 0;                  // > 0: decimate every pose independently to this many vertices
   double remesh_anisotropy = 1.0;  // > 1: the remeshing measures edges this many times longer
                                    // along a random direction per pose (needs remesh > 0)
-  double nonisometric = 0.0; // > 0: per-pose bone length/thickness factors in [1-R, 1+R], < 0.5
-  double noise = 0.0;        // > 0: normal noise amplitude as a fraction of the mean edge length
-  double partial = 0.0;      // in [0, 1]: fraction of poses with a hand, foot or head cut away
+  double nonisometric = 0.0;  // > 0: per-pose bone length/thickness factors in [1-R, 1+R], < 0.5
+  double noise = 0.0;         // > 0: normal noise amplitude as a fraction of the mean edge length
+  double partial = 0.0;       // in [0, 1]: fraction of poses with a hand, foot or head cut away
   // in [0, 1]: fraction of poses with a part of the surface cut away by a plane, removing a
   // fraction of the vertices uniform in [0.1, 0.4] (SHREC'16 partial "cuts")
   double plane_cuts = 0.0;
@@ -49,7 +51,14 @@ struct SynthOptions {
   // same shapes without the noise
   double glue = 0.0;
   int glue_bridges = 8;
-  int pairs = 0;             // > 0: pairs per class in test_pairs.txt; 0: all unordered pairs
+  // in [0, 0.5): > 0 gives every kind a second class, KIND_cross, of another body plan on the
+  // same mesh (so rest vertex ids still correspond): bone lengths and thicknesses, the torso's
+  // included, scaled by class factors uniform in [1 - R, 1 + R] (equal on mirrored bones, so the
+  // body stays bilaterally symmetric), and the body bent forwards (z += R/2 (y - y0)^2 / height,
+  // y0 the lowest point: a stooped, ape-like stance whose back and front curve unlike the
+  // base class's). Pairs then cross classes (see test_pairs.txt).
+  double cross_class = 0.0;
+  int pairs = 0;  // > 0: pairs per class in test_pairs.txt; 0: all unordered pairs
 
   bool IsValid(std::string* error) const;
 };
@@ -70,9 +79,19 @@ struct SynthClass {
   std::vector<std::pair<int, int>> pairs;  // indices into shapes
 };
 
-// Generates one class (poses in parallel; the result does not depend on the thread count).
-// Throws ConfigError when options are invalid.
-SynthClass GenerateClass(FigureKind kind, const SynthOptions& options);
+// Which body a class has: the kind's own, or the other body plan of SynthOptions::cross_class
+// (class KIND_cross; its random streams are its own).
+enum class ClassBody { kBase, kCross };
+
+// Generates one class (poses in parallel; the result does not depend on the thread count);
+// its pairs are those within the class. Throws ConfigError when options are invalid, or when
+// body is kCross and options.cross_class is 0.
+SynthClass GenerateClass(FigureKind kind, const SynthOptions& options,
+                         ClassBody body = ClassBody::kBase);
+
+// The pairs of test_pairs.txt between a kind's class (first) and its cross class (second): all
+// poses.size()^2, or a seeded subset of options.pairs, in order.
+std::vector<std::pair<int, int>> CrossClassPairs(FigureKind kind, const SynthOptions& options);
 
 // The generator options as canonical "key: value" lines (README, cache keys).
 std::string SynthOptionsText(const SynthOptions& options);

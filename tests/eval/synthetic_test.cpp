@@ -439,6 +439,69 @@ TEST_P(SyntheticKinds, HolesAndPlaneCutsRemoveSurfaceAndKeepExactGroundTruth) {
   EXPECT_EQ(SynthOptionsText(o).find("plane_cuts"), std::string::npos);
 }
 
+// The cross class: another body plan on the same mesh (so rest vertex ids, faces and the mirror
+// map carry over), exactly symmetric at rest, bent forwards, and far less isometric to the base
+// class than the base class's own poses are to each other.
+TEST_P(SyntheticKinds, CrossClassBodiesShareTheMeshButNotTheProportions) {
+  SynthOptions o = Options(GetParam(), 3, 1500);
+  const SynthClass base = GenerateClass(GetParam(), o);
+  EXPECT_THROW(GenerateClass(GetParam(), o, ClassBody::kCross), ConfigError);
+  o.cross_class = 0.3;
+  const SynthClass cross = GenerateClass(GetParam(), o, ClassBody::kCross);
+  EXPECT_EQ(cross.name, FigureKindName(GetParam()) + "_cross");
+  const Surface& rest = cross.rest.surface;
+  ASSERT_TRUE(rest.F == base.rest.surface.F);
+  EXPECT_EQ(cross.rest.mirror, base.rest.mirror);
+  for (int i = 0; i < rest.NumVertices(); ++i) {
+    const int m = cross.rest.mirror[i];
+    ASSERT_TRUE(rest.V(m, 0) == -rest.V(i, 0) && rest.V(m, 1) == rest.V(i, 1) &&
+                rest.V(m, 2) == rest.V(i, 2)) << i;
+  }
+  // Bent forwards: the highest point moves forwards by R/2 of the height, the lowest not at all.
+  int top = 0, bottom = 0;
+  base.rest.surface.V.col(1).maxCoeff(&top);
+  base.rest.surface.V.col(1).minCoeff(&bottom);
+  const double height = base.rest.surface.V(top, 1) - base.rest.surface.V(bottom, 1);
+  EXPECT_NEAR(rest.V(top, 2) - base.rest.surface.V(top, 2), 0.15 * height, 1e-12);
+  EXPECT_EQ(rest.V(bottom, 2), base.rest.surface.V(bottom, 2));
+  // Its poses are its own (another stream) and keep the identity ground truth.
+  for (size_t p = 0; p < cross.shapes.size(); ++p) {
+    EXPECT_EQ(cross.shapes[p].name, cross.name + std::to_string(p));
+    ExpectClosedGenusZero(cross.shapes[p].shape.surface, cross.shapes[p].name);
+    EXPECT_GT(SignedVolume(cross.shapes[p].shape.surface), 0.0);
+    EXPECT_FALSE(cross.shapes[p].shape.surface.V == base.shapes[p].shape.surface.V);
+  }
+  // Mean relative change of edge-graph distances (in units of each shape's sqrt(area)) from 8
+  // sources: between the classes at least twice that within the base class.
+  auto change = [&](const Surface& a, const Surface& b) {
+    const double sa = std::sqrt(FaceAreas(a).sum()), sb = std::sqrt(FaceAreas(b).sum());
+    double sum = 0.0;
+    int count = 0;
+    for (int k = 0; k < 8; ++k) {
+      const int source = (k * 7919) % a.NumVertices();
+      const auto da = Dijkstra(a, source), db = Dijkstra(b, source);
+      for (size_t v = 0; v < da.size(); ++v) {
+        if (da[v] < 0.05 * sa) continue;
+        sum += std::abs(db[v] / sb - da[v] / sa) / (da[v] / sa);
+        ++count;
+      }
+    }
+    return sum / count;
+  };
+  const double within = change(base.shapes[0].shape.surface, base.shapes[1].shape.surface);
+  const double across = change(base.shapes[0].shape.surface, cross.shapes[1].shape.surface);
+  RecordProperty("within", std::to_string(within));
+  RecordProperty("across", std::to_string(across));
+  EXPECT_GT(across, 2.0 * within);
+  // Pairs cross the classes: every pose onto every pose, or a seeded subset, in order.
+  EXPECT_EQ(CrossClassPairs(GetParam(), o).size(), 9u);
+  o.pairs = 4;
+  const auto some = CrossClassPairs(GetParam(), o);
+  ASSERT_EQ(some.size(), 4u);
+  EXPECT_TRUE(std::is_sorted(some.begin(), some.end()));
+  EXPECT_EQ(some, CrossClassPairs(GetParam(), o));
+}
+
 TEST_P(SyntheticKinds, NoiseMovesVerticesAlongNormalsWithinTheAmplitude) {
   SynthOptions o = Options(GetParam(), 2, 1500);
   const SynthClass clean = GenerateClass(GetParam(), o);
@@ -603,6 +666,14 @@ TEST(Synthetic, CommandWritesADatasetAndRejectsBadArguments) {
   EXPECT_EQ(testing::RunShell(bin + " synth --poses 2 --noise -1 --out " + dir.File("h"), &out), 2);
   EXPECT_NE(out.find("noise"), std::string::npos) << out;
   EXPECT_EQ(testing::RunShell(bin + " synth --poses 2", &out), 2);
+  EXPECT_EQ(testing::RunShell(bin + " synth --poses 2 --cross-class 0.5 --out " + dir.File("h"), &out), 2);
+  EXPECT_NE(out.find("cross_class"), std::string::npos) << out;
+  ASSERT_EQ(testing::RunShell(bin + " synth --poses 2 --vertices 800 --cross-class 0.2 --out " +
+                                  dir.File("x"), &out), 0) << out;
+  EXPECT_EQ(testing::ReadText(dir.File("x/test_pairs.txt")),
+            "humanoid0\thumanoid_cross0\nhumanoid0\thumanoid_cross1\n"
+            "humanoid1\thumanoid_cross0\nhumanoid1\thumanoid_cross1\n");
+  EXPECT_TRUE(fs::exists(dir.File("x/corres/humanoid_cross1.sym.vts")));
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, SyntheticKinds,
