@@ -12,6 +12,8 @@
 #include "core/errors.h"
 #include "eval/evaluator.h"
 #include "eval/report.h"
+#include "registry/config.h"
+#include "registry/files.h"
 #include "registry/hash.h"
 
 namespace symembed {
@@ -196,7 +198,8 @@ void GroundTruthRunEvaluation::WriteVariant(const VariantResults& results) {
   }
   const std::string config = VariantConfigPath(results.dir);
   const EvaluationOptions options =
-      ParseEvaluationOptions(YAML::LoadFile(config)["evaluation"], config, registry_);
+      ParseEvaluationOptions(LoadConfigYaml(ReadFileOrThrow(config), config)["evaluation"],
+                             config, registry_);
   VariantSummary summary = Summarize(results.variant, pairs, options, timings);
   summary.shapes_lost_area = 0;
   for (const ShapeRecord& shape : results.shapes) {

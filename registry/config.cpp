@@ -1,5 +1,6 @@
 #include "registry/config.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -28,6 +29,110 @@ const VariantConfig* ExperimentConfig::Find(const std::string& variant) const {
     if (v.name == variant) return &v;
   }
   return nullptr;
+}
+
+namespace {
+
+std::string MarkLocation(const std::string& file, const YAML::Mark& mark) {
+  std::ostringstream out;
+  out << file << ":" << mark.line + 1 << ":" << mark.column + 1;
+  return out.str();
+}
+
+// Walks the parser's events and counts the nodes of the tree they describe, an alias counting
+// the nodes of what it names, so that a recursive alias or an alias bomb is refused from the
+// text alone (milliseconds) rather than found by building or walking the tree.
+class AliasGuard : public YAML::EventHandler {
+ public:
+  explicit AliasGuard(std::string file) : file_(std::move(file)) {}
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override { Leaf(mark, anchor); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                const std::string&) override {
+    Leaf(mark, anchor);
+  }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+    for (const Open& open : open_) {
+      if (open.anchor == anchor) {
+        throw ConfigError(MarkLocation(file_, mark) + ": the alias *" + names_[anchor] +
+                          " is inside the node &" + names_[anchor] +
+                          " it names (a recursive alias): YAML aliases in a config must name a "
+                          "node defined before them and outside them");
+      }
+    }
+    Add(mark, sizes_[anchor]);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                       YAML::EmitterStyle::value) override {
+    Start(mark, anchor);
+  }
+  void OnSequenceEnd() override { End(); }
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                  YAML::EmitterStyle::value) override {
+    Start(mark, anchor);
+  }
+  void OnMapEnd() override { End(); }
+  void OnAnchor(const YAML::Mark&, const std::string& name) override { pending_name_ = name; }
+
+ private:
+  struct Open {
+    YAML::anchor_t anchor;
+    YAML::Mark mark;
+    long long size;
+  };
+  void Name(YAML::anchor_t anchor) {
+    if (anchor != YAML::NullAnchor) names_[anchor] = pending_name_;
+  }
+  void Leaf(const YAML::Mark& mark, YAML::anchor_t anchor) {
+    Name(anchor);
+    if (anchor != YAML::NullAnchor) sizes_[anchor] = 1;
+    Add(mark, 1);
+  }
+  void Start(const YAML::Mark& mark, YAML::anchor_t anchor) {
+    Name(anchor);
+    open_.push_back({anchor, mark, 1});
+  }
+  void End() {
+    const Open done = open_.back();
+    open_.pop_back();
+    if (done.anchor != YAML::NullAnchor) sizes_[done.anchor] = done.size;
+    Add(done.mark, done.size);
+  }
+  // Adds n nodes to the innermost open collection (or the document); each open collection's
+  // count is at most the document's, so the bound is checked where the count grows.
+  void Add(const YAML::Mark& mark, long long n) {
+    long long& total = open_.empty() ? document_ : open_.back().size;
+    total += n;
+    if (total > kMaxYamlNodes) {
+      throw ConfigError(MarkLocation(file_, mark) + ": the YAML expands to more than " +
+                        std::to_string(kMaxYamlNodes) +
+                        " nodes through its aliases (an alias bomb?); a config is far smaller");
+    }
+  }
+
+  std::string file_;
+  std::vector<Open> open_;
+  std::map<YAML::anchor_t, long long> sizes_;
+  std::map<YAML::anchor_t, std::string> names_;
+  std::string pending_name_;
+  long long document_ = 0;
+};
+
+}  // namespace
+
+YAML::Node LoadConfigYaml(const std::string& text, const std::string& file) {
+  try {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    AliasGuard guard(file);
+    while (parser.HandleNextDocument(guard)) {
+    }
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(MarkLocation(file, e.mark) + ": YAML syntax error: " + e.msg);
+  }
 }
 
 std::string ExpandEnvironment(const std::string& text, const std::string& where) {
@@ -216,11 +321,17 @@ void ApplyCommandLineOverrides(YAML::Node tree, const std::vector<std::string>& 
     if (eq == std::string::npos || eq == 0) {
       throw ConfigError("--set '" + o + "': expected dotted.path=value");
     }
+    const std::string text = o.substr(eq + 1);
+    if (text.find_first_not_of(" \t") == std::string::npos) {
+      throw ConfigError("--set '" + o + "': no value after '=' (an empty value would reset " +
+                        o.substr(0, eq) + " to its default; give the value, or leave the " +
+                        "--set out)");
+    }
     YAML::Node value;
     try {
-      value = WithoutPosition(YAML::Load(o.substr(eq + 1)));
-    } catch (const YAML::Exception& e) {
-      throw ConfigError("--set '" + o + "': value is not valid YAML: " + e.msg);
+      value = WithoutPosition(LoadConfigYaml(text, "--set '" + o + "'"));
+    } catch (const ConfigError& e) {
+      throw ConfigError("--set '" + o + "': value is not valid YAML: " + e.what());
     }
     ApplyOverride(tree, o.substr(0, eq), value, YAML::Node(), file + " (--set " + o + ")");
   }
@@ -399,16 +510,7 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
   const std::string text = SubstituteText(yaml_text, file);
   // Each variant gets its own parse of the text, so that every node keeps its file position
   // (YAML::Clone drops positions) and no node is shared between variants.
-  auto parse = [&]() {
-    try {
-      return YAML::Load(text);
-    } catch (const YAML::Exception& e) {
-      std::ostringstream out;
-      out << file << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
-          << ": YAML syntax error: " << e.msg;
-      throw ConfigError(out.str());
-    }
-  };
+  auto parse = [&]() { return LoadConfigYaml(text, file); };
   YAML::Node root = parse();
   RejectDuplicateKeys(root, file, "");
   if (!root.IsMap())

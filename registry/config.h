@@ -127,6 +127,13 @@ Pipeline BuildPipeline(const ExperimentConfig& config, const VariantConfig& vari
 std::string ResolvedConfigYaml(const ExperimentConfig& config, const VariantConfig& variant,
                                const Pipeline& pipeline);
 
+// Parses YAML text as a config file is parsed: throws ConfigError naming file:line:col for a
+// syntax error, for an alias inside the node it names (a recursive alias, which would make the
+// tree infinite), and for text whose aliases expand to more than kMaxYamlNodes nodes (an alias
+// bomb), before the tree is built.
+constexpr long long kMaxYamlNodes = 1000000;
+YAML::Node LoadConfigYaml(const std::string& text, const std::string& file);
+
 // Replaces ${VAR} and ${VAR:-default} in text; an unset VAR without default throws ConfigError
 // naming `where`.
 std::string ExpandEnvironment(const std::string& text, const std::string& where);

@@ -77,7 +77,12 @@ YAML::Node OptionReader::Lookup(const std::string& key) {
   read_.insert(key);
   const YAML::Node& n = node_;
   if (!n.IsMap()) return YAML::Node();
-  return n[key];
+  YAML::Node v = n[key];
+  // A key without a value (`key:`, `key: ~`) would silently stand for the default.
+  if (v.IsDefined() && v.IsNull()) {
+    Fail(key, "no value; give one, or remove the key for the default");
+  }
+  return v;
 }
 
 double OptionReader::GetDouble(const std::string& key, double default_value, double min,

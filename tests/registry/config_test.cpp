@@ -154,6 +154,51 @@ TEST(Config, UnknownKeyNamesLinePathAndKnownKeys) {
   EXPECT_NE(msg.find("known keys: dims, init, tolerance, type"), std::string::npos) << msg;
 }
 
+// A recursive alias would make the tree infinite (walking it overflowed the stack); an alias
+// bomb would expand without end. Both are refused from the text, naming the place.
+TEST(Config, RecursiveAliasesAndAliasBombsAreRefusedAtOnce) {
+  std::string msg = ErrorOf("name: x\ndataset: &d {format: pairs_vts, root: R, x: *d}\n");
+  EXPECT_EQ(msg.find("exp.yaml:2:"), 0u) << msg;
+  EXPECT_NE(msg.find("*d is inside the node &d it names"), std::string::npos) << msg;
+  msg = ErrorOf("name: x\nvariants:\n  - &v [a, [b, *v]]\n");
+  EXPECT_NE(msg.find("recursive alias"), std::string::npos) << msg;
+  // Nine levels of ten aliases: 10^9 nodes from 600 bytes.
+  std::string bomb = "name: x\nl0: &l0 [a, a, a, a, a, a, a, a, a, a]\n";
+  for (int level = 1; level <= 9; ++level) {
+    const std::string prev = "*l" + std::to_string(level - 1);
+    bomb += "l" + std::to_string(level) + ": &l" + std::to_string(level) + " [";
+    for (int k = 0; k < 10; ++k) bomb += (k ? ", " : "") + prev;
+    bomb += "]\n";
+  }
+  msg = ErrorOf(bomb);
+  EXPECT_EQ(msg.find("exp.yaml:"), 0u) << msg;
+  EXPECT_NE(msg.find("more than 1000000 nodes"), std::string::npos) << msg;
+  // Aliases that name an earlier node outside them are fine.
+  EXPECT_EQ(ErrorOf(Replace(kConfig, "set: {pipeline.sampling.count: 2000}}",
+                            "set: &s {pipeline.sampling.count: 2000}}\n"
+                            "  - {name: again, set: *s}")),
+            "");
+}
+
+// An empty value stands for nothing the user could mean: `key:` in a file or `--set key=` would
+// silently reset the option to its default.
+TEST(Config, KeysAndSetsWithoutAValueAreRefused) {
+  std::string msg = ErrorOf(Replace(kConfig, "count: 500", "count:"));
+  EXPECT_NE(msg.find("exp.yaml:4:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pipeline.sampling.count: no value"), std::string::npos) << msg;
+  msg = ErrorOf(Replace(kConfig, "count: 500", "count: ~"));
+  EXPECT_NE(msg.find("pipeline.sampling.count: no value"), std::string::npos) << msg;
+  for (const std::string set : {"pipeline.sampling.count=", "pipeline.sampling.count= "}) {
+    try {
+      ParseExperimentConfig(kConfig, "exp.yaml", FakeRegistry(), {set});
+      ADD_FAILURE() << set;
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(std::string(e.what()).find("--set '" + set + "': no value after '='"), 0u)
+          << e.what();
+    }
+  }
+}
+
 TEST(Config, UnknownTopLevelKeyAndStageKind) {
   std::string msg = ErrorOf(std::string(kConfig) + "evalution: {}\n");
   EXPECT_NE(msg.find("exp.yaml:10:1: evalution: unknown key"), std::string::npos) << msg;
