@@ -3,6 +3,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "registry/shards.h"
+
 namespace symembed {
 
 ArgParser::ArgParser(std::string command, std::string summary)
@@ -127,6 +129,12 @@ std::string ArgParser::Help() const {
   }
   out << "  --help\n      print this help\n";
   return out.str();
+}
+
+std::string CommandLine(const std::string& command, const std::vector<std::string>& args) {
+  std::string line = "symembed " + command;
+  for (const std::string& a : args) line += " " + ShellQuote(a);
+  return line;
 }
 
 }  // namespace symembed

@@ -54,4 +54,7 @@ class ArgParser {
   int min_positionals_ = 0, max_positionals_ = 0;
 };
 
+// "symembed COMMAND ARG..." with each argument shell-quoted (for messages: who holds a folder).
+std::string CommandLine(const std::string& command, const std::vector<std::string>& args);
+
 }  // namespace symembed

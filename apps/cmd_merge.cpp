@@ -3,6 +3,7 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "eval/run_evaluation.h"
+#include "registry/files.h"
 #include "registry/merge.h"
 #include "registry/runner.h"
 #include "registry/shards.h"
@@ -67,6 +68,7 @@ int MergeCommand(const Args& args) {
     ReportUnfinished(check.unfinished, check.count, parser.Get("rerun-hint"));
     return 3;
   }
+  const FolderLock lock = FolderLock::Acquire(parser.Get("out"), CommandLine("merge", args));
   GroundTruthRunEvaluation evaluation;
   const std::vector<Failure> failures =
       MergeRuns(parser.positionals(), parser.Get("out"), evaluation);

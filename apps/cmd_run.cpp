@@ -1,5 +1,6 @@
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "apps/args.h"
@@ -191,6 +192,12 @@ int RunCommand(const Args& args) {
     if (options.variant.empty() || options.variant == variant) {
       std::cerr << "symembed run: note: " << line << "\n";
     }
+  }
+
+  // One command writes into a run folder at a time (a --shapes-only run writes only the cache).
+  std::optional<FolderLock> lock;
+  if (!options.shapes_only) {
+    lock.emplace(FolderLock::Acquire(options.out_dir, CommandLine("run", args)));
   }
 
   // A sharded run says in its folder whether it finished, so that merge can refuse a partial set.

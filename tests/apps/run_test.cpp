@@ -136,6 +136,35 @@ TEST_F(RunCommandTest, KilledRunResumesToTheOutputsOfAnUninterruptedRun) {
   EXPECT_EQ(OutputsWithoutTimings(killed), full);
 }
 
+// Two runs into one folder would mix their outputs (one's config, the other's maps): a second
+// run into a folder in use fails at once, naming the folder and the first run, and leaves the
+// first's outputs alone; once the first has finished, the folder is free again.
+TEST_F(RunCommandTest, ASecondRunIntoAFolderInUseFailsAtOnceNamingTheFirst) {
+  const std::string out = tmp_.File("busy");
+  const pid_t first =
+      Spawn({"run", config_, "--jobs", "1", "--cache", tmp_.File("cold"), "--out", out},
+            out + ".first.log");
+  ASSERT_GT(first, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  while (!fs::exists(out + "/.symembed.lock") ||
+         ReadText(out + "/.symembed.lock").find("pid ") == std::string::npos) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const std::string log = Run(out, "--set pipeline.sampling.count=60", 1);
+  EXPECT_NE(log.find(out + ": in use by another symembed command (pid " + std::to_string(first)),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("symembed run"), std::string::npos) << log;
+  int status = 0;
+  ASSERT_EQ(waitpid(first, &status, 0), first);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadText(out + ".first.log");
+  EXPECT_NE(ReadText(out + "/base/config.yaml").find("count: 80"), std::string::npos);
+  EXPECT_EQ(CountFiles(out + "/base/pairs", ".rec"), 10);
+  EXPECT_FALSE(fs::exists(out + "/.symembed.lock"));  // removed by its holder
+  Run(out, "--resume");
+}
+
 // A run started without --resume into the folder of a finished run and killed must not leave
 // the old run's summary beside its own config, and readers of results refuse the folder.
 TEST_F(RunCommandTest, KilledRunOverAnEarlierRunLeavesAFolderMarkedIncomplete) {
