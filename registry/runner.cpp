@@ -95,7 +95,7 @@ class VariantRun {
       }
     }
     MarkInProgress(dir_, "symembed run (variant " + variant_.name + ")");
-    if (!options_.resume) RemoveSummaryFiles();
+    if (!options_.resume) RemoveEarlierOutputs();
     WriteFileAtomically(VariantConfigPath(dir_), resolved);
     index_ = pipeline_.dataset->Load();
     SelectPairs();
@@ -122,12 +122,21 @@ class VariantRun {
     failures_.push_back({kind, source, target, message});
   }
 
-  // A run into a folder that holds an earlier run's outputs must not leave them beside its own.
-  void RemoveSummaryFiles() {
+  // A run into a folder that holds an earlier run's outputs must not leave them beside its own:
+  // not its tables, and not the maps and records of pairs this run does not have (a merge or an
+  // eval of the folder would take them for this run's).
+  void RemoveEarlierOutputs() {
     std::error_code ec;
     for (const char* file : {"summary.json", "pairs.csv", "curve.csv", "timings.csv",
                              "failures.csv", "shapes.csv"}) {
       fs::remove(dir_ + "/" + file, ec);
+    }
+    for (const char* folder : {"maps", "pairs", "embeddings"}) {
+      fs::remove_all(dir_ + "/" + folder, ec);
+      if (ec) {
+        throw IoError(dir_ + "/" + folder + ": cannot remove the earlier run's outputs: " +
+                      ec.message());
+      }
     }
   }
 
@@ -149,10 +158,6 @@ class VariantRun {
           kept_.push_back(static_cast<int>(i));  // verified once its shapes are known
           continue;
         }
-      } else {
-        std::error_code ec;
-        fs::remove(record, ec);
-        fs::remove(PairMapPath(dir_, pairs_[i].source, pairs_[i].target), ec);
       }
       pending_.push_back(static_cast<int>(i));
     }

@@ -165,6 +165,18 @@ TEST_F(RunCommandTest, ASecondRunIntoAFolderInUseFailsAtOnceNamingTheFirst) {
   Run(out, "--resume");
 }
 
+// A run without --resume into an earlier run's folder starts it empty: the earlier run's maps
+// and records of pairs the new run does not have would be read as the new run's.
+TEST_F(RunCommandTest, ARunWithoutResumeLeavesNoMapOrRecordOfAnEarlierRun) {
+  const std::string out = tmp_.File("again");
+  Run(out, "");
+  ASSERT_EQ(CountFiles(out + "/base/pairs", ".rec"), 10);
+  Run(out, "--set dataset.max_pairs=3");
+  EXPECT_EQ(CountFiles(out + "/base/pairs", ".rec"), 3);
+  EXPECT_EQ(CountFiles(out + "/base/maps", ".map"), 3);
+  EXPECT_NE(ReadText(out + "/base/summary.json").find("\"pairs\": 3,"), std::string::npos);
+}
+
 // A run started without --resume into the folder of a finished run and killed must not leave
 // the old run's summary beside its own config, and readers of results refuse the folder.
 TEST_F(RunCommandTest, KilledRunOverAnEarlierRunLeavesAFolderMarkedIncomplete) {
