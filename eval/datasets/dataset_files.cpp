@@ -71,9 +71,14 @@ std::vector<std::pair<std::string, std::string>> ListMeshes(const std::string& d
   if (!fs::is_directory(dir)) throw IoError("not a directory: " + dir);
   std::map<std::string, std::string> found;
   for (const auto& entry : fs::directory_iterator(dir)) {
-    if (!entry.is_regular_file()) continue;
     const std::string ext = Lower(entry.path().extension().string());
     if (ext != ".off" && ext != ".obj" && ext != ".ply") continue;
+    // A mesh name whose file cannot be resolved (a symbolic link in a loop or to nothing) is
+    // listed all the same, so that its shape fails when read, naming the file, and the others
+    // run; only what is plainly not a file (a folder, a device) is passed over.
+    std::error_code ec;
+    const fs::file_type type = entry.status(ec).type();
+    if (!ec && type != fs::file_type::regular && type != fs::file_type::not_found) continue;
     const std::string stem = entry.path().stem().string();
     auto [it, inserted] = found.emplace(stem, entry.path().string());
     if (!inserted) {

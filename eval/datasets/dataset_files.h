@@ -33,8 +33,10 @@ std::string ClassOfName(const std::string& name);
 // A path relative to root (unchanged when absolute).
 std::string ResolvePath(const std::string& root, const std::string& path);
 
-// Mesh files (.off, .obj, .ply) directly in dir: stem -> path, sorted by stem. Throws
-// InvalidInputError when two files share a stem, IoError when dir is not a directory.
+// Mesh files (.off, .obj, .ply) directly in dir: stem -> path, sorted by stem; a mesh name that
+// does not resolve to a file (a symbolic link in a loop or to nothing) is listed too, so that its
+// shape fails alone when read. Throws InvalidInputError when two files share a stem, IoError when
+// dir is not a directory.
 std::vector<std::pair<std::string, std::string>> ListMeshes(const std::string& dir);
 
 // Vertex count from a mesh file's header (OFF, PLY) or its `v` lines (OBJ).

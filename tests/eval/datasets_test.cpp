@@ -150,6 +150,31 @@ TEST(PairsVts, RejectsMalformedInputNamingFileAndLine) {
 
 // --- same_connectivity -----------------------------------------------------------------------
 
+// A symbolic link in a loop (or to nothing) among the meshes is a shape that fails when read,
+// naming its file, not an error that stops the listing of every other shape.
+TEST(ListMeshes, LinksThatResolveToNoFileAreListedToFailAlone) {
+  testing::TempDir dir;
+  fs::create_directories(dir.File("shapes"));
+  testing::WriteText(dir.File("shapes/a.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  fs::create_symlink("loop.off", dir.File("shapes/loop.off"));
+  fs::create_symlink("missing.off", dir.File("shapes/gone.off"));
+  fs::create_directories(dir.File("shapes/folder.off"));
+  const auto meshes = ListMeshes(dir.File("shapes"));
+  ASSERT_EQ(meshes.size(), 3u);
+  EXPECT_EQ(meshes[0].first, "a");
+  EXPECT_EQ(meshes[1].first, "gone");
+  EXPECT_EQ(meshes[2].first, "loop");
+  EXPECT_EQ(LoadSurface(meshes[0].second).NumVertices(), 3);
+  for (int i : {1, 2}) {
+    try {
+      LoadSurface(meshes[i].second);
+      ADD_FAILURE() << meshes[i].second;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(meshes[i].second), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(SameConnectivity, IdentityGroundTruthSymmetryFileAndPairs) {
   TempDir dir;
   const std::string root = dir.path();
