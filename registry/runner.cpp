@@ -11,6 +11,7 @@
 #include "core/mesh_io.h"
 #include "core/parallel.h"
 #include "registry/files.h"
+#include "registry/options.h"
 #include "registry/progress.h"
 
 namespace fs = std::filesystem;
@@ -461,6 +462,23 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
     }
     fs::create_directories(options.cache_dir, ec);
     if (ec) throw IoError(options.cache_dir + ": cannot create the cache folder: " + ec.message());
+  }
+  // Every variant's dataset is read before anything is computed, so that a missing root or a
+  // broken index of a later variant does not end the run after the earlier variants ran.
+  std::set<std::string> datasets_read;
+  for (const VariantConfig* v : variants) {
+    const Pipeline pipeline = BuildPipeline(config, *v, registry);
+    const std::string key = OptionsText(*pipeline.dataset);
+    if (!datasets_read.insert(key).second) continue;
+    try {
+      pipeline.dataset->Load();
+    } catch (const Error& e) {
+      // Where the root was given (a variant's override has its own line), else the section.
+      const YAML::Node dataset = v->tree["dataset"];
+      const YAML::Node node = dataset.IsMap() && dataset["root"] ? dataset["root"] : dataset;
+      throw InvalidInputError(NodeLocation(config.file, node) + ": dataset of variant '" +
+                              v->name + "': " + e.what());
+    }
   }
   if (!options.shapes_only) {
     fs::create_directories(options.out_dir);

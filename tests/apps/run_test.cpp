@@ -177,6 +177,22 @@ TEST_F(RunCommandTest, ARunWithoutResumeLeavesNoMapOrRecordOfAnEarlierRun) {
   EXPECT_NE(ReadText(out + "/base/summary.json").find("\"pairs\": 3,"), std::string::npos);
 }
 
+// A later variant's dataset that cannot be read ends the run before the first variant computes
+// anything, naming the config, the variant and the problem.
+TEST_F(RunCommandTest, AVariantWhoseDatasetCannotBeReadStopsTheRunBeforeAnyWork) {
+  WriteText(config_, ReadText(config_) + "variants:\n"
+                                         "  - {name: elsewhere, set: {dataset.root: " +
+                         tmp_.File("nowhere") + "}}\n");
+  const std::string out = tmp_.File("early");
+  const std::string log = Run(out, "", 1);
+  EXPECT_NE(log.find(config_ + ":8:"), std::string::npos) << log;  // the variant's root
+  EXPECT_NE(log.find("dataset of variant 'elsewhere'"), std::string::npos) << log;
+  EXPECT_NE(log.find(tmp_.File("nowhere")), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(out + "/base/summary.json"));
+  EXPECT_EQ(CountFiles(out + "/base/maps", ".map"), 0);
+  EXPECT_FALSE(fs::exists(tmp_.File("cache")) && !fs::is_empty(tmp_.File("cache")));
+}
+
 // A run started without --resume into the folder of a finished run and killed must not leave
 // the old run's summary beside its own config, and readers of results refuse the folder.
 TEST_F(RunCommandTest, KilledRunOverAnEarlierRunLeavesAFolderMarkedIncomplete) {
