@@ -93,12 +93,27 @@ std::map<std::string, double> ParseTolerances(const std::vector<std::string>& sp
 
 void ValidateSummary(const JsonValue& summary, const std::string& where) {
   if (!summary.IsObject()) throw InvalidInputError(where + ": expected a JSON object");
+  int numbers = 0;
   for (const auto& metric : CheckedMetrics()) {
+    // A group of metrics ("pct_direct": {...}) that is not an object would hide its metrics.
+    const size_t dot = metric.key.find('.');
+    if (dot != std::string::npos && !summary.Has(metric.key)) {
+      const std::string group = metric.key.substr(0, dot);
+      if (summary.Has(group) && !summary.Get(group).IsObject()) {
+        throw InvalidInputError(where + ": " + group + ": expected an object of metrics, got " +
+                                WriteJson(summary.Get(group), 0));
+      }
+    }
     const JsonValue* value = Lookup(summary, metric.key);
     if (value && !value->IsNumber() && !value->IsNull()) {
       throw InvalidInputError(where + ": " + metric.key + ": expected a number or null, got " +
                               WriteJson(*value, 0));
     }
+    if (value && value->IsNumber()) ++numbers;
+  }
+  if (numbers == 0) {
+    throw InvalidInputError(where + ": no metric of a summary.json (" + KnownKeys() +
+                            "): not a summary");
   }
 }
 

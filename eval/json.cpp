@@ -239,6 +239,10 @@ class Parser {
       pos_ = start;
       Fail("malformed number '" + token + "'");
     }
+    if (!std::isfinite(x)) {
+      pos_ = start;
+      Fail("number '" + token + "' is out of range");
+    }
     return JsonValue::Number(x);
   }
 
@@ -340,7 +344,12 @@ class Parser {
     while (true) {
       SkipSpace();
       if (pos_ >= s_.size() || s_[pos_] != '"') Fail("expected a string key in object");
+      const size_t key_start = pos_;
       const std::string key = ParseString();
+      if (v.Has(key)) {
+        pos_ = key_start;
+        Fail("duplicate key \"" + key + "\" in object");
+      }
       SkipSpace();
       if (pos_ >= s_.size() || s_[pos_] != ':') Fail("expected ':' after object key");
       ++pos_;

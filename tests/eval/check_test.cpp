@@ -114,6 +114,43 @@ TEST(Check, CommandExitCodesAndUpdate) {
 }
 
 // Input check cannot trust gets exit code 3, never the 1 of a regression.
+// A baseline that checks nothing would pass every summary: one without metrics, a metric group
+// that is not an object, a key given twice, a number out of range are malformed (exit 3).
+TEST(Check, BaselinesWithoutMetricsOrWithMalformedGroupsExit3) {
+  testing::TempDir dir;
+  const std::string summary = dir.File("summary.json");
+  WriteSummaryJson(summary, BaseSummary());
+  const std::string good = testing::ReadText(summary);
+  const std::string bin = SYMEMBED_BINARY;
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"{}", "no metric of a summary.json"},
+      {"{\"source\": \"a\", \"target\": \"b\", \"status\": \"ok\"}", "no metric"},
+      {replaced("\"pct_direct\": {", "\"pct_direct\": \"x\", \"unused\": {"),
+       "pct_direct: expected an object of metrics, got \"x\""},
+      {replaced("\"flipped_pairs\": {", "\"flipped_pairs\": [1], \"unused\": {"),
+       "flipped_pairs: expected an object of metrics, got [1]"},
+      {replaced("\"pairs\": 10,", "\"pairs\": 10, \"mean_direct\": 0.01,"),
+       "duplicate key \"mean_direct\""},
+      {replaced("\"auc_direct\": 0.7", "\"auc_direct\": 1e400"), "out of range"},
+  };
+  for (const auto& [text, message] : cases) {
+    testing::WriteText(dir.File("baseline.json"), text);
+    std::string out;
+    EXPECT_EQ(testing::RunShell(bin + " check " + summary + " --baseline " +
+                                    dir.File("baseline.json"),
+                                &out),
+              3)
+        << text << "\n" << out;
+    EXPECT_NE(out.find(message), std::string::npos) << text << "\n" << out;
+  }
+}
+
 TEST(Check, MalformedOrUnfinishedInputExits3) {
   testing::TempDir dir;
   const std::string baseline = dir.File("baseline.json");
