@@ -61,6 +61,18 @@ std::string ReadFileOrThrow(const std::string& path) {
   return std::move(*bytes);
 }
 
+bool FolderIsWritable(const std::string& folder) {
+  static std::atomic<uint64_t> counter{0};
+  const std::string probe = (fs::path(folder) / (".write_probe." + std::to_string(::getpid()) +
+                                                 "." + std::to_string(counter.fetch_add(1))))
+                                .string();
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) return false;
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return true;
+}
+
 FolderLock FolderLock::Acquire(const std::string& folder, const std::string& command) {
   std::error_code ec;
   fs::create_directories(folder, ec);

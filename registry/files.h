@@ -19,6 +19,10 @@ std::optional<std::string> ReadFileBytes(const std::string& path);
 // The bytes of a file. Throws IoError "<path>: cannot read" when it cannot be opened or read.
 std::string ReadFileOrThrow(const std::string& path);
 
+// Whether a file can be created in folder (a probe file, removed at once): permissions, a
+// read-only mount or a pseudo file system (/proc) all say no.
+bool FolderIsWritable(const std::string& folder);
+
 // An advisory lock on an output folder (flock on FOLDER/.symembed.lock), held while a command
 // writes there, so that a second command into a folder in use fails at once instead of mixing
 // its outputs with the first's. The kernel releases it when the holder exits or dies. The lock

@@ -463,6 +463,14 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
     fs::create_directories(options.cache_dir, ec);
     if (ec) throw IoError(options.cache_dir + ": cannot create the cache folder: " + ec.message());
   }
+  // A cache that cannot be written stays empty: fatal when filling it is the run's only
+  // purpose, else said once (every run then computes each shape anew).
+  std::string unwritable_cache;
+  if (!options.cache_dir.empty() && !FolderIsWritable(options.cache_dir)) {
+    unwritable_cache = options.cache_dir + ": the cache folder is not writable";
+    if (options.shapes_only) throw IoError(unwritable_cache + "; a --shapes-only run writes only the cache");
+    unwritable_cache += ": per-shape stages are computed but not cached";
+  }
   // Every variant's dataset is read before anything is computed, so that a missing root or a
   // broken index of a later variant does not end the run after the earlier variants ran.
   std::set<std::string> datasets_read;
@@ -485,6 +493,7 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
     WriteFileAtomically(VariantsListPath(options.out_dir), VariantsText(config));
   }
   RunStats stats;
+  if (!unwritable_cache.empty()) stats.warnings.push_back(unwritable_cache);
   StageCounters counters;
   for (const VariantConfig* v : variants) {
     VariantRun(config, *v, registry, options, evaluation, &counters, &stats).Run();

@@ -193,6 +193,24 @@ TEST_F(RunCommandTest, AVariantWhoseDatasetCannotBeReadStopsTheRunBeforeAnyWork)
   EXPECT_FALSE(fs::exists(tmp_.File("cache")) && !fs::is_empty(tmp_.File("cache")));
 }
 
+// A cache folder that cannot be written (/proc refuses new files even to root) stays empty: a
+// run says so once and goes on; a --shapes-only run, whose only product is the cache, fails.
+TEST_F(RunCommandTest, AnUnwritableCacheIsSaidOnceAndFailsAShapesOnlyRun) {
+  std::string log;
+  EXPECT_EQ(Symembed("run " + config_ + " --jobs 2 --cache /proc --no-report --out " +
+                         tmp_.File("nocache"),
+                     &log),
+            0)
+      << log;
+  const std::string warning = "/proc: the cache folder is not writable";
+  ASSERT_NE(log.find(warning), std::string::npos) << log;
+  EXPECT_EQ(log.find(warning, log.find(warning) + 1), std::string::npos) << log;
+  EXPECT_EQ(Symembed("run " + config_ + " --shapes-only --cache /proc", &log), 1)
+      << log;
+  EXPECT_NE(log.find(warning + "; a --shapes-only run writes only the cache"), std::string::npos)
+      << log;
+}
+
 // A run started without --resume into the folder of a finished run and killed must not leave
 // the old run's summary beside its own config, and readers of results refuse the folder.
 TEST_F(RunCommandTest, KilledRunOverAnEarlierRunLeavesAFolderMarkedIncomplete) {
