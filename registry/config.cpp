@@ -422,7 +422,7 @@ bool HasPath(const YAML::Node& tree, const std::string& path) {
 }
 
 // Variant i of the config's `variants` list: its name (unique in *names) and its tree, parsed
-// afresh by `parse`, with the command-line overrides and then its own `set` applied (type
+// afresh by `parse(i)` (the tree and the index of the variant in the tree's own list), with the command-line overrides and then its own `set` applied (type
 // changes first, so that options set next to them are kept). Each override its `set` replaces
 // (PathsOverlap), or drops by changing its stage's type, is added to *shadowed, except that a
 // dropped one applies again on top when the variant is `only_variant`. Throws ConfigError.
@@ -451,8 +451,9 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
     throw ConfigError(NodeLocation(file, v["name"]) + ": " + path +
                       ".name: duplicate variant name '" + name + "'");
   }
-  YAML::Node tree = parse();
-  const YAML::Node set = static_cast<const YAML::Node&>(tree)["variants"][i]["set"];
+  const auto [parsed, index] = parse(i);
+  YAML::Node tree = parsed;
+  const YAML::Node set = static_cast<const YAML::Node&>(tree)["variants"][index]["set"];
   tree.remove("variants");
   ApplyCommandLineOverrides(tree, overrides, file);
   if (set.IsDefined() && !set.IsNull()) {
@@ -501,6 +502,49 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
   return VariantConfig{name, tree};
 }
 
+// The text a variant's tree is parsed from: text with the entries of the top-level `variants`
+// list other than entry i made blank lines (line numbers kept), so that each tree holds its own
+// entry only and the trees take memory linear in the number of variants; the variant is then
+// entry 0 of its tree's list. Text itself and i when the entries cannot be told apart by lines
+// (a flow-style list, entries sharing lines) or the rest does not parse without them.
+std::pair<std::string, size_t> VariantText(const std::string& text, const YAML::Node& root,
+                                           size_t i, const std::string& file) {
+  const YAML::Node variants = root["variants"];
+  if (root.Style() == YAML::EmitterStyle::Flow || !variants.IsSequence() ||
+      variants.Style() == YAML::EmitterStyle::Flow || i >= variants.size()) {
+    return {text, i};
+  }
+  // Entry k spans the lines [start[k], start[k + 1]); the last ends at the next top-level key.
+  std::vector<int> start;
+  for (const auto& entry : variants) start.push_back(entry.Mark().line);
+  int section_end = -1;
+  for (const auto& kv : root) {
+    const int line = kv.first.Mark().line;
+    if (line > start.back() && (section_end < 0 || line < section_end)) section_end = line;
+  }
+  for (size_t k = 1; k < start.size(); ++k) {
+    if (start[k] <= start[k - 1]) return {text, i};
+  }
+  const int keep_begin = start[i];
+  const int keep_end = i + 1 < start.size() ? start[i + 1] : section_end;
+  std::string out;
+  std::istringstream in(text);
+  std::string line;
+  for (int n = 0; std::getline(in, line); ++n) {
+    const bool other_entry = n >= start.front() && (section_end < 0 || n < section_end) &&
+                             (n < keep_begin || (keep_end >= 0 && n >= keep_end));
+    if (!other_entry) out += line;
+    out += '\n';
+  }
+  try {
+    const YAML::Node tree = LoadConfigYaml(out, file);
+    const YAML::Node list = tree["variants"];
+    if (list.IsSequence() && list.size() == 1) return {out, 0};
+  } catch (const ConfigError&) {
+  }
+  return {text, i};
+}
+
 }  // namespace
 
 ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::string& file,
@@ -508,10 +552,7 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
                                        const std::vector<std::string>& overrides,
                                        const std::string& only_variant) {
   const std::string text = SubstituteText(yaml_text, file);
-  // Each variant gets its own parse of the text, so that every node keeps its file position
-  // (YAML::Clone drops positions) and no node is shared between variants.
-  auto parse = [&]() { return LoadConfigYaml(text, file); };
-  YAML::Node root = parse();
+  YAML::Node root = LoadConfigYaml(text, file);
   RejectDuplicateKeys(root, file, "");
   if (!root.IsMap())
     throw ConfigError(file + ": expected a YAML map with keys " + JoinSet(kTopLevelKeys));
@@ -527,13 +568,25 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
   config.file = file;
   const YAML::Node& croot = root;
   ReadTopLevel(croot, file, &config);
+  const YAML::Node variants = croot["variants"];
+  if (variants.IsDefined() && variants.IsSequence() && variants.size() > kMaxVariants) {
+    throw ConfigError(NodeLocation(file, variants) + ": variants: " +
+                      std::to_string(variants.size()) + " variants; at most " +
+                      std::to_string(kMaxVariants) + " in one config (split the study)");
+  }
+  // Each variant gets its own parse of the text with its own entry only (VariantText), so that
+  // every node keeps its file position (YAML::Clone drops positions), no node is shared between
+  // variants, and the trees take memory linear in the number of variants.
+  auto parse = [&](size_t i) -> std::pair<YAML::Node, size_t> {
+    const auto [variant_text, index] = VariantText(text, croot, i, file);
+    return {LoadConfigYaml(variant_text, file), index};
+  };
 
-  YAML::Node base = parse();
+  YAML::Node base = LoadConfigYaml(text, file);
   base.remove("variants");
   ApplyCommandLineOverrides(base, overrides, file);
   config.variants.push_back(VariantConfig{"base", base});
 
-  const YAML::Node variants = croot["variants"];
   if (variants.IsDefined() && !variants.IsNull()) {
     if (!variants.IsSequence()) {
       throw ConfigError(NodeLocation(file, variants) +

@@ -132,6 +132,8 @@ std::string ResolvedConfigYaml(const ExperimentConfig& config, const VariantConf
 // tree infinite), and for text whose aliases expand to more than kMaxYamlNodes nodes (an alias
 // bomb), before the tree is built.
 constexpr long long kMaxYamlNodes = 1000000;
+// Variants in one config (ParseExperimentConfig refuses more, naming the list).
+constexpr size_t kMaxVariants = 10000;
 YAML::Node LoadConfigYaml(const std::string& text, const std::string& file);
 
 // Replaces ${VAR} and ${VAR:-default} in text; an unset VAR without default throws ConfigError
