@@ -422,10 +422,11 @@ bool HasPath(const YAML::Node& tree, const std::string& path) {
 }
 
 // Variant i of the config's `variants` list: its name (unique in *names) and its tree, parsed
-// afresh by `parse(i)` (the tree and the index of the variant in the tree's own list), with the command-line overrides and then its own `set` applied (type
-// changes first, so that options set next to them are kept). Each override its `set` replaces
-// (PathsOverlap), or drops by changing its stage's type, is added to *shadowed, except that a
-// dropped one applies again on top when the variant is `only_variant`. Throws ConfigError.
+// afresh by `parse(i)` (the tree and the index of the variant in the tree's own list), with the
+// command-line overrides and then its own `set` applied (type changes first, so that options set
+// next to them are kept). Each override its `set` replaces (PathsOverlap), or drops by changing
+// its stage's type, is added to *shadowed, except that a dropped one applies again on top when
+// the variant is `only_variant`. Throws ConfigError.
 template <typename Parse>
 VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& parse,
                           const std::vector<std::string>& overrides, const std::string& file,
