@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "core/errors.h"
+#include "core/map_io.h"
 #include "registry/files.h"
 
 namespace fs = std::filesystem;
@@ -27,6 +29,72 @@ std::vector<fs::path> FilesWithExtension(const std::string& dir, const std::stri
 
 void CopyIfPresent(const fs::path& from, const std::string& to) {
   if (auto bytes = ReadFileBytes(from.string())) WriteFileAtomically(to, *bytes);
+}
+
+// Column `name` of a CSV table's header; throws InvalidInputError naming `where` when absent.
+size_t Column(const std::vector<std::string>& header, const std::string& name,
+              const std::string& where) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  if (it == header.end()) throw InvalidInputError(where + ": no column '" + name + "'");
+  return static_cast<size_t>(it - header.begin());
+}
+
+// The pairs a finished run's variant folder says it computed (its pairs.csv), each with whether
+// it succeeded; the records and maps of the folder are proved against this list, as --resume
+// proves them, so that a record or map lost or cut short after the run is found, not merged.
+// A folder whose evaluation wrote no pairs.csv lists the pairs of its records.
+std::vector<std::pair<DatasetPair, bool>> ListedPairs(const std::string& dir,
+                                                       RunEvaluation& evaluation) {
+  const std::string path = dir + "/pairs.csv";
+  const std::optional<std::string> text = ReadFileBytes(path);
+  if (!text) {
+    std::vector<std::pair<DatasetPair, bool>> pairs;
+    for (const fs::path& file : FilesWithExtension(dir + "/pairs", ".rec")) {
+      pairs.push_back({evaluation.PairOfRecord(ReadFileOrThrow(file.string()), file.string()), true});
+    }
+    return pairs;
+  }
+  const auto rows = ParseCsv(*text, path);
+  if (rows.empty()) throw InvalidInputError(path + ": empty");
+  const size_t source = Column(rows[0], "source", path), target = Column(rows[0], "target", path),
+               status = Column(rows[0], "status", path);
+  std::vector<std::pair<DatasetPair, bool>> pairs;
+  for (size_t r = 1; r < rows.size(); ++r) {
+    if (rows[r].size() != rows[0].size()) {
+      throw InvalidInputError(path + ": row " + std::to_string(r + 1) + " has " +
+                              std::to_string(rows[r].size()) + " fields, the header " +
+                              std::to_string(rows[0].size()));
+    }
+    pairs.push_back({{rows[r][source], rows[r][target]}, rows[r][status] == "ok"});
+  }
+  return pairs;
+}
+
+// Input vertex counts of the shapes of a finished run's variant folder (its shapes.csv), empty
+// when its preprocess stage reports none (the standard one does).
+std::map<std::string, int> InputVertices(const std::string& dir) {
+  const std::string path = dir + "/shapes.csv";
+  const std::optional<std::string> text = ReadFileBytes(path);
+  std::map<std::string, int> counts;
+  if (!text) return counts;
+  const auto rows = ParseCsv(*text, path);
+  if (rows.empty()) return counts;
+  const auto has = [&](const char* name) {
+    return std::find(rows[0].begin(), rows[0].end(), name) != rows[0].end();
+  };
+  if (!has("shape") || !has("input_vertices")) return counts;
+  const size_t shape = Column(rows[0], "shape", path);
+  const size_t vertices = Column(rows[0], "input_vertices", path);
+  for (size_t r = 1; r < rows.size(); ++r) {
+    if (rows[r].size() <= std::max(shape, vertices)) continue;
+    try {
+      counts[rows[r][shape]] = std::stoi(rows[r][vertices]);
+    } catch (const std::exception&) {
+      throw InvalidInputError(path + ": row " + std::to_string(r + 1) +
+                              ": input_vertices is not a number");
+    }
+  }
+  return counts;
 }
 
 }  // namespace
@@ -65,17 +133,35 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
                                 "/config.yaml");
       }
       results.merged_from.push_back(dir);
-      for (const fs::path& file : FilesWithExtension(dir + "/pairs", ".rec")) {
-        const std::string text = ReadFileOrThrow(file.string());
-        const DatasetPair pair = evaluation.PairOfRecord(text, file.string());
-        const std::string stem = PairStem(pair.source, pair.target);
-        if (file.stem().string() != stem) {
-          throw InvalidInputError(file.string() + ": holds the record of " + stem);
+      const std::map<std::string, int> vertices = InputVertices(dir);
+      const std::string rerun = "; rerun this run (or shard) with --resume, which computes it again";
+      for (const auto& [listed, ok] : ListedPairs(dir, evaluation)) {
+        if (!ok) continue;  // a failed pair comes with its failures.csv line
+        const std::string file = PairRecordPath(dir, listed.source, listed.target);
+        const std::optional<std::string> text = ReadFileBytes(file);
+        if (!text) {
+          throw InvalidInputError(dir + "/pairs.csv lists " + listed.source + " -> " +
+                                  listed.target + " as ok, but its record " + file +
+                                  " is missing" + rerun);
         }
-        records[{pair.source, pair.target}] = text;
-        WriteFileAtomically(PairRecordPath(results.dir, pair.source, pair.target), text);
-        CopyIfPresent(PairMapPath(dir, pair.source, pair.target),
-                      PairMapPath(results.dir, pair.source, pair.target));
+        const DatasetPair pair = evaluation.PairOfRecord(*text, file);
+        if (pair.source != listed.source || pair.target != listed.target) {
+          throw InvalidInputError(file + ": holds the record of " + pair.source + " -> " +
+                                  pair.target);
+        }
+        const std::string map = PairMapPath(dir, pair.source, pair.target);
+        // The map's length and ids against the shapes' vertex counts where shapes.csv gives them.
+        const auto source_vertices = vertices.find(pair.source);
+        const auto target_vertices = vertices.find(pair.target);
+        try {
+          ReadMapFile(map, 1, source_vertices == vertices.end() ? -1 : source_vertices->second,
+                      target_vertices == vertices.end() ? -1 : target_vertices->second);
+        } catch (const Error& e) {
+          throw InvalidInputError(std::string("the map of ") + file + ": " + e.what() + rerun);
+        }
+        records[{pair.source, pair.target}] = *text;
+        WriteFileAtomically(PairRecordPath(results.dir, pair.source, pair.target), *text);
+        CopyIfPresent(map, PairMapPath(results.dir, pair.source, pair.target));
       }
       for (const fs::path& file : FilesWithExtension(dir + "/shapes", ".rec")) {
         CopyIfPresent(file, ShapeRecordPath(results.dir, file.stem().string()));

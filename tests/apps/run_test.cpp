@@ -285,6 +285,54 @@ TEST_F(RunCommandTest, ShardsMergedEqualASingleRun) {
   EXPECT_EQ(OutputsWithoutTimings(tmp_.File("merged")), OutputsWithoutTimings(tmp_.File("full")));
 }
 
+// merge proves each pair of a shard as --resume does: a record deleted, a map deleted or cut
+// short after the shard finished is named (with what to do), not merged as ok; --resume of the
+// shard computes it again and the merge goes through.
+TEST_F(RunCommandTest, MergeProvesEachPairOfItsShards) {
+  std::string shards;
+  for (int i = 0; i < 2; ++i) {
+    const std::string dir = tmp_.File("part" + std::to_string(i));
+    Run(dir, "--shard " + std::to_string(i) + "/2");
+    shards += " " + dir;
+  }
+  const std::string pairs = tmp_.File("part0/base/pairs");
+  const std::string maps = tmp_.File("part0/base/maps");
+  std::vector<fs::path> records;
+  for (const auto& entry : fs::directory_iterator(pairs)) records.push_back(entry.path());
+  std::sort(records.begin(), records.end());
+  ASSERT_GE(records.size(), 3u);
+  const auto map_of = [&](const fs::path& record) {
+    return maps + "/" + record.stem().string() + ".map";
+  };
+  const auto merge_fails_naming = [&](const std::string& what) {
+    std::string log;
+    EXPECT_EQ(Symembed("merge --no-report --out " + tmp_.File("merged") + shards, &log), 1)
+        << log;
+    EXPECT_NE(log.find(what), std::string::npos) << log;
+    EXPECT_NE(log.find("rerun this run (or shard) with --resume"), std::string::npos) << log;
+  };
+  // A map cut to 10 lines (restored after), a map deleted (restored after), a record deleted.
+  const std::string map = map_of(records[2]), full_map = ReadText(map);
+  std::string head;
+  for (size_t line = 0, at = 0; line < 10; ++line) {
+    const size_t end = full_map.find('\n', at);
+    head += full_map.substr(at, end + 1 - at);
+    at = end + 1;
+  }
+  WriteText(map, head);
+  merge_fails_naming(map + ":");
+  WriteText(map, full_map);
+  fs::remove(map);
+  merge_fails_naming(map);
+  WriteText(map, full_map);
+  fs::remove(records[0]);
+  merge_fails_naming("as ok, but its record " + records[0].string() + " is missing");
+  Run(tmp_.File("part0"), "--shard 0/2 --resume");
+  std::string log;
+  EXPECT_EQ(Symembed("merge --no-report --out " + tmp_.File("merged") + shards, &log), 0) << log;
+  EXPECT_EQ(CountFiles(tmp_.File("merged/base/pairs"), ".rec"), 10);
+}
+
 // What `symembed slurm` runs: shapes-only shards (each shape computed in one), pair shards
 // split by target; a shard that was killed and one that never started make merge refuse and
 // print the commands that finish them, which it then merges into the single run's outputs.
