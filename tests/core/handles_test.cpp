@@ -141,7 +141,9 @@ TEST_P(GluedKinds, GluedLimbsLoseTheirShortCircuit) {
       short_circuited += short_circuit;
     }
     EXPECT_LE(short_circuited, 1) << glued.shapes[p].name << ": " << tubes << " tubes";
-    if (GetParam() == FigureKind::kHumanoid) EXPECT_EQ(short_circuited, 0) << glued.shapes[p].name;
+    if (GetParam() == FigureKind::kHumanoid) {
+      EXPECT_EQ(short_circuited, 0) << glued.shapes[p].name;
+    }
   }
   EXPECT_EQ(checked, 2);
 }
