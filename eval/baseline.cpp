@@ -48,13 +48,23 @@ bool InGroup(const std::string& key, const std::string& prefix) {
 }
 
 // The value of a flattened key ("group.sub": only the first dot separates, "0.05" has its own).
-const JsonValue* Lookup(const JsonValue& summary, const std::string& key) {
+// A metric of a summary ("mean_direct", or "pct_direct.0.05" in the group "pct_direct"), or
+// nullptr when absent. Throws InvalidInputError naming `where` when the metric's group is there
+// but is not an object (it would hide its metrics as absent).
+const JsonValue* Lookup(const JsonValue& summary, const std::string& key,
+                        const std::string& where) {
   if (summary.Has(key)) return &summary.Get(key);
   const size_t dot = key.find('.');
   if (dot == std::string::npos) return nullptr;
-  const JsonValue& group = summary.Get(key.substr(0, dot));
+  const std::string name = key.substr(0, dot);
+  if (!summary.Has(name)) return nullptr;
+  const JsonValue& group = summary.Get(name);
+  if (!group.IsObject()) {
+    throw InvalidInputError(where + ": " + name + ": expected an object of metrics, got " +
+                            WriteJson(group, 0));
+  }
   const std::string sub = key.substr(dot + 1);
-  return group.IsObject() && group.Has(sub) ? &group.Get(sub) : nullptr;
+  return group.Has(sub) ? &group.Get(sub) : nullptr;
 }
 
 std::string Format(double x) {
@@ -95,16 +105,7 @@ void ValidateSummary(const JsonValue& summary, const std::string& where) {
   if (!summary.IsObject()) throw InvalidInputError(where + ": expected a JSON object");
   int numbers = 0;
   for (const auto& metric : CheckedMetrics()) {
-    // A group of metrics ("pct_direct": {...}) that is not an object would hide its metrics.
-    const size_t dot = metric.key.find('.');
-    if (dot != std::string::npos && !summary.Has(metric.key)) {
-      const std::string group = metric.key.substr(0, dot);
-      if (summary.Has(group) && !summary.Get(group).IsObject()) {
-        throw InvalidInputError(where + ": " + group + ": expected an object of metrics, got " +
-                                WriteJson(summary.Get(group), 0));
-      }
-    }
-    const JsonValue* value = Lookup(summary, metric.key);
+    const JsonValue* value = Lookup(summary, metric.key, where);
     if (value && !value->IsNumber() && !value->IsNull()) {
       throw InvalidInputError(where + ": " + metric.key + ": expected a number or null, got " +
                               WriteJson(*value, 0));
@@ -131,8 +132,8 @@ CheckResult CompareSummaries(const JsonValue& baseline, const JsonValue& current
       if (key != metric.key && InGroup(metric.key, key)) c.tolerance = value;
     }
     if (auto it = tolerances.find(metric.key); it != tolerances.end()) c.tolerance = it->second;
-    const JsonValue* old_value = Lookup(baseline, metric.key);
-    const JsonValue* new_value = Lookup(current, metric.key);
+    const JsonValue* old_value = Lookup(baseline, metric.key, "baseline");
+    const JsonValue* new_value = Lookup(current, metric.key, "summary");
     c.in_baseline = old_value != nullptr;
     c.in_current = new_value != nullptr;
     c.baseline = old_value ? old_value->NumberOr(nan) : nan;

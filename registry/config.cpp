@@ -503,17 +503,20 @@ VariantConfig ReadVariant(const YAML::Node& variants, size_t i, const Parse& par
   return VariantConfig{name, tree};
 }
 
-// The text a variant's tree is parsed from: text with the entries of the top-level `variants`
-// list other than entry i made blank lines (line numbers kept), so that each tree holds its own
-// entry only and the trees take memory linear in the number of variants; the variant is then
-// entry 0 of its tree's list. Text itself and i when the entries cannot be told apart by lines
-// (a flow-style list, entries sharing lines) or the rest does not parse without them.
-std::pair<std::string, size_t> VariantText(const std::string& text, const YAML::Node& root,
+// The tree of variant i: text with the entries of the top-level `variants` list other than
+// entry i made blank lines (line numbers kept) and parsed, so that each tree holds its own entry
+// only and the trees take memory linear in the number of variants; the variant is then entry 0
+// of its tree's list. The whole text and i when the entries cannot be told apart by lines (a
+// flow-style list, entries sharing lines) or the rest does not parse without them.
+std::pair<YAML::Node, size_t> VariantTree(const std::string& text, const YAML::Node& root,
                                            size_t i, const std::string& file) {
+  const auto whole = [&]() -> std::pair<YAML::Node, size_t> {
+    return {LoadConfigYaml(text, file), i};
+  };
   const YAML::Node variants = root["variants"];
   if (root.Style() == YAML::EmitterStyle::Flow || !variants.IsSequence() ||
       variants.Style() == YAML::EmitterStyle::Flow || i >= variants.size()) {
-    return {text, i};
+    return whole();
   }
   // Entry k spans the lines [start[k], start[k + 1]); the last ends at the next top-level key.
   std::vector<int> start;
@@ -524,7 +527,7 @@ std::pair<std::string, size_t> VariantText(const std::string& text, const YAML::
     if (line > start.back() && (section_end < 0 || line < section_end)) section_end = line;
   }
   for (size_t k = 1; k < start.size(); ++k) {
-    if (start[k] <= start[k - 1]) return {text, i};
+    if (start[k] <= start[k - 1]) return whole();
   }
   const int keep_begin = start[i];
   const int keep_end = i + 1 < start.size() ? start[i + 1] : section_end;
@@ -538,12 +541,12 @@ std::pair<std::string, size_t> VariantText(const std::string& text, const YAML::
     out += '\n';
   }
   try {
-    const YAML::Node tree = LoadConfigYaml(out, file);
-    const YAML::Node list = tree["variants"];
-    if (list.IsSequence() && list.size() == 1) return {out, 0};
+    YAML::Node tree = LoadConfigYaml(out, file);
+    const YAML::Node list = static_cast<const YAML::Node&>(tree)["variants"];
+    if (list.IsSequence() && list.size() == 1) return {tree, 0};
   } catch (const ConfigError&) {
   }
-  return {text, i};
+  return whole();
 }
 
 }  // namespace
@@ -575,13 +578,10 @@ ExperimentConfig ParseExperimentConfig(const std::string& yaml_text, const std::
                       std::to_string(variants.size()) + " variants; at most " +
                       std::to_string(kMaxVariants) + " in one config (split the study)");
   }
-  // Each variant gets its own parse of the text with its own entry only (VariantText), so that
+  // Each variant gets its own parse of the text with its own entry only (VariantTree), so that
   // every node keeps its file position (YAML::Clone drops positions), no node is shared between
   // variants, and the trees take memory linear in the number of variants.
-  auto parse = [&](size_t i) -> std::pair<YAML::Node, size_t> {
-    const auto [variant_text, index] = VariantText(text, croot, i, file);
-    return {LoadConfigYaml(variant_text, file), index};
-  };
+  auto parse = [&](size_t i) { return VariantTree(text, croot, i, file); };
 
   YAML::Node base = LoadConfigYaml(text, file);
   base.remove("variants");

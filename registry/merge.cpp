@@ -44,13 +44,14 @@ size_t Column(const std::vector<std::string>& header, const std::string& name,
 // proves them, so that a record or map lost or cut short after the run is found, not merged.
 // A folder whose evaluation wrote no pairs.csv lists the pairs of its records.
 std::vector<std::pair<DatasetPair, bool>> ListedPairs(const std::string& dir,
-                                                       RunEvaluation& evaluation) {
+                                                      RunEvaluation& evaluation) {
   const std::string path = dir + "/pairs.csv";
   const std::optional<std::string> text = ReadFileBytes(path);
   if (!text) {
     std::vector<std::pair<DatasetPair, bool>> pairs;
     for (const fs::path& file : FilesWithExtension(dir + "/pairs", ".rec")) {
-      pairs.push_back({evaluation.PairOfRecord(ReadFileOrThrow(file.string()), file.string()), true});
+      const std::string text = ReadFileOrThrow(file.string());
+      pairs.push_back({evaluation.PairOfRecord(text, file.string()), true});
     }
     return pairs;
   }
@@ -79,12 +80,11 @@ std::map<std::string, int> InputVertices(const std::string& dir) {
   if (!text) return counts;
   const auto rows = ParseCsv(*text, path);
   if (rows.empty()) return counts;
-  const auto has = [&](const char* name) {
-    return std::find(rows[0].begin(), rows[0].end(), name) != rows[0].end();
-  };
-  if (!has("shape") || !has("input_vertices")) return counts;
-  const size_t shape = Column(rows[0], "shape", path);
-  const size_t vertices = Column(rows[0], "input_vertices", path);
+  const auto shape_column = std::find(rows[0].begin(), rows[0].end(), "shape");
+  const auto vertices_column = std::find(rows[0].begin(), rows[0].end(), "input_vertices");
+  if (shape_column == rows[0].end() || vertices_column == rows[0].end()) return counts;
+  const size_t shape = static_cast<size_t>(shape_column - rows[0].begin());
+  const size_t vertices = static_cast<size_t>(vertices_column - rows[0].begin());
   for (size_t r = 1; r < rows.size(); ++r) {
     if (rows[r].size() <= std::max(shape, vertices)) continue;
     try {
@@ -134,7 +134,8 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
       }
       results.merged_from.push_back(dir);
       const std::map<std::string, int> vertices = InputVertices(dir);
-      const std::string rerun = "; rerun this run (or shard) with --resume, which computes it again";
+      const std::string rerun =
+          "; rerun this run (or shard) with --resume, which computes it again";
       for (const auto& [listed, ok] : ListedPairs(dir, evaluation)) {
         if (!ok) continue;  // a failed pair comes with its failures.csv line
         const std::string file = PairRecordPath(dir, listed.source, listed.target);
@@ -149,19 +150,22 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
           throw InvalidInputError(file + ": holds the record of " + pair.source + " -> " +
                                   pair.target);
         }
+        // The map, read once: its length and ids against the shapes' vertex counts where
+        // shapes.csv gives them, then its bytes copied.
         const std::string map = PairMapPath(dir, pair.source, pair.target);
-        // The map's length and ids against the shapes' vertex counts where shapes.csv gives them.
+        const std::optional<std::string> map_text = ReadFileBytes(map);
         const auto source_vertices = vertices.find(pair.source);
         const auto target_vertices = vertices.find(pair.target);
         try {
-          ReadMapFile(map, 1, source_vertices == vertices.end() ? -1 : source_vertices->second,
-                      target_vertices == vertices.end() ? -1 : target_vertices->second);
+          if (!map_text) throw IoError(map + ": cannot read");
+          ParseMap(*map_text, 1, source_vertices == vertices.end() ? -1 : source_vertices->second,
+                   target_vertices == vertices.end() ? -1 : target_vertices->second, map);
         } catch (const Error& e) {
           throw InvalidInputError(std::string("the map of ") + file + ": " + e.what() + rerun);
         }
         records[{pair.source, pair.target}] = *text;
         WriteFileAtomically(PairRecordPath(results.dir, pair.source, pair.target), *text);
-        CopyIfPresent(map, PairMapPath(results.dir, pair.source, pair.target));
+        WriteFileAtomically(PairMapPath(results.dir, pair.source, pair.target), *map_text);
       }
       for (const fs::path& file : FilesWithExtension(dir + "/shapes", ".rec")) {
         CopyIfPresent(file, ShapeRecordPath(results.dir, file.stem().string()));

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <set>
 
 #include "core/map_io.h"
@@ -61,9 +62,10 @@ std::string VariantsText(const ExperimentConfig& config) {
 // The work of one variant.
 class VariantRun {
  public:
+  // `indexes`: the datasets RunExperiment read, by OptionsText of their stage.
   VariantRun(const ExperimentConfig& config, const VariantConfig& variant, const Registry& registry,
              const RunOptions& options, RunEvaluation& evaluation, StageCounters* counters,
-             RunStats* stats)
+             RunStats* stats, const std::map<std::string, DatasetIndex>& indexes)
       : config_(config),
         variant_(variant),
         options_(options),
@@ -72,11 +74,11 @@ class VariantRun {
         stats_(stats),
         pipeline_(BuildPipeline(config, variant, registry)),
         dir_(options.out_dir + "/" + variant.name),
-        cache_(options.cache_dir) {}
+        cache_(options.cache_dir),
+        index_(indexes.at(OptionsText(*pipeline_.dataset))) {}
 
   void Run() {
     if (options_.shapes_only) {
-      index_ = pipeline_.dataset->Load();
       ComputeShapes(ShapesOfShard(ShapesOfPairs(SortedPairs(index_.pairs)), options_.shard_index,
                                   options_.shard_count));
       stats_->failures.insert(stats_->failures.end(), failures_.begin(), failures_.end());
@@ -98,7 +100,6 @@ class VariantRun {
     MarkInProgress(dir_, "symembed run (variant " + variant_.name + ")");
     if (!options_.resume) RemoveEarlierOutputs();
     WriteFileAtomically(VariantConfigPath(dir_), resolved);
-    index_ = pipeline_.dataset->Load();
     SelectPairs();
     ComputeShapes(ShapesOfPending());
     VerifyKeptPairs();
@@ -390,7 +391,7 @@ class VariantRun {
   Pipeline pipeline_;
   std::string dir_;
   DiskCache cache_;
-  DatasetIndex index_;
+  const DatasetIndex& index_;
   std::vector<DatasetPair> pairs_;
   std::vector<std::string> records_;
   std::vector<int> pending_;
@@ -468,18 +469,21 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
   std::string unwritable_cache;
   if (!options.cache_dir.empty() && !FolderIsWritable(options.cache_dir)) {
     unwritable_cache = options.cache_dir + ": the cache folder is not writable";
-    if (options.shapes_only) throw IoError(unwritable_cache + "; a --shapes-only run writes only the cache");
+    if (options.shapes_only) {
+      throw IoError(unwritable_cache + "; a --shapes-only run writes only the cache");
+    }
     unwritable_cache += ": per-shape stages are computed but not cached";
   }
   // Every variant's dataset is read before anything is computed, so that a missing root or a
-  // broken index of a later variant does not end the run after the earlier variants ran.
-  std::set<std::string> datasets_read;
+  // broken index of a later variant does not end the run after the earlier variants ran; each
+  // distinct dataset once, for every variant that names it.
+  std::map<std::string, DatasetIndex> indexes;
   for (const VariantConfig* v : variants) {
     const Pipeline pipeline = BuildPipeline(config, *v, registry);
     const std::string key = OptionsText(*pipeline.dataset);
-    if (!datasets_read.insert(key).second) continue;
+    if (indexes.count(key)) continue;
     try {
-      pipeline.dataset->Load();
+      indexes[key] = pipeline.dataset->Load();
     } catch (const Error& e) {
       // Where the root was given (a variant's override has its own line), else the section.
       const YAML::Node dataset = v->tree["dataset"];
@@ -496,7 +500,7 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
   if (!unwritable_cache.empty()) stats.warnings.push_back(unwritable_cache);
   StageCounters counters;
   for (const VariantConfig* v : variants) {
-    VariantRun(config, *v, registry, options, evaluation, &counters, &stats).Run();
+    VariantRun(config, *v, registry, options, evaluation, &counters, &stats, indexes).Run();
   }
   if (!options.shapes_only) {
     std::vector<std::string> names;

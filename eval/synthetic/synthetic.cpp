@@ -111,6 +111,16 @@ std::vector<bool> ChosenPoses(int n, double fraction, uint32_t seed) {
   return chosen;
 }
 
+// Keeps a seeded subset of `count` of the pairs (all when count is 0 or not below their
+// number), in their order.
+void KeepSeededSubset(std::vector<std::pair<int, int>>* pairs, int count, uint32_t seed) {
+  if (count <= 0 || count >= static_cast<int>(pairs->size())) return;
+  SynthRandom random(seed);
+  Shuffle(*pairs, random);
+  pairs->resize(count);
+  std::sort(pairs->begin(), pairs->end());
+}
+
 // Offset of a cross class's stream index from its kind's (FigureKind values are small).
 constexpr uint64_t kCrossStreams = 64;
 
@@ -155,13 +165,9 @@ std::vector<std::pair<int, int>> CrossClassPairs(FigureKind kind, const SynthOpt
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) pairs.push_back({i, j});
   }
-  if (options.pairs > 0 && options.pairs < static_cast<int>(pairs.size())) {
-    SynthRandom random(DeriveSeed(static_cast<uint64_t>(options.seed), "cross_pairs",
-                                  static_cast<uint64_t>(kind)));
-    Shuffle(pairs, random);
-    pairs.resize(options.pairs);
-    std::sort(pairs.begin(), pairs.end());
-  }
+  KeepSeededSubset(&pairs, options.pairs,
+                   DeriveSeed(static_cast<uint64_t>(options.seed), "cross_pairs",
+                              static_cast<uint64_t>(kind)));
   return pairs;
 }
 
@@ -294,12 +300,7 @@ SynthClass GenerateClass(FigureKind kind, const SynthOptions& options, ClassBody
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) out.pairs.push_back({i, j});
   }
-  if (options.pairs > 0 && options.pairs < static_cast<int>(out.pairs.size())) {
-    SynthRandom random(DeriveSeed(seed, "pairs", k));
-    Shuffle(out.pairs, random);
-    out.pairs.resize(options.pairs);
-    std::sort(out.pairs.begin(), out.pairs.end());
-  }
+  KeepSeededSubset(&out.pairs, options.pairs, DeriveSeed(seed, "pairs", k));
   return out;
 }
 

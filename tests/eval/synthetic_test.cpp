@@ -66,6 +66,26 @@ std::vector<double> Dijkstra(const Surface& s, int source) {
   return d;
 }
 
+// The mean relative change |d_b - d_a| / d_a of edge-graph distances from 8 sources to every
+// vertex of a and b (same vertex ids), each shape's distances divided by its scale; vertices
+// nearer than 0.05 scale units to the source, where the relative change is ill-conditioned, are
+// left out.
+double MeanRelativeDistanceChange(const Surface& a, const Surface& b, double scale_a = 1.0,
+                                  double scale_b = 1.0) {
+  double sum = 0.0;
+  int count = 0;
+  for (int k = 0; k < 8; ++k) {
+    const int source = (k * 7919) % a.NumVertices();
+    const auto da = Dijkstra(a, source), db = Dijkstra(b, source);
+    for (size_t v = 0; v < da.size(); ++v) {
+      if (da[v] / scale_a < 0.05) continue;
+      sum += std::abs(db[v] / scale_b - da[v] / scale_a) / (da[v] / scale_a);
+      ++count;
+    }
+  }
+  return sum / count;
+}
+
 SynthOptions Options(FigureKind kind, int poses, int vertices) {
   SynthOptions o;
   o.kinds = {kind};
@@ -177,23 +197,10 @@ TEST_P(SyntheticKinds, GeodesicsAreNearlyPreservedWithoutNonisometricScaling) {
   o.nonisometric = 0.3;
   const SynthClass scaled = GenerateClass(GetParam(), o);
   const Surface& rest = iso.rest.surface;
-  auto mean_change = [&](const Surface& posed) {
-    double sum = 0.0;
-    int count = 0;
-    for (int k = 0; k < 8; ++k) {
-      const int source = (k * 7919) % rest.NumVertices();
-      const auto d0 = Dijkstra(rest, source), d1 = Dijkstra(posed, source);
-      for (size_t v = 0; v < d0.size(); ++v) {
-        if (d0[v] < 0.05) continue;  // relative change is ill-conditioned near the source
-        sum += std::abs(d1[v] - d0[v]) / d0[v];
-        ++count;
-      }
-    }
-    return sum / count;
-  };
   for (size_t p = 0; p < iso.shapes.size(); ++p) {
-    const double iso_change = mean_change(iso.shapes[p].shape.surface);
-    const double scaled_change = mean_change(scaled.shapes[p].shape.surface);
+    const double iso_change = MeanRelativeDistanceChange(rest, iso.shapes[p].shape.surface);
+    const double scaled_change =
+        MeanRelativeDistanceChange(rest, scaled.shapes[p].shape.surface);
     EXPECT_LT(iso_change, 0.06) << iso.shapes[p].name;
     EXPECT_GT(scaled_change, 1.5 * iso_change) << iso.shapes[p].name;
     RecordProperty(iso.shapes[p].name + "_iso", std::to_string(iso_change));
@@ -473,20 +480,9 @@ TEST_P(SyntheticKinds, CrossClassBodiesShareTheMeshButNotTheProportions) {
   }
   // Mean relative change of edge-graph distances (in units of each shape's sqrt(area)) from 8
   // sources: between the classes at least twice that within the base class.
-  auto change = [&](const Surface& a, const Surface& b) {
-    const double sa = std::sqrt(FaceAreas(a).sum()), sb = std::sqrt(FaceAreas(b).sum());
-    double sum = 0.0;
-    int count = 0;
-    for (int k = 0; k < 8; ++k) {
-      const int source = (k * 7919) % a.NumVertices();
-      const auto da = Dijkstra(a, source), db = Dijkstra(b, source);
-      for (size_t v = 0; v < da.size(); ++v) {
-        if (da[v] < 0.05 * sa) continue;
-        sum += std::abs(db[v] / sb - da[v] / sa) / (da[v] / sa);
-        ++count;
-      }
-    }
-    return sum / count;
+  auto change = [](const Surface& a, const Surface& b) {
+    return MeanRelativeDistanceChange(a, b, std::sqrt(FaceAreas(a).sum()),
+                                      std::sqrt(FaceAreas(b).sum()));
   };
   const double within = change(base.shapes[0].shape.surface, base.shapes[1].shape.surface);
   const double across = change(base.shapes[0].shape.surface, cross.shapes[1].shape.surface);

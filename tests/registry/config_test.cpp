@@ -183,13 +183,19 @@ TEST(Config, RecursiveAliasesAndAliasBombsAreRefusedAtOnce) {
 // Each variant's tree is parsed from the text with its own entry of the list only (positions
 // kept), whatever the list's style; a list past kMaxVariants entries is refused.
 TEST(Config, VariantsKeepTheirPositionsInBlockAndFlowListsAndAreBounded) {
-  const std::string block = std::string(kConfig) + "  - {name: bad, set: {pipeline.sampling.count: x}}\n";
+  const std::string block =
+      std::string(kConfig) + "  - {name: bad, set: {pipeline.sampling.count: x}}\n";
   std::string msg = ErrorOf(block);
   EXPECT_EQ(msg.find("exp.yaml:10:"), 0u) << msg;
   EXPECT_NE(msg.find("pipeline.sampling.count: expected an integer"), std::string::npos) << msg;
   EXPECT_NE(msg.find("(in variant 'bad')"), std::string::npos) << msg;
-  const std::string flow = Replace(kConfig, "variants:\n  - {name: isomap, set: {pipeline.embedding.type: isomap}}\n  - {name: more_samples, set: {pipeline.sampling.count: 2000}}\n",
-                                   "variants: [{name: isomap, set: {pipeline.embedding.type: isomap}}, {name: more_samples, set: {pipeline.sampling.count: 2000}}]\n");
+  const std::string flow =
+      Replace(kConfig,
+              "variants:\n"
+              "  - {name: isomap, set: {pipeline.embedding.type: isomap}}\n"
+              "  - {name: more_samples, set: {pipeline.sampling.count: 2000}}\n",
+              "variants: [{name: isomap, set: {pipeline.embedding.type: isomap}},"
+              " {name: more_samples, set: {pipeline.sampling.count: 2000}}]\n");
   const ExperimentConfig c = ParseExperimentConfig(flow, "exp.yaml", FakeRegistry());
   ASSERT_EQ(c.variants.size(), 3u);
   EXPECT_EQ(BuildPipeline(c, *c.Find("more_samples"), FakeRegistry())
