@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 
 namespace symembed {
 
@@ -247,6 +248,15 @@ std::vector<int> NearestSeeds(const MeshGraph& g, const std::vector<int>& seeds)
     });
   }
   return label;
+}
+
+Eigen::MatrixXd EdgeGraphDistances(const Surface& surface, const std::vector<int>& sources,
+                                   int threads) {
+  const MeshGraph graph = BuildMeshGraph(surface);
+  return ParallelRows(sources, graph.NumVertices(), threads, [&](int i, double* out) {
+    thread_local DijkstraWorkspace<double> ws;
+    Dijkstra<double>(graph, sources[i], out, &ws);
+  });
 }
 
 }  // namespace symembed

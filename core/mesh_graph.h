@@ -8,6 +8,7 @@
 // [Dijkstra 1959] A note on two problems in connexion with graphs.
 #pragma once
 
+#include <Eigen/Core>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -30,6 +31,12 @@ struct MeshGraph {
 
 // Builds the edge graph of F (each edge once per direction, however many faces share it).
 MeshGraph BuildMeshGraph(const Surface& surface);
+
+// #sources x #V shortest-path distances on the edge graph of surface (+infinity where
+// unreachable), in parallel over sources (threads: 0 = DefaultThreadCount()). Throws
+// InvalidInputError for a source outside [0, #V).
+Eigen::MatrixXd EdgeGraphDistances(const Surface& surface, const std::vector<int>& sources,
+                                   int threads = 0);
 
 // Reusable per-thread state of Dijkstra's algorithm, so repeated calls do not allocate.
 template <typename Scalar>

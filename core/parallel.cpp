@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include "core/errors.h"
+
 namespace symembed {
 
 int DefaultThreadCount() {
@@ -50,6 +52,35 @@ void ParallelFor(int n, const std::function<void(int)>& fn, int threads, int gra
   worker();
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
+}
+
+Eigen::MatrixXd ParallelRows(const std::vector<int>& sources, int n, int threads,
+                             const std::function<void(int, double*)>& row_fn) {
+  for (int s : sources) {
+    if (s < 0 || s >= n) {
+      throw InvalidInputError("geodesic source " + std::to_string(s) +
+                              " is not a vertex id in [0, " + std::to_string(n) + ")");
+    }
+  }
+  const int m = static_cast<int>(sources.size());
+  Eigen::MatrixXd D(m, n);
+  // Rows are computed into a contiguous row-major buffer of kBlock sources and copied as a
+  // block: D is column-major, so each column then receives kBlock adjacent values instead of
+  // one strided write per source.
+  constexpr int kBlock = 16;
+  const int blocks = (m + kBlock - 1) / kBlock;
+  ParallelFor(
+      blocks,
+      [&](int b) {
+        using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+        thread_local RowMajor buffer;
+        const int begin = b * kBlock, count = std::min(kBlock, m - begin);
+        buffer.resize(count, n);
+        for (int i = 0; i < count; ++i) row_fn(begin + i, buffer.row(i).data());
+        D.middleRows(begin, count) = buffer;
+      },
+      threads);
+  return D;
 }
 
 }  // namespace symembed

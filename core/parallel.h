@@ -1,7 +1,9 @@
 // A minimal fork-join parallel loop on std::thread.
 #pragma once
 
+#include <Eigen/Core>
 #include <functional>
+#include <vector>
 
 namespace symembed {
 
@@ -13,5 +15,11 @@ int DefaultThreadCount();
 // indices dynamically in chunks of `grain`. The first exception thrown by fn is rethrown in the
 // caller after all threads have stopped.
 void ParallelFor(int n, const std::function<void(int)>& fn, int threads = 0, int grain = 1);
+
+// Fills a #sources x n matrix in parallel over sources: row_fn(i, out) writes the n distances
+// of source i to out (a contiguous per-thread buffer). Throws InvalidInputError for a source
+// outside [0, n).
+Eigen::MatrixXd ParallelRows(const std::vector<int>& sources, int n, int threads,
+                             const std::function<void(int, double*)>& row_fn);
 
 }  // namespace symembed

@@ -18,11 +18,6 @@ double Since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Rows of Y rotated by R (y' = R y for every row y).
-Eigen::MatrixX3d Rotated(const Eigen::MatrixX3d& Y, const Eigen::Matrix3d& R) {
-  return Y * R.transpose();
-}
-
 void CheckMap(const MatchResult& result, int source_vertices, int target_vertices,
               const char* stage) {
   if (static_cast<int>(result.map.size()) != source_vertices) {
@@ -74,14 +69,6 @@ std::vector<int> MapFromGroundTruth(const Surface& source, int target_vertices,
   std::vector<int> out(n);
   for (int v = 0; v < n; ++v) out[v] = map[lined[seed[v] >= 0 ? seed[v] : nearest_lined[v]]];
   return out;
-}
-
-EmbeddedPoints Rotated(const EmbeddedPoints& points, const Eigen::Matrix3d& R) {
-  return {Rotated(points.Y, R), Rotated(points.N, R)};
-}
-
-EmbeddedPoints EmbeddedShape(const ShapeData& shape, const Eigen::Matrix3d& R) {
-  return Rotated(EmbeddedPoints{shape.Y, VertexNormals(shape.Y, shape.surface.F)}, R);
 }
 
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,

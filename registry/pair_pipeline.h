@@ -33,14 +33,6 @@ struct PairOutcome {
   std::vector<StageTime> times;  // flip, matching, refine, oracle
 };
 
-// Points and normals rotated by R (y' = R y for every row y).
-EmbeddedPoints Rotated(const EmbeddedPoints& points, const Eigen::Matrix3d& R);
-
-// A shape's canonical embedding Y rotated by R, with the normals of the embedded surface (Y
-// on the shape's faces) rotated alike: what the matching stage compares.
-EmbeddedPoints EmbeddedShape(const ShapeData& shape,
-                             const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity());
-
 // Mean error of predicted target input ids, one per ground-truth line of `ground_truth`.
 using MeanErrorFunction = std::function<double(const std::vector<int>& predicted)>;
 

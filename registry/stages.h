@@ -100,13 +100,6 @@ class FlipStage : public PairStage {
   virtual FlipResult Run(const PairInput& pair) const = 0;
 };
 
-// Points of an embedding to match: positions Y (#P x 3) and the unit normals N of the embedded
-// surface at them (#P x 3, rotated with Y; empty when not available).
-struct EmbeddedPoints {
-  Eigen::MatrixX3d Y;
-  Eigen::MatrixX3d N;
-};
-
 class MatchingStage : public PairStage {
  public:
   // source: points of the source embedding; target: the target embedding, already rotated.

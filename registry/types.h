@@ -8,19 +8,13 @@
 #include <utility>
 #include <vector>
 
+#include "core/matching/match.h"
 #include "core/mesh.h"
 #include "core/spectral.h"
+#include "core/stage_status.h"
 #include "registry/shape_products.h"
 
 namespace symembed {
-
-// What a stage reports about its numerical outcome (data, not an exception).
-struct StageStatus {
-  bool converged = true;
-  int iterations = 0;
-  double residual = 0.0;
-  std::string message;
-};
 
 // Named counters of what a stage changed or measured ("flipped_faces": 3, ...), in order.
 using Report = std::vector<std::pair<std::string, double>>;
@@ -120,16 +114,16 @@ struct PairInput {
 // {I, Rx(pi), Ry(pi), Rz(pi)}, applied to the target embedding (y' = R y).
 std::array<Eigen::Matrix3d, 4> CandidateRotations();
 
+// A shape's canonical embedding Y rotated by R, with the normals of the embedded surface (Y
+// on the shape's faces) rotated alike: what the matching stage compares.
+EmbeddedPoints EmbeddedShape(const ShapeData& shape,
+                             const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity());
+
 struct FlipResult {
   std::array<double, 4> scores{};  // per candidate, lower is better
   // Index into CandidateRotations(): the argmin of scores unless the stage's last step decides
   // otherwise (MakeFlipResult; the extrinsic scorer's refined term).
   int chosen = 0;
-  StageStatus status;
-};
-
-struct MatchResult {
-  std::vector<int> map;  // #V_source: target vertex of each source vertex
   StageStatus status;
 };
 

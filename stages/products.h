@@ -2,8 +2,8 @@
 // define, beside registry/serialize.h's for the harness's own types.
 #pragma once
 
+#include "core/fmap/descriptors.h"
 #include "registry/serialize.h"
-#include "stages/flip/descriptor_map.h"
 
 namespace symembed {
 

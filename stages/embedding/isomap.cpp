@@ -3,8 +3,8 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/mds/smacof.h"
 #include "stages/embedding/embedding_common.h"
-#include "stages/embedding/smacof.h"
 
 namespace symembed {
 

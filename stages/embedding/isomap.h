@@ -14,8 +14,8 @@
 
 #include <string>
 
+#include "core/mds/classical_mds.h"
 #include "registry/stages.h"
-#include "stages/embedding/classical_mds.h"
 
 namespace symembed {
 

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "core/errors.h"
-#include "stages/embedding/classical_mds.h"
+#include "core/mds/classical_mds.h"
 #include "stages/embedding/embedding_common.h"
 
 namespace symembed {

@@ -13,9 +13,9 @@
 
 #include <string>
 
+#include "core/mds/smacof.h"
 #include "registry/stages.h"
 #include "stages/embedding/out_of_sample.h"
-#include "stages/embedding/smacof.h"
 
 namespace symembed {
 

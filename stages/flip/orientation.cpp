@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/fmap/zoomout.h"
 #include "core/knn.h"
 #include "core/laplacian.h"
 #include "stages/flip/flip_common.h"
-#include "stages/refine/zoomout.h"
 
 namespace symembed {
 

@@ -22,11 +22,11 @@
 #include <string>
 #include <vector>
 
+#include "core/fmap/zoomout.h"
 #include "core/mesh.h"
 #include "core/spectral.h"
 #include "stages/flip/flip_common.h"
 #include "stages/flip/zoomout_schedule.h"
-#include "stages/refine/zoomout.h"
 
 namespace symembed {
 

@@ -4,13 +4,12 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/fmap/zoomout.h"
 #include "core/laplacian.h"
-#include "registry/pair_pipeline.h"
+#include "core/matching/nearest.h"
 #include "stages/flip/extrinsic.h"
 #include "stages/flip/flip_common.h"
 #include "stages/flip/orientation.h"
-#include "stages/matching/nearest.h"
-#include "stages/refine/zoomout.h"
 
 namespace symembed {
 namespace {

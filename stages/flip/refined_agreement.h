@@ -35,13 +35,12 @@
 #include <string>
 #include <vector>
 
+#include "core/fmap/zoomout.h"
+#include "core/matching/deformed.h"
 #include "core/spectral.h"
-#include "registry/pair_pipeline.h"
 #include "registry/types.h"
 #include "stages/flip/orientation.h"
 #include "stages/flip/zoomout_schedule.h"
-#include "stages/matching/deformed.h"
-#include "stages/refine/zoomout.h"
 
 namespace symembed {
 
@@ -54,7 +53,7 @@ struct RefinedAgreementOptions {
   // How much lower the partner's score must be for it to replace the best candidate.
   double margin = 0.05;
   // Weight of the embedded surfaces' normals in the initial nearest-neighbour maps
-  // (stages/matching/nearest.h): without them the map of a thin part mixes its two sides, and
+  // (core/matching/nearest.h): without them the map of a thin part mixes its two sides, and
   // ZoomOut from k_start cannot tell which side is which.
   double normal_weight = 0.1;
 
@@ -70,7 +69,7 @@ struct RefinedAgreementOptions {
 class RefinedCandidates {
  public:
   // With `deform`, each candidate's initial map is that of the `deformed` matching stage
-  // (stages/matching/deformed.h): the source embedding bent onto the turned target's before the
+  // (core/matching/deformed.h): the source embedding bent onto the turned target's before the
   // nearest neighbours; the source basis needs deform->k_end eigenpairs.
   RefinedCandidates(const ShapeData& source, const ShapeData& target,
                     const LaplaceBasis& source_basis, const LaplaceBasis& target_basis,

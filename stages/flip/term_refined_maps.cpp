@@ -5,10 +5,10 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/mesh_graph.h"
 #include "stages/flip/extrinsic.h"
 #include "stages/flip/flip_common.h"
 #include "stages/flip/refined_agreement.h"
-#include "stages/geodesics/dijkstra.h"
 
 namespace symembed {
 namespace {
@@ -69,7 +69,7 @@ double GeodesicDistortion(const Eigen::MatrixXd& source_distances, const Surface
     }
     if (j < sources) images[j] = map[s];
   }
-  const Eigen::MatrixXd target_distances = DijkstraDistances(target, images);
+  const Eigen::MatrixXd target_distances = EdgeGraphDistances(target, images);
   double difference = 0.0, length = 0.0;
   for (int i = 0; i < sources; ++i) {
     for (int j = 0; j < targets; ++j) {
@@ -97,7 +97,7 @@ void RefinedMapsTerm::AddNeeds(int, ShapeNeeds* needs) const {
       [count](const ShapeData& shape, const LaplaceBasis&) {
         const std::vector<int> sources = SamplePrefix(
             shape.samples, count, 1, "flip refined_maps: shape '" + shape.name + "'");
-        return DijkstraDistances(shape.surface, sources);
+        return EdgeGraphDistances(shape.surface, sources);
       }));
   needs->products.push_back(CurvatureFeaturesNeed(options_.smoothing));
   if (options_.long_axis_weight > 0.0) {

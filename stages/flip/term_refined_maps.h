@@ -7,13 +7,13 @@
 // preserves distances along the surface, while the right rotation's map after ZoomOut [Melzi et
 // al. 2019] preserves them up to the pair's non-isometry. For each candidate k the term takes the
 // map the matching stage would start from (with deformed_start, the source embedding bent onto
-// the turned target's, stages/matching/deformed.h, then the nearest neighbours of the embedded
-// points with normals, stages/matching/nearest.h) on the source samples, refines it with ZoomOut
+// the turned target's, core/matching/deformed.h, then the nearest neighbours of the embedded
+// points with normals, core/matching/nearest.h) on the source samples, refines it with ZoomOut
 // on the samples, and measures three things of the refined map T of the samples:
 //   distortion g_k   = sum_ij |d_S(s_i, s_j) - d_T(T(s_i), T(s_j))| / sum_ij d_S(s_i, s_j)
 //                      over the first `sources` samples s_i and the first `targets` samples s_j,
-//                      with graph geodesics (stages/geodesics/dijkstra.h) of the unit-area
-//                      surfaces;
+//                      with graph geodesics (EdgeGraphDistances, core/mesh_graph.h) of the
+//                      unit-area surfaces;
 //   disagreement c_k = FeatureDisagreement of shape index and curvedness over the samples
 //                      (extrinsic.h): on a human the candidate turned by pi about the vertical
 //                      axis refines to a map that preserves distances about as well as the right
@@ -89,7 +89,7 @@ struct RefinedMapsTermOptions {
   // Weight of the embedded normals in the initial maps (RefinedAgreementOptions::normal_weight).
   double normal_weight = 0.1;
   // Whether each candidate's initial map bends the source embedding onto the turned target's
-  // first, as the `deformed` matching stage does with its defaults (stages/matching/deformed.h),
+  // first, as the `deformed` matching stage does with its defaults (core/matching/deformed.h),
   // so that the candidates are judged from the maps the pipeline would start from.
   bool deformed_start = true;
 

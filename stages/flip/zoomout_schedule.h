@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/fmap/zoomout.h"
 #include "registry/options.h"
-#include "stages/refine/zoomout.h"
 
 namespace symembed {
 

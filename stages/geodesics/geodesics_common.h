@@ -1,10 +1,9 @@
 // Options and helpers shared by the geodesic solvers (dijkstra, fast_marching, heat).
 #pragma once
 
-#include <Eigen/Core>
-#include <functional>
 #include <string>
-#include <vector>
+
+#include "core/parallel.h"
 
 namespace symembed {
 
@@ -19,11 +18,5 @@ struct GeodesicsCommonOptions {
 
   bool IsValid(std::string* error) const;
 };
-
-// Fills a #sources x n matrix in parallel over sources: row_fn(i, out) writes the n distances
-// of source i to out (a contiguous per-thread buffer). Throws InvalidInputError for a source
-// outside [0, n).
-Eigen::MatrixXd ParallelRows(const std::vector<int>& sources, int n, int threads,
-                             const std::function<void(int, double*)>& row_fn);
 
 }  // namespace symembed

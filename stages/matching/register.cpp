@@ -1,9 +1,9 @@
 // The matching stages: thin adapters around MatchNearest / MatchNearestScaled.
 #include <memory>
 
+#include "core/matching/deformed.h"
+#include "core/matching/nearest.h"
 #include "registry/product_needs.h"
-#include "stages/matching/deformed.h"
-#include "stages/matching/nearest.h"
 #include "stages/register.h"
 
 namespace symembed {

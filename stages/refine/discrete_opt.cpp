@@ -5,10 +5,10 @@
 #include <sstream>
 
 #include "core/errors.h"
-#include "stages/flip/descriptor_map.h"
+#include "core/fmap/descriptors.h"
+#include "core/fmap/functional_map.h"
+#include "core/fmap/spectral_knn.h"
 #include "stages/refine/discrete_terms.h"
-#include "stages/refine/functional_map.h"
-#include "stages/refine/spectral_knn.h"
 
 namespace symembed {
 

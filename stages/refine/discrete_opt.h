@@ -4,7 +4,7 @@
 // [Ren, Melzi, Wonka & Ovsjanikov 2021] Discrete optimization for shape matching. The state is
 // a pair of point maps, T12 from source to target and T21 back, and their functional maps
 // C12 = Phi_s^+ Pi12 Phi_t and C21 = Phi_t^+ Pi21 Phi_s (the "proper" maps the point maps
-// induce, stages/refine/functional_map.h). At each basis size k (k_start, k_start + step, ...,
+// induce, core/fmap/functional_map.h). At each basis size k (k_start, k_start + step, ...,
 // k_end, as in ZoomOut) the two functional maps are fitted to the point maps by least squares,
 // then each point map is set to the exact minimiser, for those functional maps, of the weighted
 // sum of the terms of discrete_terms.h (orthogonality, bijectivity through the other
@@ -17,16 +17,16 @@
 // With samples, the iterations run between the source samples and the target samples; only the
 // last query (at k_end, after the last fit) maps every source vertex onto every target vertex.
 // Descriptors are wave kernel signatures of each shape computed from its basis
-// (stages/flip/descriptor_map.h), at energies shared by the pair.
+// (core/fmap/descriptors.h), at energies shared by the pair.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include "core/fmap/descriptors.h"
 #include "core/spectral.h"
 #include "registry/types.h"
-#include "stages/flip/descriptor_map.h"
 
 namespace symembed {
 
@@ -93,7 +93,7 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
                               const DiscreteOptPoints* points = nullptr);
 
 // What the descriptor term needs of one shape, whatever the pair: the wave kernel signature
-// products (stages/flip/descriptor_map.h) of the first k_end eigenpairs.
+// products (core/fmap/descriptors.h) of the first k_end eigenpairs.
 WksProducts DiscreteWksProducts(const LaplaceBasis& basis, int k_end);
 
 }  // namespace symembed

@@ -10,7 +10,7 @@
 // nearest-neighbour query in the embeddings stacked side by side, each scaled by the square
 // root of its weight.
 //
-// Convention (stages/refine/functional_map.h): a point map T: X -> Y is the matrix Pi
+// Convention (core/fmap/functional_map.h): a point map T: X -> Y is the matrix Pi
 // (#X x #Y); its functional map C_xy = Phi_x^+ Pi Phi_y (k x k) takes coefficients on Y to
 // coefficients on X; C_yx is the functional map of a map Y -> X (the inverse direction, for
 // bijectivity). With near-orthogonal maps, Pi Phi_y ~ Phi_x C_xy and C_xy C_yx ~ I, which give
@@ -35,7 +35,7 @@
 #include <string>
 #include <vector>
 
-#include "stages/refine/functional_map.h"
+#include "core/fmap/functional_map.h"
 
 namespace symembed {
 

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "core/errors.h"
-#include "stages/refine/functional_map.h"
+#include "core/fmap/functional_map.h"
 
 namespace symembed {
 

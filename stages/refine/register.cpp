@@ -6,12 +6,12 @@
 #include <memory>
 #include <string>
 
+#include "core/fmap/functional_map.h"
+#include "core/fmap/zoomout.h"
 #include "core/spectral.h"
 #include "stages/products.h"
 #include "stages/refine/discrete_opt.h"
 #include "stages/refine/fmap_icp.h"
-#include "stages/refine/functional_map.h"
-#include "stages/refine/zoomout.h"
 
 namespace symembed {
 

@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/mds/classical_mds.h"
+#include "core/mds/smacof.h"
 #include "core/parallel.h"
 #include "core/procrustes.h"
-#include "stages/embedding/classical_mds.h"
-#include "stages/embedding/smacof.h"
 #include "stages/symmetry/plane3d.h"
 
 namespace symembed {

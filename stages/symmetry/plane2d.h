@@ -5,7 +5,7 @@
 // embedding of the samples' geodesic distances flattens the shape so that its intrinsic
 // reflectional symmetry becomes a mirror line, robustly to pose and missing parts.
 //   1. 2D embedding: classical MDS of the sample distances, refined by SMACOF
-//      [de Leeuw 1977] (stages/embedding/smacof.h).
+//      [de Leeuw 1977] (core/mds/smacof.h).
 //   2. Coarse sweep of num_angles line directions through the centroid; each refined by
 //      reflect / NN / refit iterations with a trimmed score (reflection_search.h).
 //   3. Lift: the 3D reflection that best maps y_i to y_sigma(i) for the 2D self map sigma

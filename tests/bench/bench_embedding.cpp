@@ -17,14 +17,14 @@
 #include <map>
 #include <memory>
 
+#include "core/mds/classical_mds.h"
+#include "core/mds/smacof.h"
 #include "core/mesh_io.h"
 #include "eval/synthetic/synthetic.h"
 #include "registry/registry.h"
-#include "stages/embedding/classical_mds.h"
 #include "stages/embedding/embedding_common.h"
 #include "stages/embedding/lsmds.h"
 #include "stages/embedding/out_of_sample.h"
-#include "stages/embedding/smacof.h"
 #include "tests/test_util.h"
 
 namespace symembed {

@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "core/canonical_frame.h"
+#include "core/fmap/functional_map.h"
 #include "core/nearest_kd.h"
 #include "registry/pair_pipeline.h"
 #include "registry/registry.h"
-#include "stages/refine/functional_map.h"
 #include "tests/test_util.h"
 
 namespace symembed {

@@ -28,12 +28,12 @@
 #include <string>
 #include <vector>
 
+#include "core/fmap/nearest_kernel.h"
+#include "core/fmap/spectral_knn.h"
 #include "core/mesh_io.h"
 #include "core/spectral.h"
 #include "registry/registry.h"
 #include "stages/preprocess/standard.h"
-#include "stages/refine/nearest_kernel.h"
-#include "stages/refine/spectral_knn.h"
 #include "tests/test_util.h"
 
 namespace symembed {

@@ -8,11 +8,11 @@
 #include <random>
 
 #include "core/errors.h"
+#include "core/fmap/functional_map.h"
+#include "core/fmap/spectral_knn.h"
 #include "core/spectral.h"
 #include "registry/registry.h"
 #include "stages/refine/discrete_terms.h"
-#include "stages/refine/functional_map.h"
-#include "stages/refine/spectral_knn.h"
 #include "tests/stages/chain_test_util.h"
 #include "tests/stages/refine_test_util.h"
 #include "tests/test_util.h"

@@ -5,10 +5,10 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "core/mds/classical_mds.h"
+#include "core/mds/smacof.h"
 #include "core/procrustes.h"
-#include "stages/embedding/classical_mds.h"
 #include "stages/embedding/out_of_sample.h"
-#include "stages/embedding/smacof.h"
 #include "tests/stages/embedding_test_util.h"
 
 namespace symembed {

@@ -8,6 +8,7 @@
 
 #include "core/canonical_frame.h"
 #include "core/errors.h"
+#include "core/fmap/functional_map.h"
 #include "core/primitives.h"
 #include "core/spectral.h"
 #include "eval/synthetic/synthetic.h"
@@ -16,7 +17,6 @@
 #include "stages/flip/refined_agreement.h"
 #include "stages/flip/term_refined_maps.h"
 #include "stages/geodesics/dijkstra.h"
-#include "stages/refine/functional_map.h"
 #include "tests/stages/flip_test_util.h"
 #include "tests/test_util.h"
 

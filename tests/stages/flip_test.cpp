@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/fmap/functional_map.h"
 #include "core/primitives.h"
 #include "core/spectral.h"
 #include "eval/synthetic/synthetic.h"
@@ -14,7 +15,6 @@
 #include "stages/flip/extrinsic.h"
 #include "stages/flip/orientation.h"
 #include "stages/flip/refined_agreement.h"
-#include "stages/refine/functional_map.h"
 #include "tests/stages/flip_test_util.h"
 #include "tests/test_util.h"
 

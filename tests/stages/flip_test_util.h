@@ -9,11 +9,11 @@
 
 #include "core/canonical_frame.h"
 #include "core/errors.h"
+#include "core/fmap/functional_map.h"
 #include "core/primitives.h"
 #include "core/spectral.h"
 #include "eval/synthetic/synthetic.h"
 #include "registry/registry.h"
-#include "stages/refine/functional_map.h"
 
 namespace symembed::testing {
 

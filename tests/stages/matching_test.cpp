@@ -5,12 +5,12 @@
 
 #include "core/errors.h"
 #include "core/laplacian.h"
+#include "core/matching/deformed.h"
+#include "core/matching/nearest.h"
 #include "core/primitives.h"
 #include "core/spectral.h"
 #include "registry/product_needs.h"
 #include "registry/registry.h"
-#include "stages/matching/deformed.h"
-#include "stages/matching/nearest.h"
 #include "tests/test_util.h"
 
 namespace symembed {

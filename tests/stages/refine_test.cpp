@@ -9,13 +9,13 @@
 #include <set>
 
 #include "core/errors.h"
+#include "core/fmap/functional_map.h"
+#include "core/fmap/spectral_knn.h"
+#include "core/fmap/zoomout.h"
 #include "core/spectral.h"
 #include "eval/synthetic/synthetic.h"
 #include "registry/registry.h"
 #include "stages/refine/fmap_icp.h"
-#include "stages/refine/functional_map.h"
-#include "stages/refine/spectral_knn.h"
-#include "stages/refine/zoomout.h"
 #include "tests/stages/refine_test_util.h"
 #include "tests/test_util.h"
 

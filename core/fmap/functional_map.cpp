@@ -1,4 +1,4 @@
-#include "stages/refine/functional_map.h"
+#include "core/fmap/functional_map.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/errors.h"
-#include "stages/refine/spectral_knn.h"
+#include "core/fmap/spectral_knn.h"
 
 namespace symembed {
 

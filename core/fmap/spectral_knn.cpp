@@ -1,4 +1,4 @@
-#include "stages/refine/spectral_knn.h"
+#include "core/fmap/spectral_knn.h"
 
 #include <algorithm>
 #include <flann/flann.hpp>

@@ -1,5 +1,5 @@
-// Matching stage `deformed`: the source embedding bent smoothly onto the target's, then the
-// nearest neighbour as in `nearest`.
+// The matching stage `deformed` (stages/matching/register.cpp): the source embedding bent
+// smoothly onto the target's, then the nearest neighbour as in `nearest`.
 //
 // Two poses of one body give canonical embeddings that differ where the body is not isometric
 // and where LS-MDS keeps some of the pose (an arm held against the side lands elsewhere than an
@@ -25,9 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "core/matching/nearest.h"
 #include "core/spectral.h"
-#include "registry/stages.h"
-#include "stages/matching/nearest.h"
 
 namespace symembed {
 

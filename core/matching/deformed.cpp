@@ -1,4 +1,4 @@
-#include "stages/matching/deformed.h"
+#include "core/matching/deformed.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "core/spectral.h"
-#include "registry/types.h"
+#include "core/stage_status.h"
 
 namespace symembed {
 

@@ -17,7 +17,7 @@
 #include <memory>
 #include <vector>
 
-#include "stages/refine/nearest_kernel.h"
+#include "core/fmap/nearest_kernel.h"
 
 namespace flann {
 template <typename T>

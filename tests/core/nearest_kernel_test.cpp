@@ -1,4 +1,4 @@
-#include "stages/refine/nearest_kernel.h"
+#include "core/fmap/nearest_kernel.h"
 
 #include <gtest/gtest.h>
 

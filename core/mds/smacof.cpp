@@ -1,4 +1,4 @@
-#include "stages/embedding/smacof.h"
+#include "core/mds/smacof.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>

@@ -1,4 +1,4 @@
-#include "stages/matching/nearest.h"
+#include "core/matching/nearest.h"
 
 #include <algorithm>
 #include <sstream>

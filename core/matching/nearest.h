@@ -1,5 +1,5 @@
-// Matching stages `nearest` and `nearest_scaled`: correspondence as the nearest neighbour in the
-// aligned embeddings.
+// The matching stages `nearest` and `nearest_scaled` (stages/matching/register.cpp):
+// correspondence as the nearest neighbour in the aligned embeddings.
 //
 // [Yoshiyasu et al. 2016] Symmetry-aware embedding for shape correspondence: once both
 // embeddings are in the canonical frame and the flip is resolved, each source vertex maps to the
@@ -19,8 +19,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "registry/stages.h"
-#include "registry/types.h"
+#include "core/matching/match.h"
 
 namespace symembed {
 

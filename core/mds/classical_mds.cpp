@@ -1,4 +1,4 @@
-#include "stages/embedding/classical_mds.h"
+#include "core/mds/classical_mds.h"
 
 #include <Spectra/MatOp/DenseSymMatProd.h>
 #include <Spectra/SymEigsSolver.h>

@@ -1,11 +1,11 @@
-#include "stages/refine/zoomout.h"
+#include "core/fmap/zoomout.h"
 
 #include <algorithm>
 #include <numeric>
 #include <sstream>
 
 #include "core/errors.h"
-#include "stages/refine/functional_map.h"
+#include "core/fmap/functional_map.h"
 
 namespace symembed {
 
