@@ -5,10 +5,12 @@
 // Outputs under out_dir (results/<experiment>):
 //   variants.txt                    the config's variant names in order
 //   <variant>/config.yaml           ResolvedConfigYaml
-//   <variant>/maps/A_B.map          1-based target input id per source input vertex (atomic)
+//   <variant>/maps/STEM.map         1-based target input id per source input vertex (atomic)
 //   <variant>/IN_PROGRESS           while the variant runs (registry/run_outputs.h)
-//   <variant>/pairs/A_B.rec         the evaluation's record of the pair (atomic, after the map),
+//   <variant>/pairs/STEM.rec        the evaluation's record of the pair (atomic, after the map),
 //                                   stamped with the pair's PairInputs
+//   (STEM: "A_B", escaped where that is ambiguous among all the variant's pairs, shards
+//   included: registry/pair_names.h)
 //   <variant>/shapes/NAME.rec       per-shape stage times and report (registry/run_outputs.h)
 //   <variant>/failures.csv          every failed shape and pair with its message
 //   + what RunEvaluation::WriteVariant / WriteExperiment write (summary, curves, comparison).
@@ -59,7 +61,7 @@ class VariantEvaluation {
   // Mean direct error of predicted target input ids, one per line of pair.ground_truth
   // (chooses the oracle candidate). May throw; the pair then fails.
   virtual double MeanError(const PairContext& pair, const std::vector<int>& predicted) const = 0;
-  // The record text of a finished pair (written to pairs/A_B.rec). When the evaluation failed,
+  // The record text of a finished pair (written to pairs/STEM.rec). When the evaluation failed,
   // sets *failure to the message; the pair is then a failure and no record is written.
   virtual std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
                                std::string* failure) const = 0;
