@@ -249,8 +249,12 @@ class VariantRun {
       const std::optional<std::string> text = ReadFileBytes(path);
       try {
         if (!text) throw InvalidInputError("cannot read it");
-        evaluation_.PairOfRecord(*text, path);
-        problem = InputsProblem(PairInputsOfRecord(*text), setup->inputs);
+        const DatasetPair recorded = evaluation_.PairOfRecord(*text, path);
+        if (recorded.source != pair.source || recorded.target != pair.target) {
+          problem = "it holds the record of " + recorded.source + " -> " + recorded.target;
+        } else {
+          problem = InputsProblem(PairInputsOfRecord(*text), setup->inputs);
+        }
       } catch (const std::exception& e) {
         problem = std::string("unreadable record (") + e.what() + ")";
       }

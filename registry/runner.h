@@ -21,8 +21,9 @@
 // (registry/shards.h) assigns to it: by pair index modulo N, or all pairs of a target together.
 // Whatever is in the variant folder depends only on the set of pair records and failures, so
 // shards merged (MergeRuns) and resumed runs equal a single run.
-// --resume keeps a pair only when its record parses, carries this run's PairInputs and its map
-// holds one id per source vertex; every other pair is computed again, with a warning.
+// --resume keeps a pair only when its record parses, is the record of that pair, carries this
+// run's PairInputs and its map holds one id per source vertex; every other pair is computed
+// again, with a warning.
 //
 // A shapes-only run computes the per-shape stages (and what the per-pair stages need of each
 // shape) of the shapes of shard i of N (ShapesOfShard over the shapes of all the variant's
