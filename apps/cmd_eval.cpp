@@ -67,6 +67,9 @@ ArgParser EvalParser() {
       "flip-tolerant errors and left-right flips. Writes summary.json, pairs.csv, curve.csv, "
       "timings.csv (and curves.png/svg when matplotlib is available), eval.json (the inputs) and "
       "the HTML report report/index.html into the output folder. "
+      "Where two pairs would share a name A_B.map (p_q1 -> r1 and p -> q1_r1) or a name holds "
+      "'%', those pairs' files have the source escaped ('%' as %25, '_' as %5F: p%5Fq1_r1.map), "
+      "as `symembed run` names them. "
       "A missing or malformed map (wrong length, NaN, non-integral or out-of-range ids) fails "
       "only its pair, with the file and line in pairs.csv and on stderr. Exit code 0 when "
       "every pair was scored, 1 when some failed.");

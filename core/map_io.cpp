@@ -108,8 +108,4 @@ void WriteMapFile(const std::string& path, const std::vector<int>& map_zero_base
   if (!out) throw IoError(path + ": cannot write map file");
 }
 
-std::string MapFileName(const std::string& source, const std::string& target) {
-  return source + "_" + target + ".map";
-}
-
 }  // namespace symembed

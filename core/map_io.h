@@ -1,6 +1,7 @@
-// Map files `A_B.map`: one target vertex id per source vertex, one per line, in the vertex
-// ids of the input meshes. symembed writes 1-based ids (the format peers publish); other
-// methods' maps may be 0- or 1-based, integers or integral floats ("123", "1.23e+02").
+// Map files (`A_B.map`, named as registry/pair_names.h says): one target vertex id per source
+// vertex, one per line, in the vertex ids of the input meshes. symembed writes 1-based ids (the
+// format peers publish); other methods' maps may be 0- or 1-based, integers or integral floats
+// ("123", "1.23e+02").
 #pragma once
 
 #include <string>
@@ -27,8 +28,5 @@ std::string FormatMap(const std::vector<int>& map_zero_based);
 // it needs that).
 // Throws IoError.
 void WriteMapFile(const std::string& path, const std::vector<int>& map_zero_based);
-
-// "A_B.map".
-std::string MapFileName(const std::string& source, const std::string& target);
 
 }  // namespace symembed

@@ -16,6 +16,7 @@
 
 #include "core/errors.h"
 #include "registry/files.h"
+#include "registry/pair_names.h"
 
 namespace fs = std::filesystem;
 
@@ -229,8 +230,13 @@ std::string TimingsCsv(std::vector<PairEvaluation> pairs, const VariantTimings& 
       out << "shape," << CsvField(shape) << ',' << CsvField(stage) << ',' << Num(seconds) << '\n';
     }
   }
+  // Each pair under its file stem among these pairs, as the report reads it back beside
+  // pairs.csv.
+  std::vector<DatasetPair> listed;
+  for (const auto& p : pairs) listed.push_back({p.source, p.target});
+  const PairNames names(listed);
   for (const auto& p : pairs) {
-    const std::string name = CsvField(p.source + "_" + p.target);
+    const std::string name = CsvField(names.Stem(p.source, p.target));
     for (const auto& [stage, seconds] : p.stage_seconds) {
       out << "pair," << name << ',' << CsvField(stage) << ',' << Num(seconds) << '\n';
     }

@@ -4,7 +4,9 @@
 //   summary.json  VariantSummary (keys below; numbers exact, NaN as null)
 //   pairs.csv     one row per pair, sorted by (source, target); no timing columns
 //   curve.csv     threshold, direct, flip_tolerant (fractions of points with error <= t)
-//   timings.csv   kind (shape|pair|variant), name, stage, seconds
+//   timings.csv   kind (shape|pair|variant), name, stage, seconds; a pair's name is its file
+//                 stem among the pairs of pairs.csv (registry/pair_names.h: "A_B" unless
+//                 ambiguous)
 // Per experiment directory:
 //   comparison.csv  one row per variant, the summary's numbers
 //   curves.png / curves.svg  from scripts/plot-curves (needs /usr/bin/python3 + matplotlib)

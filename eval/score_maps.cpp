@@ -8,9 +8,10 @@
 #include <set>
 
 #include "core/errors.h"
+#include "core/map_io.h"
 #include "core/mesh_io.h"
 #include "core/parallel.h"
-#include "core/map_io.h"
+#include "registry/pair_names.h"
 
 namespace symembed {
 
@@ -61,6 +62,31 @@ void LoadShape(const Dataset& dataset, const PreprocessStage& preprocess, const 
   }
 }
 
+// One warning per plain file name the dataset's pairs cannot use: which pairs it would name and
+// where their maps are read from instead.
+std::vector<std::string> EscapedNameWarnings(const std::vector<DatasetPair>& pairs,
+                                             const PairNames& names) {
+  std::map<std::string, std::set<std::pair<std::string, std::string>>> by_plain;
+  for (const DatasetPair& p : pairs) {
+    if (names.Escaped(p.source, p.target)) {
+      by_plain[PlainPairStem(p.source, p.target)].insert({p.source, p.target});
+    }
+  }
+  std::vector<std::string> warnings;
+  for (const auto& [plain, group] : by_plain) {
+    std::string text = plain + ".map would be ambiguous (" +
+                       (group.size() > 1 ? "the name of " + std::to_string(group.size()) + " pairs"
+                                         : std::string("it holds '%'")) +
+                       "), so the escaped names are read:";
+    for (const auto& [source, target] : group) {
+      text += " " + source + " -> " + target + " from " + names.Stem(source, target) + ".map;";
+    }
+    text.back() = ' ';
+    warnings.push_back(text + "(docs/usage.md)");
+  }
+  return warnings;
+}
+
 }  // namespace
 
 ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preprocess,
@@ -74,12 +100,15 @@ ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preproc
   struct Job {
     std::string source, target, file;
   };
+  // The files are named as a run names its maps (A_B.map unless that is ambiguous), among the
+  // dataset's pairs; an ambiguous plain name is not read, since it may be another pair's map.
+  const PairNames names(index.pairs);
   std::vector<Job> jobs;
   std::map<std::string, LoadedShape> shapes;
   std::set<std::string> unknown;
   for (const auto& p : index.pairs) {
     Job job{options.reverse ? p.target : p.source, options.reverse ? p.source : p.target,
-            options.maps_dir + "/" + MapFileName(p.source, p.target)};
+            options.maps_dir + "/" + names.Stem(p.source, p.target) + ".map"};
     for (const std::string* name : {&job.source, &job.target}) {
       const DatasetShape* shape = index.Find(*name);
       if (!shape) {
@@ -98,6 +127,7 @@ ScoreMapsResult ScoreMaps(const Dataset& dataset, const PreprocessStage& preproc
               [&](int i) { LoadShape(dataset, preprocess, load, *to_load[i]); }, options.threads);
 
   ScoreMapsResult result;
+  result.warnings = EscapedNameWarnings(index.pairs, names);
   result.pairs.resize(jobs.size());
   std::atomic<int> maps_read{0}, maps_using_zero{0};
   ParallelFor(static_cast<int>(jobs.size()), [&](int i) {

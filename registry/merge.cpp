@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "core/map_io.h"
 #include "registry/files.h"
+#include "registry/pair_names.h"
 
 namespace fs = std::filesystem;
 
@@ -118,7 +119,7 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
     results.variant = name;
     results.dir = out_dir + "/" + name;
     std::string config_text;
-    std::map<std::pair<std::string, std::string>, std::string> records;
+    std::vector<std::vector<std::pair<DatasetPair, bool>>> listed;  // per shard in merged_from
     std::set<Failure> failures;
     for (const std::string& shard : shard_dirs) {
       const std::string dir = shard + "/" + name;
@@ -133,26 +134,50 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
                                 "/config.yaml");
       }
       results.merged_from.push_back(dir);
+      listed.push_back(ListedPairs(dir, evaluation));
+      if (auto text = ReadFileBytes(dir + "/failures.csv")) {
+        for (Failure& f : ParseFailuresCsv(*text, dir + "/failures.csv")) {
+          failures.insert(std::move(f));
+        }
+      }
+    }
+    if (results.merged_from.empty()) continue;
+    // The shards' pairs together are the variant's pairs, which the shards' files are named
+    // from.
+    std::vector<DatasetPair> all_pairs;
+    for (const auto& shard_pairs : listed) {
+      for (const auto& [pair, ok] : shard_pairs) all_pairs.push_back(pair);
+    }
+    for (const Failure& f : failures) {
+      if (f.kind == "pair") all_pairs.push_back({f.source, f.target});
+    }
+    const PairNames pair_names(all_pairs);
+    const auto stem = [&](const DatasetPair& pair) -> const std::string& {
+      return pair_names.Stem(pair.source, pair.target);
+    };
+    std::map<std::pair<std::string, std::string>, std::string> records;
+    for (size_t s = 0; s < results.merged_from.size(); ++s) {
+      const std::string& dir = results.merged_from[s];
       const std::map<std::string, int> vertices = InputVertices(dir);
       const std::string rerun =
           "; rerun this run (or shard) with --resume, which computes it again";
-      for (const auto& [listed, ok] : ListedPairs(dir, evaluation)) {
+      for (const auto& [listed_pair, ok] : listed[s]) {
         if (!ok) continue;  // a failed pair comes with its failures.csv line
-        const std::string file = PairRecordPath(dir, listed.source, listed.target);
+        const std::string file = PairRecordPath(dir, stem(listed_pair));
         const std::optional<std::string> text = ReadFileBytes(file);
         if (!text) {
-          throw InvalidInputError(dir + "/pairs.csv lists " + listed.source + " -> " +
-                                  listed.target + " as ok, but its record " + file +
+          throw InvalidInputError(dir + "/pairs.csv lists " + listed_pair.source + " -> " +
+                                  listed_pair.target + " as ok, but its record " + file +
                                   " is missing" + rerun);
         }
         const DatasetPair pair = evaluation.PairOfRecord(*text, file);
-        if (pair.source != listed.source || pair.target != listed.target) {
+        if (pair.source != listed_pair.source || pair.target != listed_pair.target) {
           throw InvalidInputError(file + ": holds the record of " + pair.source + " -> " +
                                   pair.target);
         }
         // The map, read once: its length and ids against the shapes' vertex counts where
         // shapes.csv gives them, then its bytes copied.
-        const std::string map = PairMapPath(dir, pair.source, pair.target);
+        const std::string map = PairMapPath(dir, stem(pair));
         const std::optional<std::string> map_text = ReadFileBytes(map);
         const auto source_vertices = vertices.find(pair.source);
         const auto target_vertices = vertices.find(pair.target);
@@ -164,8 +189,8 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
           throw InvalidInputError(std::string("the map of ") + file + ": " + e.what() + rerun);
         }
         records[{pair.source, pair.target}] = *text;
-        WriteFileAtomically(PairRecordPath(results.dir, pair.source, pair.target), *text);
-        WriteFileAtomically(PairMapPath(results.dir, pair.source, pair.target), *map_text);
+        WriteFileAtomically(PairRecordPath(results.dir, stem(pair)), *text);
+        WriteFileAtomically(PairMapPath(results.dir, stem(pair)), *map_text);
       }
       for (const fs::path& file : FilesWithExtension(dir + "/shapes", ".rec")) {
         CopyIfPresent(file, ShapeRecordPath(results.dir, file.stem().string()));
@@ -175,13 +200,7 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
         fs::create_directories(results.dir + "/embeddings");
         CopyIfPresent(file, results.dir + "/embeddings/" + file.filename().string());
       }
-      if (auto text = ReadFileBytes(dir + "/failures.csv")) {
-        for (Failure& f : ParseFailuresCsv(*text, dir + "/failures.csv")) {
-          failures.insert(std::move(f));
-        }
-      }
     }
-    if (results.merged_from.empty()) continue;
     WriteFileAtomically(VariantConfigPath(results.dir), config_text);
     // Failed pairs keep their map (written before the evaluation failed), when there is one.
     std::set<std::pair<std::string, std::string>> pair_set;
@@ -191,8 +210,8 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
       pair_set.insert({f.source, f.target});
       results.failures.push_back(f);
       for (const std::string& shard_variant : results.merged_from) {
-        CopyIfPresent(PairMapPath(shard_variant, f.source, f.target),
-                      PairMapPath(results.dir, f.source, f.target));
+        CopyIfPresent(PairMapPath(shard_variant, stem({f.source, f.target})),
+                      PairMapPath(results.dir, stem({f.source, f.target})));
       }
     }
     for (const Failure& f : failures) {

@@ -185,24 +185,18 @@ ShapeRecord ParseShapeRecord(const std::string& name, const std::string& text,
   return record;
 }
 
-std::string PairStem(const std::string& source, const std::string& target) {
-  return source + "_" + target;
-}
-
 std::string VariantsListPath(const std::string& out_dir) { return out_dir + "/variants.txt"; }
 
 std::string VariantConfigPath(const std::string& variant_dir) {
   return variant_dir + "/config.yaml";
 }
 
-std::string PairMapPath(const std::string& variant_dir, const std::string& source,
-                        const std::string& target) {
-  return variant_dir + "/maps/" + PairStem(source, target) + ".map";
+std::string PairMapPath(const std::string& variant_dir, const std::string& stem) {
+  return variant_dir + "/maps/" + stem + ".map";
 }
 
-std::string PairRecordPath(const std::string& variant_dir, const std::string& source,
-                           const std::string& target) {
-  return variant_dir + "/pairs/" + PairStem(source, target) + ".rec";
+std::string PairRecordPath(const std::string& variant_dir, const std::string& stem) {
+  return variant_dir + "/pairs/" + stem + ".rec";
 }
 
 std::string ShapeRecordPath(const std::string& variant_dir, const std::string& shape) {

@@ -50,18 +50,14 @@ ShapeRecord ParseShapeRecord(const std::string& name, const std::string& text,
 // The shapes.csv table of the records' report entries.
 std::string ShapesCsv(const std::vector<ShapeRecord>& shapes);
 
-// "A_B": the file stem of a pair's record and map.
-std::string PairStem(const std::string& source, const std::string& target);
-
 // The layout of an experiment's output folder OUT: OUT/variants.txt, and per variant folder
-// OUT/<variant>/ its config.yaml, maps/A_B.map, pairs/A_B.rec and shapes/NAME.rec (besides
-// failures.csv, shapes.csv and the evaluation's summary files).
+// OUT/<variant>/ its config.yaml, maps/STEM.map, pairs/STEM.rec and shapes/NAME.rec (besides
+// failures.csv, shapes.csv and the evaluation's summary files). STEM: the pair's stem among the
+// variant's pairs (registry/pair_names.h), "A_B" unless that is ambiguous.
 std::string VariantsListPath(const std::string& out_dir);
 std::string VariantConfigPath(const std::string& variant_dir);
-std::string PairMapPath(const std::string& variant_dir, const std::string& source,
-                        const std::string& target);
-std::string PairRecordPath(const std::string& variant_dir, const std::string& source,
-                           const std::string& target);
+std::string PairMapPath(const std::string& variant_dir, const std::string& stem);
+std::string PairRecordPath(const std::string& variant_dir, const std::string& stem);
 std::string ShapeRecordPath(const std::string& variant_dir, const std::string& shape);
 
 // The variant names of a variants.txt, in order (empty lines skipped).

@@ -13,6 +13,7 @@
 #include "core/parallel.h"
 #include "registry/files.h"
 #include "registry/options.h"
+#include "registry/pair_names.h"
 #include "registry/progress.h"
 
 namespace fs = std::filesystem;
@@ -148,13 +149,15 @@ class VariantRun {
                               OptionsText(*pipeline_.dataset) + ") has no pairs to run");
     }
     const std::vector<DatasetPair> all = SortedPairs(index_.pairs);
+    // From all the variant's pairs, not this shard's: every shard and the merge name alike.
+    names_ = PairNames(all);
     const std::vector<int> shard = PairShards(all, options_.shard_split, options_.shard_count);
     for (size_t i = 0; i < all.size(); ++i) {
       if (shard[i] == options_.shard_index) pairs_.push_back(all[i]);
     }
     records_.assign(pairs_.size(), "");
     for (size_t i = 0; i < pairs_.size(); ++i) {
-      const std::string record = PairRecordPath(dir_, pairs_[i].source, pairs_[i].target);
+      const std::string record = PairRecordPath(dir_, Stem(pairs_[i]));
       if (options_.resume) {
         if (fs::exists(record)) {
           kept_.push_back(static_cast<int>(i));  // verified once its shapes are known
@@ -236,7 +239,7 @@ class VariantRun {
   void VerifyKeptPairs() {
     for (int i : kept_) {
       const DatasetPair& pair = pairs_[i];
-      const std::string path = PairRecordPath(dir_, pair.source, pair.target);
+      const std::string path = PairRecordPath(dir_, Stem(pair));
       const std::optional<PairSetup> setup = Setup(pair);
       if (!setup) {
         pending_.push_back(i);  // a shape failed: RunPair records the pair's failure
@@ -246,12 +249,16 @@ class VariantRun {
       const std::optional<std::string> text = ReadFileBytes(path);
       try {
         if (!text) throw InvalidInputError("cannot read it");
-        evaluation_.PairOfRecord(*text, path);
-        problem = InputsProblem(PairInputsOfRecord(*text), setup->inputs);
+        const DatasetPair recorded = evaluation_.PairOfRecord(*text, path);
+        if (recorded.source != pair.source || recorded.target != pair.target) {
+          problem = "it holds the record of " + recorded.source + " -> " + recorded.target;
+        } else {
+          problem = InputsProblem(PairInputsOfRecord(*text), setup->inputs);
+        }
       } catch (const std::exception& e) {
         problem = std::string("unreadable record (") + e.what() + ")";
       }
-      const std::string map_path = PairMapPath(dir_, pair.source, pair.target);
+      const std::string map_path = PairMapPath(dir_, Stem(pair));
       if (problem.empty() && !fs::exists(map_path)) problem = "its map " + map_path + " is missing";
       if (problem.empty()) {
         try {
@@ -310,6 +317,10 @@ class VariantRun {
     return setup;
   }
 
+  const std::string& Stem(const DatasetPair& pair) const {
+    return names_.Stem(pair.source, pair.target);
+  }
+
   void ReportShape(const std::string& name, const StageCounters& counters) {
     if (!options_.on_shape) return;
     std::vector<std::string> computed;
@@ -353,8 +364,8 @@ class VariantRun {
     if (cache_.Load("pair", setup->inputs.pair, &cached)) {
       counters_->Hit("pair");
       const std::string record = StampPairInputs(cached.record, setup->inputs);
-      WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), FormatMap(cached.map));
-      WriteFileAtomically(PairRecordPath(dir_, pair.source, pair.target), record);
+      WriteFileAtomically(PairMapPath(dir_, Stem(pair)), FormatMap(cached.map));
+      WriteFileAtomically(PairRecordPath(dir_, Stem(pair)), record);
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_->pairs_done;
       return record;
@@ -365,7 +376,7 @@ class VariantRun {
         source, target, pipeline_, truth.source_ids.empty() ? nullptr : &truth,
         [&](const std::vector<int>& predicted) { return evaluation.MeanError(context, predicted); },
         counters_);
-    WriteFileAtomically(PairMapPath(dir_, pair.source, pair.target), FormatMap(outcome.map));
+    WriteFileAtomically(PairMapPath(dir_, Stem(pair)), FormatMap(outcome.map));
     std::string failure;
     const std::string evaluated = evaluation.Evaluate(context, outcome, &failure);
     if (!failure.empty()) {
@@ -374,7 +385,7 @@ class VariantRun {
     }
     SYMEMBED_CHECK(!evaluated.empty(), "the evaluation returned an empty record");
     const std::string record = StampPairInputs(evaluated, setup->inputs);
-    WriteFileAtomically(PairRecordPath(dir_, pair.source, pair.target), record);
+    WriteFileAtomically(PairRecordPath(dir_, Stem(pair)), record);
     counters_->Executed("pair");
     cache_.Store("pair", setup->inputs.pair, PairEntry{outcome.map, evaluated});
     std::lock_guard<std::mutex> lock(mutex_);
@@ -392,6 +403,7 @@ class VariantRun {
   std::string dir_;
   DiskCache cache_;
   const DatasetIndex& index_;
+  PairNames names_;  // the file stems of all the variant's pairs
   std::vector<DatasetPair> pairs_;
   std::vector<std::string> records_;
   std::vector<int> pending_;

@@ -5,10 +5,12 @@
 // Outputs under out_dir (results/<experiment>):
 //   variants.txt                    the config's variant names in order
 //   <variant>/config.yaml           ResolvedConfigYaml
-//   <variant>/maps/A_B.map          1-based target input id per source input vertex (atomic)
+//   <variant>/maps/STEM.map         1-based target input id per source input vertex (atomic)
 //   <variant>/IN_PROGRESS           while the variant runs (registry/run_outputs.h)
-//   <variant>/pairs/A_B.rec         the evaluation's record of the pair (atomic, after the map),
+//   <variant>/pairs/STEM.rec        the evaluation's record of the pair (atomic, after the map),
 //                                   stamped with the pair's PairInputs
+//   (STEM: "A_B", escaped where that is ambiguous among all the variant's pairs, shards
+//   included: registry/pair_names.h)
 //   <variant>/shapes/NAME.rec       per-shape stage times and report (registry/run_outputs.h)
 //   <variant>/failures.csv          every failed shape and pair with its message
 //   + what RunEvaluation::WriteVariant / WriteExperiment write (summary, curves, comparison).
@@ -19,8 +21,9 @@
 // (registry/shards.h) assigns to it: by pair index modulo N, or all pairs of a target together.
 // Whatever is in the variant folder depends only on the set of pair records and failures, so
 // shards merged (MergeRuns) and resumed runs equal a single run.
-// --resume keeps a pair only when its record parses, carries this run's PairInputs and its map
-// holds one id per source vertex; every other pair is computed again, with a warning.
+// --resume keeps a pair only when its record parses, is the record of that pair, carries this
+// run's PairInputs and its map holds one id per source vertex; every other pair is computed
+// again, with a warning.
 //
 // A shapes-only run computes the per-shape stages (and what the per-pair stages need of each
 // shape) of the shapes of shard i of N (ShapesOfShard over the shapes of all the variant's
@@ -59,7 +62,7 @@ class VariantEvaluation {
   // Mean direct error of predicted target input ids, one per line of pair.ground_truth
   // (chooses the oracle candidate). May throw; the pair then fails.
   virtual double MeanError(const PairContext& pair, const std::vector<int>& predicted) const = 0;
-  // The record text of a finished pair (written to pairs/A_B.rec). When the evaluation failed,
+  // The record text of a finished pair (written to pairs/STEM.rec). When the evaluation failed,
   // sets *failure to the message; the pair is then a failure and no record is written.
   virtual std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
                                std::string* failure) const = 0;

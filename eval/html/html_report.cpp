@@ -33,7 +33,7 @@ struct VariantInputs {
   JsonValue data;
   std::unique_ptr<Dataset> dataset;  // null when it could not be opened (see reason)
   DatasetIndex index;
-  MapSource maps;
+  MapSource maps;      // its names: those of the pairs.csv rows (WritePairs)
   std::string reason;  // why this variant's pairs have no 3D view; empty when they have one
 };
 
@@ -67,11 +67,11 @@ void OpenDataset(VariantInputs& v, const Registry& registry) {
     EvalSetup setup;
     if (fs::exists(config)) {
       setup = MakeEvalSetup(config, registry);
-      v.maps = MapSource{dir + "/maps", 1, false, dir + "/pairs"};
+      v.maps = MapSource{dir + "/maps", 1, false, dir + "/pairs", PairNames()};
     } else if (fs::exists(eval)) {
       const EvalSource source = ReadEvalSource(eval);
       setup = MakeEvalSetup(source.dataset, registry);
-      v.maps = MapSource{source.maps_dir, source.base, source.reverse, ""};
+      v.maps = MapSource{source.maps_dir, source.base, source.reverse, "", PairNames()};
     } else {
       v.reason = dir + ": neither config.yaml nor eval.json, so the meshes and maps are unknown";
       return;
@@ -231,8 +231,16 @@ class ReportWriter {
     };
     std::vector<Job> jobs;
     for (size_t vi = 0; vi < variants.size(); ++vi) {
-      const VariantInputs& v = variants[vi];
+      VariantInputs& v = variants[vi];
       const auto& rows = v.data.Get("pairs").items();
+      // The folder's files are named among the pairs of its pairs.csv (in the files' orientation).
+      std::vector<DatasetPair> named;
+      for (const JsonValue& row : rows) {
+        const std::string source = row.Get("source").AsString();
+        const std::string target = row.Get("target").AsString();
+        named.push_back(v.maps.reverse ? DatasetPair{target, source} : DatasetPair{source, target});
+      }
+      v.maps.names = PairNames(named);
       for (size_t r = 0; r < rows.size(); ++r) {
         if (rows[r].Get("status").AsString() != "ok") continue;
         Job job{

@@ -2,13 +2,12 @@
 
 #include <filesystem>
 
+#include "core/map_io.h"
 #include "core/mesh_io.h"
 #include "eval/html/side_files.h"
-#include "core/map_io.h"
 #include "eval/report.h"
 #include "registry/files.h"
 #include "registry/hash.h"
-#include "registry/run_outputs.h"
 
 namespace symembed {
 
@@ -55,8 +54,16 @@ ShapeView BuildShapeView(const Dataset& dataset, const DatasetShape& shape,
   return view;
 }
 
+std::string MapSource::Stem(const std::string& source, const std::string& target) const {
+  return reverse ? names.Stem(target, source) : names.Stem(source, target);
+}
+
 std::string MapSource::MapPath(const std::string& source, const std::string& target) const {
-  return maps_dir + "/" + (reverse ? MapFileName(target, source) : MapFileName(source, target));
+  return maps_dir + "/" + Stem(source, target) + ".map";
+}
+
+std::string MapSource::RecordPath(const std::string& source, const std::string& target) const {
+  return records_dir + "/" + Stem(source, target) + ".rec";
 }
 
 namespace {
@@ -68,7 +75,7 @@ std::vector<double> RecordErrors(const ShapeView& source, const ShapeView& targe
     *note = "no per-point errors: this folder has no per-pair records (symembed eval keeps none)";
     return {};
   }
-  const std::string path = maps.records_dir + "/" + PairStem(source.name, target.name) + ".rec";
+  const std::string path = maps.RecordPath(source.name, target.name);
   PairEvaluation record;
   try {
     record = ParsePairRecord(ReadFileOrThrow(path), path);
@@ -120,7 +127,9 @@ PairView BuildPairView(const ShapeView& source, const ShapeView& target, const M
     payload.Set("errors_note", JsonValue::String(note));
   }
   const std::string body = WriteJson(payload, 0);
-  view.key = PairStem(source.name, target.name) + "-" +
+  // Side files are named by their content: pairs whose plain stems collide differ in the hash,
+  // and pairs with equal payloads may share one file.
+  view.key = PlainPairStem(source.name, target.name) + "-" +
              HexDigest(HashBytes(body.data(), body.size())).substr(0, 8);
   view.script = SideFileScript("pair", view.key, payload);
   return view;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "registry/dataset.h"
+#include "registry/pair_names.h"
 
 namespace symembed {
 
@@ -31,14 +32,21 @@ struct ShapeView {
 ShapeView BuildShapeView(const Dataset& dataset, const DatasetShape& shape,
                          const std::string& key = "");
 
-// Where a variant's maps are: a run's maps/A_B.map (base 1) with pairs/A_B.rec records, or the
-// maps folder of `symembed eval` (its base; reverse: A_B.map maps B to A), without records.
+// Where a variant's maps are: a run's maps/STEM.map (base 1) with pairs/STEM.rec records, or the
+// maps folder of `symembed eval` (its base; reverse: the file named for A -> B maps B to A),
+// without records. names: the stems of the pairs the files were named for (in the files'
+// orientation: the pairs of the folder's pairs.csv, reversed with `reverse`); Stem, MapPath
+// and RecordPath throw InternalError for a pair not among them.
 struct MapSource {
   std::string maps_dir;
   int base = 1;
   bool reverse = false;
   std::string records_dir;  // empty: no per-pair records, hence no per-point errors
+  PairNames names;
+  // The file stem of the pair source -> target, and its files.
+  std::string Stem(const std::string& source, const std::string& target) const;
   std::string MapPath(const std::string& source, const std::string& target) const;
+  std::string RecordPath(const std::string& source, const std::string& target) const;
 };
 
 struct PairView {

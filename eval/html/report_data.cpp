@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "registry/files.h"
+#include "registry/pair_names.h"
 #include "registry/run_outputs.h"
 
 namespace symembed {
@@ -87,8 +88,8 @@ JsonValue CurveData(const std::string& path) {
   return curve;
 }
 
-// timings.csv: per pair name ("A_B") its stage seconds, and the mean per stage of shapes and
-// pairs.
+// timings.csv: per pair name (its file stem, registry/pair_names.h) its stage seconds, and the
+// mean per stage of shapes and pairs.
 struct Timings {
   std::map<std::string, JsonValue> pair_seconds;
   JsonValue means = JsonValue::Object();
@@ -123,8 +124,15 @@ Timings ReadTimings(const std::string& path) {
 }
 
 JsonValue PairRows(const std::string& path, const Timings& timings) {
+  const auto rows = ReadCsvTable(path);
+  // timings.csv names each pair among the rows of pairs.csv, which it was written with.
+  std::vector<DatasetPair> listed;
+  for (const auto& row : rows) {
+    listed.push_back({Field(row, "source", path), Field(row, "target", path)});
+  }
+  const PairNames names(listed);
   JsonValue pairs = JsonValue::Array();
-  for (const auto& row : ReadCsvTable(path)) {
+  for (const auto& row : rows) {
     JsonValue pair = JsonValue::Object();
     for (const auto& [column, text] : row) {
       if (column == "candidate_errors") {
@@ -135,8 +143,8 @@ JsonValue PairRows(const std::string& path, const Timings& timings) {
         pair.Set(column, FieldValue(text));
       }
     }
-    const auto it =
-        timings.pair_seconds.find(PairStem(Field(row, "source", path), Field(row, "target", path)));
+    const auto it = timings.pair_seconds.find(
+        names.Stem(Field(row, "source", path), Field(row, "target", path)));
     pair.Set("seconds", it == timings.pair_seconds.end() ? JsonValue::Object() : it->second);
     pairs.Push(pair);
   }

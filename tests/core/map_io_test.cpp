@@ -40,7 +40,7 @@ TEST(MapIo, RejectsMalformedEntriesNamingTheLine) {
 TEST(MapIo, WritesOneBasedAndReadsBack) {
   testing::TempDir dir;
   const std::vector<int> map = {4, 0, 2, 2};
-  WriteMapFile(dir.File(MapFileName("a", "b")), map);
+  WriteMapFile(dir.File("a_b.map"), map);
   EXPECT_EQ(testing::ReadText(dir.File("a_b.map")), "5\n1\n3\n3\n");
   EXPECT_EQ(ReadMapFile(dir.File("a_b.map"), 1, 4, 5), map);
   EXPECT_THROW(ReadMapFile(dir.File("missing.map"), 1, 4, 5), IoError);

@@ -7,11 +7,19 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <tuple>
 
 #include "core/errors.h"
+#include "core/map_io.h"
+#include "core/primitives.h"
+#include "eval/html/html_report.h"
+#include "eval/html/report_data.h"
 #include "eval/report.h"
+#include "eval/score_maps.h"
 #include "registry/config.h"
 #include "registry/merge.h"
+#include "tests/eval/euclidean_geodesics.h"
 #include "tests/eval/run_outputs_fixture.h"
 #include "tests/registry/runner_fixture.h"
 
@@ -21,6 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ReadText;
 using testing::TempDir;
+using testing::runner::OffText;
 using testing::runner::ReadOff;
 using testing::runner::TestRegistry;
 using testing::runner::WriteTestDataset;
@@ -191,6 +200,129 @@ TEST(RunEvaluation, ShardsMergedAndResumedRunsEqualASingleRun) {
   const RunStats stats = RunConfig(config, tmp.File("resumed"), tmp.File("cache"), resume);
   EXPECT_EQ(stats.pairs_done, 2);
   EXPECT_EQ(Outputs(tmp.File("resumed")), single);
+}
+
+// Shapes a, a_b1, c1, b1_c1 (the p, p_q1, r1, q1_r1; names starting with 'p' have ground
+// truth onto s0 in the test dataset) with the pairs a_b1 -> c1 and a -> b1_c1, whose plain stems
+// are both "a_b1_c1". The sources differ in size (a_b1: 12 vertices, a: 20), so a pair read with
+// the other's map fails instead of passing unnoticed. Returns the config text.
+std::string WriteCollidingDataset(const std::string& root) {
+  const std::string config = WriteTestDataset(root, 0);
+  for (const auto& [name, nx, ny] : {std::tuple{"a", 5, 4}, std::tuple{"a_b1", 4, 3},
+                                     std::tuple{"c1", 5, 4}, std::tuple{"b1_c1", 5, 4}}) {
+    Surface s = GridMesh(nx, ny);
+    for (int i = 0; i < s.NumVertices(); ++i) s.V(i, 2) = 0.2 * s.V(i, 0) * s.V(i, 0);
+    testing::WriteText(root + "/shapes/" + name + ".off", OffText(s));
+  }
+  testing::WriteText(root + "/pairs.txt", "a_b1 c1\na b1_c1\n");
+  return config;
+}
+
+// The files of a folder, sorted by name.
+std::vector<std::string> FileNames(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(RunEvaluation, PairsWhosePlainFileNamesCollideKeepTheirOwnMapsAndRecords) {
+  TempDir tmp;
+  const std::string config = WriteCollidingDataset(tmp.File("data"));
+  ASSERT_TRUE(RunConfig(config, tmp.File("single"), tmp.File("cache")).ok());
+  const std::string variant = tmp.File("single/base");
+  ASSERT_EQ(FileNames(variant + "/maps").size(), 2u);
+  ASSERT_EQ(FileNames(variant + "/pairs").size(), 2u);
+  // Each record holds its own pair, and each map one id per vertex of that pair's source.
+  std::map<std::string, std::string> record_of;  // "source target" -> record file
+  for (const std::string& file : FileNames(variant + "/pairs")) {
+    const PairEvaluation record = ParsePairRecord(ReadText(variant + "/pairs/" + file), file);
+    EXPECT_TRUE(record.ok) << file;
+    record_of[record.source + " " + record.target] = file;
+  }
+  ASSERT_EQ(record_of.size(), 2u);
+  ASSERT_TRUE(record_of.count("a_b1 c1") && record_of.count("a b1_c1"));
+  const std::map<std::string, size_t> source_vertices = {{"a_b1 c1", 12}, {"a b1_c1", 20}};
+  for (const auto& [pair, file] : record_of) {
+    const std::string stem = fs::path(file).stem().string();
+    EXPECT_EQ(ReadMapFile(variant + "/maps/" + stem + ".map", 1, -1, -1).size(),
+              source_vertices.at(pair))
+        << stem;
+  }
+
+  // --resume proves both pairs and computes neither again.
+  RunOptions resume;
+  resume.resume = true;
+  const RunStats resumed = RunConfig(config, tmp.File("single"), tmp.File("cache"), resume);
+  EXPECT_EQ(resumed.pairs_skipped, 2);
+  EXPECT_EQ(resumed.pairs_recomputed, 0);
+  EXPECT_EQ(resumed.pairs_done, 0);
+  EXPECT_TRUE(resumed.warnings.empty()) << resumed.warnings[0];
+
+  // One pair per shard, merged: the single run's outputs, both pairs scored.
+  std::vector<std::string> shards;
+  for (int i = 0; i < 2; ++i) {
+    RunOptions shard;
+    shard.shard_index = i;
+    shard.shard_count = 2;
+    shards.push_back(tmp.File("shard" + std::to_string(i)));
+    ASSERT_TRUE(RunConfig(config, shards.back(), tmp.File("cache"), shard).ok());
+  }
+  GroundTruthRunEvaluation evaluation;
+  EXPECT_TRUE(MergeRuns(shards, tmp.File("merged"), evaluation).empty());
+  EXPECT_EQ(Outputs(tmp.File("merged")), Outputs(tmp.File("single")));
+
+  // `symembed eval` of the run's maps reads each pair's own map, and scores it as the run did.
+  testing::runner::TestDataset dataset(tmp.File("data"));
+  testing::runner::TestPreprocess preprocess;
+  testing::EuclideanGeodesics geodesics;
+  EvaluationOptions options;
+  options.geodesics = "test";
+  Evaluator evaluator(options, geodesics);
+  ScoreMapsOptions maps;
+  maps.maps_dir = variant + "/maps";
+  const auto load = [](const DatasetShape& shape) { return ReadOff(shape.mesh_path); };
+  const ScoreMapsResult scored = ScoreMaps(dataset, preprocess, evaluator, maps, load);
+  ASSERT_EQ(scored.pairs.size(), 2u);
+  for (const PairEvaluation& p : scored.pairs) {
+    ASSERT_TRUE(p.ok) << p.source << " -> " << p.target << ": " << p.message;
+    const std::string file = record_of.at(p.source + " " + p.target);
+    const PairEvaluation run = ParsePairRecord(ReadText(variant + "/pairs/" + file), file);
+    EXPECT_EQ(p.points, run.points);
+    EXPECT_NEAR(p.mean_direct, run.mean_direct, 1e-6);  // the same evaluator; float distances
+  }
+}
+
+// timings.csv names each pair by its file stem, and the report reads each pair's stage times,
+// map and record under it.
+TEST(RunEvaluation, TimingsAndReportOfPairsWhosePlainFileNamesCollideAreTheirOwn) {
+  TempDir tmp;
+  const std::string config = WriteCollidingDataset(tmp.File("data"));
+  ASSERT_TRUE(RunConfig(config, tmp.File("out"), tmp.File("cache")).ok());
+  const std::string variant = tmp.File("out/base");
+  const std::string timings = ReadText(variant + "/timings.csv");
+  EXPECT_NE(timings.find("\npair,a%5Fb1_c1,"), std::string::npos) << timings;
+  EXPECT_NE(timings.find("\npair,a_b1_c1,"), std::string::npos) << timings;
+
+  HtmlReportOptions report;
+  report.threads = 2;
+  const HtmlReportResult html = WriteHtmlReport(tmp.File("out"), report, TestRegistry());
+  EXPECT_EQ(html.pairs_viewable, 2);
+  EXPECT_EQ(html.pairs_unavailable, 0) << html.warnings[0];
+  const JsonValue data = VariantReportData({"base", variant});
+  ASSERT_EQ(data.Get("pairs").items().size(), 2u);
+  for (const JsonValue& row : data.Get("pairs").items()) {
+    const std::string source = row.Get("source").AsString(), target = row.Get("target").AsString();
+    const std::string stem = source == "a" ? "a_b1_c1" : "a%5Fb1_c1";
+    const PairEvaluation record = ParsePairRecord(ReadText(variant + "/pairs/" + stem + ".rec"));
+    ASSERT_EQ(record.source, source);
+    ASSERT_FALSE(record.stage_seconds.empty());
+    for (const auto& [stage, seconds] : record.stage_seconds) {
+      // timings.csv keeps 8 significant digits.
+      EXPECT_NEAR(row.Get("seconds").Get(stage).AsNumber(), seconds, 1e-7 * seconds)
+          << source << " -> " << target << ": " << stage;
+    }
+  }
 }
 
 }  // namespace

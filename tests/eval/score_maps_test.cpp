@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/primitives.h"
+#include <map>
+
 #include "core/map_io.h"
+#include "core/primitives.h"
 #include "eval/report.h"
 #include "tests/eval/euclidean_geodesics.h"
 #include "tests/test_util.h"
@@ -157,6 +159,53 @@ TEST(ScoreMaps, GroundTruthOntoAnotherShapeScoresThroughItsLines) {
   r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
   ASSERT_TRUE(r.pairs[0].ok) << r.pairs[0].message;
   EXPECT_NEAR(r.pairs[0].mean_direct, 0.0, 1e-9);
+}
+
+// p_q1 -> r1 and p -> q1_r1 would both be p_q1_r1.map; a -> b keeps a_b.map.
+class CollidingDataset : public GridDataset {
+ public:
+  DatasetIndex Load() const override {
+    DatasetIndex index;
+    for (const char* name : {"p", "p_q1", "r1", "q1_r1", "a", "b"}) {
+      index.shapes.push_back({name, "grid", name});
+    }
+    index.pairs = {{"p_q1", "r1"}, {"p", "q1_r1"}, {"a", "b"}};
+    return index;
+  }
+};
+
+TEST(ScoreMaps, AnAmbiguousPlainNameIsNotReadAndTheEscapedOnesAreNamed) {
+  testing::TempDir dir;
+  // A peer's folder: one file for the two colliding pairs, a_b.map as always.
+  WriteMapFile(dir.File("p_q1_r1.map"), Identity());
+  WriteMapFile(dir.File("a_b.map"), Identity());
+  CollidingDataset dataset;
+  IdentityPreprocess preprocess;
+  testing::EuclideanGeodesics geodesics;
+  Evaluator evaluator(EvaluationOptions{}, geodesics);
+  ScoreMapsOptions options;
+  options.maps_dir = dir.path();
+  options.threads = 2;
+  ScoreMapsResult r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  std::map<std::string, const PairEvaluation*> by_source;
+  for (const PairEvaluation& p : r.pairs) by_source[p.source] = &p;
+  ASSERT_EQ(by_source.size(), 3u);
+  EXPECT_TRUE(by_source.at("a")->ok) << by_source.at("a")->message;
+  // p -> q1_r1's escaped name is the plain one; p_q1 -> r1 is read from its escaped name only.
+  EXPECT_TRUE(by_source.at("p")->ok) << by_source.at("p")->message;
+  EXPECT_FALSE(by_source.at("p_q1")->ok);
+  EXPECT_NE(by_source.at("p_q1")->message.find(dir.File("p%5Fq1_r1.map") + ": cannot read"),
+            std::string::npos)
+      << by_source.at("p_q1")->message;
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("p_q1_r1.map would be ambiguous"), std::string::npos)
+      << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("p_q1 -> r1 from p%5Fq1_r1.map"), std::string::npos)
+      << r.warnings[0];
+
+  WriteMapFile(dir.File("p%5Fq1_r1.map"), Identity());
+  r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  for (const PairEvaluation& p : r.pairs) EXPECT_TRUE(p.ok) << p.source << ": " << p.message;
 }
 
 }  // namespace

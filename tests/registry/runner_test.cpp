@@ -472,6 +472,30 @@ TEST(Runner, ResumeComputesAgainWhatDoesNotProveItself) {
   EXPECT_EQ(Snapshot(tmp.File("out")), Snapshot(tmp.File("fresh2")));
 }
 
+// A record under the name of another pair (as runs whose pair file names collided left them)
+// is computed again, saying whose record it holds.
+TEST(Runner, ResumeComputesAgainAPairWhoseFileHoldsAnotherPairsRecord) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(tmp.File("data"), 2);
+  RunConfig(config, tmp.File("out"), tmp.File("cache"));
+  const std::string out = tmp.File("out/base");
+  const std::string s0_s1 = ReadText(out + "/pairs/s0_s1.rec");
+  WriteText(out + "/pairs/s0_s1.rec", ReadText(out + "/pairs/s1_s0.rec"));
+  WriteText(out + "/pairs/s1_s0.rec", s0_s1);
+  RunOptions resume;
+  resume.resume = true;
+  const RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"), resume);
+  EXPECT_EQ(run.stats.pairs_skipped, 0);
+  EXPECT_EQ(run.stats.pairs_recomputed, 2);
+  ASSERT_EQ(run.stats.warnings.size(), 2u);
+  EXPECT_NE(run.stats.warnings[0].find(out + "/pairs/s0_s1.rec: computed again: it holds the "
+                                             "record of s1 -> s0"),
+            std::string::npos)
+      << run.stats.warnings[0];
+  RunConfig(config, tmp.File("fresh"), tmp.File("cache"));
+  EXPECT_EQ(Snapshot(tmp.File("out")), Snapshot(tmp.File("fresh")));
+}
+
 TEST(Runner, AVariantFolderIsMarkedInProgressUntilItsSummaryIsWritten) {
   TempDir tmp;
   const std::string config = WriteTestDataset(tmp.File("data"), 2);
