@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 #include "core/errors.h"
 #include "registry/files.h"
@@ -45,14 +46,6 @@ std::string CsvField(const std::string& s) {
   return out + "\"";
 }
 
-JsonValue Thresholded(const std::array<double, 3>& values) {
-  JsonValue o = JsonValue::Object();
-  for (size_t k = 0; k < values.size(); ++k) {
-    o.Set(ErrorThresholdKeys()[k], JsonValue::Number(values[k]));
-  }
-  return o;
-}
-
 const JsonValue& Require(const JsonValue& json, const std::string& key, const std::string& where) {
   if (!json.Has(key)) throw InvalidInputError(where + ": missing key '" + key + "'");
   return json.Get(key);
@@ -64,16 +57,6 @@ double RequireNumber(const JsonValue& json, const std::string& key, const std::s
     throw InvalidInputError(where + ": key '" + key + "' must be a number");
   }
   return v.NumberOr(kNaN);
-}
-
-std::array<double, 3> RequireThresholded(const JsonValue& json, const std::string& key,
-                                         const std::string& where) {
-  const JsonValue& o = Require(json, key, where);
-  std::array<double, 3> values{};
-  for (size_t k = 0; k < values.size(); ++k) {
-    values[k] = RequireNumber(o, ErrorThresholdKeys()[k], where + ": " + key);
-  }
-  return values;
 }
 
 JsonValue NumberArray(const std::vector<double>& x) {
@@ -92,80 +75,220 @@ std::vector<double> ReadNumberArray(const JsonValue& a, const std::string& where
 
 }  // namespace
 
+namespace {
+
+using Entry = SummaryEntry;
+
+// A number of the summary: written as a JSON number; read back as RequireNumber reads it
+// (kRequired) or as the number found, else `missing` (kOptional); in comparison.csv as Num, or
+// as an integer for `integer` members.
+template <typename T>
+Entry NumberEntry(std::string key, T VariantSummary::*member, std::string csv_column,
+                  Entry::Read read, double missing = kNaN) {
+  Entry e;
+  e.key = std::move(key);
+  e.csv_column = std::move(csv_column);
+  e.read = read;
+  e.to_json = [member](const VariantSummary& s) {
+    return JsonValue::Number(static_cast<double>(s.*member));
+  };
+  e.from_json = [member, read, missing](VariantSummary& s, const JsonValue& value, bool present,
+                                        const std::string& key, const std::string& where) {
+    double x = missing;
+    if (read == Entry::Read::kRequired) {
+      if (!value.IsNumber() && !value.IsNull()) {
+        throw InvalidInputError(where + ": key '" + key + "' must be a number");
+      }
+      x = value.NumberOr(kNaN);
+    } else if (present) {
+      x = value.NumberOr(missing);
+    }
+    s.*member = static_cast<T>(x);
+  };
+  if (e.csv_column.empty()) return e;
+  e.csv_cell = [member](const VariantSummary& s) {
+    if constexpr (std::is_integral_v<T>) {
+      return std::to_string(s.*member);
+    } else {
+      return Num(s.*member);
+    }
+  };
+  return e;
+}
+
+// One threshold of a thresholded percentage (pct_direct, pct_flip_tolerant): required.
+Entry ThresholdEntry(const std::string& group, std::array<double, 3> VariantSummary::*member,
+                     size_t k) {
+  Entry e;
+  e.key = group + "." + ErrorThresholdKeys()[k];
+  e.csv_column = group + "_" + ErrorThresholdKeys()[k];
+  e.read = Entry::Read::kRequired;
+  e.to_json = [member, k](const VariantSummary& s) { return JsonValue::Number((s.*member)[k]); };
+  e.from_json = [member, k](VariantSummary& s, const JsonValue& value, bool,
+                            const std::string& key, const std::string& where) {
+    if (!value.IsNumber() && !value.IsNull()) {
+      throw InvalidInputError(where + ": key '" + key + "' must be a number");
+    }
+    (s.*member)[k] = value.NumberOr(kNaN);
+  };
+  e.csv_cell = [member, k](const VariantSummary& s) { return Num((s.*member)[k]); };
+  return e;
+}
+
+std::vector<Entry> MakeSummaryEntries() {
+  using Read = Entry::Read;
+  using S = VariantSummary;
+  std::vector<Entry> t;
+  {
+    Entry e;  // the variant's name: optional when read (an eval of one variant may lack it)
+    e.key = "variant";
+    e.csv_column = "variant";
+    e.read = Read::kOptional;
+    e.to_json = [](const S& s) { return JsonValue::String(s.variant); };
+    e.from_json = [](S& s, const JsonValue& v, bool, const std::string&, const std::string&) {
+      if (v.IsString()) s.variant = v.AsString();
+    };
+    e.csv_cell = [](const S& s) { return CsvField(s.variant); };
+    t.push_back(e);
+  }
+  t.push_back(NumberEntry("pairs", &S::pairs, "pairs", Read::kRequired));
+  t.push_back(NumberEntry("failed_pairs", &S::failed_pairs, "failed_pairs", Read::kRequired));
+  t.push_back(NumberEntry("points", &S::total_points, "", Read::kOptional, 0.0));
+  t.push_back(NumberEntry("mean_direct", &S::mean_direct, "mean_direct", Read::kRequired));
+  t.push_back(NumberEntry("median_direct", &S::median_direct, "median_direct", Read::kRequired));
+  t.push_back(NumberEntry("mean_flip_tolerant", &S::mean_flip_tolerant, "mean_flip_tolerant",
+                          Read::kRequired));
+  t.push_back(NumberEntry("median_flip_tolerant", &S::median_flip_tolerant, "", Read::kOptional));
+  t.push_back(NumberEntry("mean_of_pair_means_direct", &S::mean_of_pair_means_direct, "",
+                          Read::kOptional));
+  t.push_back(NumberEntry("mean_of_pair_means_flip_tolerant",
+                          &S::mean_of_pair_means_flip_tolerant, "", Read::kOptional));
+  for (size_t k = 0; k < 3; ++k) t.push_back(ThresholdEntry("pct_direct", &S::pct_direct, k));
+  for (size_t k = 0; k < 3; ++k) {
+    t.push_back(ThresholdEntry("pct_flip_tolerant", &S::pct_flip_tolerant, k));
+  }
+  t.push_back(NumberEntry("auc_direct", &S::auc_direct, "auc_direct", Read::kRequired));
+  t.push_back(NumberEntry("auc_flip_tolerant", &S::auc_flip_tolerant, "auc_flip_tolerant",
+                          Read::kOptional));
+  t.push_back(NumberEntry("flipped_pairs.left_right", &S::flipped_left_right,
+                          "flipped_left_right", Read::kRequired));
+  t.push_back(NumberEntry("flipped_pairs.front_back", &S::flipped_front_back,
+                          "flipped_front_back", Read::kRequired));
+  t.push_back(NumberEntry("flipped_pairs.up_down", &S::flipped_up_down, "flipped_up_down",
+                          Read::kRequired));
+  {
+    Entry e;  // derived from the three above
+    e.key = "flipped_pairs.total";
+    e.csv_column = "flipped_total";
+    e.read = Read::kWritten;
+    e.to_json = [](const S& s) { return JsonValue::Number(s.FlippedTotal()); };
+    e.csv_cell = [](const S& s) { return std::to_string(s.FlippedTotal()); };
+    t.push_back(e);
+  }
+  t.push_back(NumberEntry("refine_changed_side.to_symmetric", &S::refine_to_symmetric, "",
+                          Read::kOptional, 0.0));
+  t.push_back(NumberEntry("refine_changed_side.to_direct", &S::refine_to_direct, "",
+                          Read::kOptional, 0.0));
+  {
+    // Runs only (-1: not known, not written).
+    Entry e = NumberEntry("shapes_lost_area", &S::shapes_lost_area, "", Read::kOptional, -1.0);
+    e.to_json = [](const S& s) {
+      return s.shapes_lost_area >= 0 ? JsonValue::Number(s.shapes_lost_area) : JsonValue();
+    };
+    t.push_back(e);
+  }
+  {
+    Entry e;
+    e.key = "evaluation_geodesics";
+    e.read = Read::kRequired;
+    e.to_json = [](const S& s) { return JsonValue::String(s.evaluation_geodesics); };
+    e.from_json = [](S& s, const JsonValue& v, bool, const std::string& key,
+                     const std::string& where) {
+      if (!v.IsString()) throw InvalidInputError(where + ": " + key);
+      s.evaluation_geodesics = v.AsString();
+    };
+    t.push_back(e);
+  }
+  {
+    Entry e;  // evaluation.points: a count, or "all" (0)
+    e.key = "evaluation_points";
+    e.read = Read::kOptional;
+    e.to_json = [](const S& s) {
+      return s.points_option > 0 ? JsonValue::Number(s.points_option) : JsonValue::String("all");
+    };
+    e.from_json = [](S& s, const JsonValue& v, bool, const std::string&, const std::string&) {
+      s.points_option = static_cast<int>(v.NumberOr(0.0));
+    };
+    t.push_back(e);
+  }
+  t.push_back(NumberEntry("max_error", &S::max_error, "", Read::kOptional, S().max_error));
+  t.push_back(NumberEntry("step", &S::step, "", Read::kOptional, S().step));
+  t.push_back(NumberEntry("time_total_s", &S::time_total_s, "time_total_s", Read::kRequired));
+  t.push_back(
+      NumberEntry("time_per_shape_s", &S::time_per_shape_s, "time_per_shape_s", Read::kRequired));
+  t.push_back(
+      NumberEntry("time_per_pair_s", &S::time_per_pair_s, "time_per_pair_s", Read::kRequired));
+  t.push_back(NumberEntry("peak_rss_mb", &S::peak_rss_mb, "peak_rss_mb", Read::kRequired));
+  return t;
+}
+
+// "group.key" -> ("group", "key"); a top-level key -> ("", key). Threshold keys hold a dot
+// themselves ("0.05"), so the group ends at the first dot.
+std::pair<std::string, std::string> SplitKey(const std::string& key) {
+  const size_t dot = key.find('.');
+  if (dot == std::string::npos) return {"", key};
+  return {key.substr(0, dot), key.substr(dot + 1)};
+}
+
+}  // namespace
+
+const std::vector<SummaryEntry>& SummaryEntries() {
+  static const std::vector<SummaryEntry> entries = MakeSummaryEntries();
+  return entries;
+}
+
 JsonValue SummaryToJson(const VariantSummary& s) {
   JsonValue j = JsonValue::Object();
-  j.Set("variant", JsonValue::String(s.variant));
-  j.Set("pairs", JsonValue::Number(s.pairs));
-  j.Set("failed_pairs", JsonValue::Number(s.failed_pairs));
-  j.Set("points", JsonValue::Number(static_cast<double>(s.total_points)));
-  j.Set("mean_direct", JsonValue::Number(s.mean_direct));
-  j.Set("median_direct", JsonValue::Number(s.median_direct));
-  j.Set("mean_flip_tolerant", JsonValue::Number(s.mean_flip_tolerant));
-  j.Set("median_flip_tolerant", JsonValue::Number(s.median_flip_tolerant));
-  j.Set("mean_of_pair_means_direct", JsonValue::Number(s.mean_of_pair_means_direct));
-  j.Set("mean_of_pair_means_flip_tolerant", JsonValue::Number(s.mean_of_pair_means_flip_tolerant));
-  j.Set("pct_direct", Thresholded(s.pct_direct));
-  j.Set("pct_flip_tolerant", Thresholded(s.pct_flip_tolerant));
-  j.Set("auc_direct", JsonValue::Number(s.auc_direct));
-  j.Set("auc_flip_tolerant", JsonValue::Number(s.auc_flip_tolerant));
-  JsonValue flips = JsonValue::Object();
-  flips.Set("left_right", JsonValue::Number(s.flipped_left_right));
-  flips.Set("front_back", JsonValue::Number(s.flipped_front_back));
-  flips.Set("up_down", JsonValue::Number(s.flipped_up_down));
-  flips.Set("total", JsonValue::Number(s.FlippedTotal()));
-  j.Set("flipped_pairs", flips);
-  JsonValue refine = JsonValue::Object();
-  refine.Set("to_symmetric", JsonValue::Number(s.refine_to_symmetric));
-  refine.Set("to_direct", JsonValue::Number(s.refine_to_direct));
-  j.Set("refine_changed_side", refine);
-  if (s.shapes_lost_area >= 0) j.Set("shapes_lost_area", JsonValue::Number(s.shapes_lost_area));
-  j.Set("evaluation_geodesics", JsonValue::String(s.evaluation_geodesics));
-  j.Set("evaluation_points",
-        s.points_option > 0 ? JsonValue::Number(s.points_option) : JsonValue::String("all"));
-  j.Set("max_error", JsonValue::Number(s.max_error));
-  j.Set("step", JsonValue::Number(s.step));
-  j.Set("time_total_s", JsonValue::Number(s.time_total_s));
-  j.Set("time_per_shape_s", JsonValue::Number(s.time_per_shape_s));
-  j.Set("time_per_pair_s", JsonValue::Number(s.time_per_pair_s));
-  j.Set("peak_rss_mb", JsonValue::Number(s.peak_rss_mb));
+  // Entries of one group are consecutive; the group's object is set when it is complete.
+  std::string group;
+  JsonValue members = JsonValue::Object();
+  const auto flush = [&] {
+    if (!group.empty()) j.Set(group, members);
+    group.clear();
+    members = JsonValue::Object();
+  };
+  for (const auto& e : SummaryEntries()) {
+    const auto [g, key] = SplitKey(e.key);
+    if (g != group) flush();
+    const JsonValue value = e.to_json(s);
+    if (value.IsNull()) continue;
+    if (g.empty()) {
+      j.Set(key, value);
+    } else {
+      group = g;
+      members.Set(key, value);
+    }
+  }
+  flush();
   return j;
 }
 
 VariantSummary SummaryFromJson(const JsonValue& j, const std::string& where) {
   if (!j.IsObject()) throw InvalidInputError(where + ": expected a JSON object");
   VariantSummary s;
-  if (j.Get("variant").IsString()) s.variant = j.Get("variant").AsString();
-  s.pairs = static_cast<int>(RequireNumber(j, "pairs", where));
-  s.failed_pairs = static_cast<int>(RequireNumber(j, "failed_pairs", where));
-  s.total_points = static_cast<long>(j.Get("points").NumberOr(0.0));
-  s.mean_direct = RequireNumber(j, "mean_direct", where);
-  s.median_direct = RequireNumber(j, "median_direct", where);
-  s.mean_flip_tolerant = RequireNumber(j, "mean_flip_tolerant", where);
-  s.median_flip_tolerant = j.Get("median_flip_tolerant").NumberOr(kNaN);
-  s.mean_of_pair_means_direct = j.Get("mean_of_pair_means_direct").NumberOr(kNaN);
-  s.mean_of_pair_means_flip_tolerant = j.Get("mean_of_pair_means_flip_tolerant").NumberOr(kNaN);
-  s.pct_direct = RequireThresholded(j, "pct_direct", where);
-  s.pct_flip_tolerant = RequireThresholded(j, "pct_flip_tolerant", where);
-  s.auc_direct = RequireNumber(j, "auc_direct", where);
-  s.auc_flip_tolerant = j.Get("auc_flip_tolerant").NumberOr(kNaN);
-  const JsonValue& flips = Require(j, "flipped_pairs", where);
-  s.flipped_left_right = static_cast<int>(RequireNumber(flips, "left_right", where));
-  s.flipped_front_back = static_cast<int>(RequireNumber(flips, "front_back", where));
-  s.flipped_up_down = static_cast<int>(RequireNumber(flips, "up_down", where));
-  const JsonValue& refine = j.Get("refine_changed_side");
-  s.refine_to_symmetric = static_cast<int>(refine.Get("to_symmetric").NumberOr(0.0));
-  s.refine_to_direct = static_cast<int>(refine.Get("to_direct").NumberOr(0.0));
-  s.shapes_lost_area = static_cast<int>(j.Get("shapes_lost_area").NumberOr(-1.0));
-  const JsonValue& geodesics = Require(j, "evaluation_geodesics", where);
-  if (!geodesics.IsString()) throw InvalidInputError(where + ": evaluation_geodesics");
-  s.evaluation_geodesics = geodesics.AsString();
-  s.points_option = static_cast<int>(j.Get("evaluation_points").NumberOr(0.0));
-  s.max_error = j.Get("max_error").NumberOr(s.max_error);
-  s.step = j.Get("step").NumberOr(s.step);
-  s.time_total_s = RequireNumber(j, "time_total_s", where);
-  s.time_per_shape_s = RequireNumber(j, "time_per_shape_s", where);
-  s.time_per_pair_s = RequireNumber(j, "time_per_pair_s", where);
-  s.peak_rss_mb = RequireNumber(j, "peak_rss_mb", where);
+  for (const auto& e : SummaryEntries()) {
+    if (e.read == SummaryEntry::Read::kWritten) continue;
+    const auto [group, key] = SplitKey(e.key);
+    const bool required = e.read == SummaryEntry::Read::kRequired;
+    const JsonValue* in = &j;
+    std::string at = where;
+    if (!group.empty()) {
+      in = required ? &Require(j, group, where) : &j.Get(group);
+      at = where + ": " + group;
+    }
+    if (required) Require(*in, key, at);
+    e.from_json(s, in->Get(key), in->Has(key), key, at);
+  }
   return s;
 }
 
@@ -177,35 +300,71 @@ VariantSummary ReadSummaryJson(const std::string& path) {
   return SummaryFromJson(ParseJson(ReadFileOrThrow(path), path), path);
 }
 
+const std::vector<PairsCsvColumn>& PairsCsvColumns() {
+  using Kind = PairsCsvColumn::Kind;
+  using P = const PairEvaluation&;
+  // A number the pair has only when it was evaluated.
+  const auto if_ok = [](double PairEvaluation::*field) {
+    return [field](P p) { return p.ok ? Num(p.*field) : std::string(); };
+  };
+  const auto message_of = [](const char* stage) {
+    return [stage](P p) {
+      const auto it = p.stage_messages.find(stage);
+      return CsvField(it == p.stage_messages.end() ? std::string() : it->second);
+    };
+  };
+  static const std::vector<PairsCsvColumn> columns = [&] {
+    std::vector<PairsCsvColumn> c = {
+        {"source", Kind::kText, [](P p) { return CsvField(p.source); }},
+        {"target", Kind::kText, [](P p) { return CsvField(p.target); }},
+        {"status", Kind::kText, [](P p) { return std::string(p.ok ? "ok" : "failed"); }},
+        {"points", Kind::kNumber, [](P p) { return std::to_string(p.ok ? p.points : 0); }},
+        {"mean_direct", Kind::kNumber, if_ok(&PairEvaluation::mean_direct)},
+        {"median_direct", Kind::kNumber, if_ok(&PairEvaluation::median_direct)},
+        {"max_direct", Kind::kNumber, if_ok(&PairEvaluation::max_direct)},
+    };
+    const auto& keys = ErrorThresholdKeys();
+    for (size_t k = 0; k < keys.size(); ++k) {
+      c.push_back({"pct_direct_" + keys[k], Kind::kNumber,
+                   [k](P p) { return p.ok ? Num(p.pct_direct[k]) : std::string(); }});
+    }
+    std::vector<PairsCsvColumn> rest = {
+        {"mean_sym", Kind::kNumber,
+         [](P p) { return p.ok && p.has_sym ? Num(p.mean_sym) : std::string(); }},
+        {"mean_flip_tolerant", Kind::kNumber, if_ok(&PairEvaluation::mean_flip_tolerant)},
+        {"flip", Kind::kText, [](P p) { return p.ok ? FlipClassName(p.flip) : std::string(); }},
+        {"chosen", Kind::kNumber, [](P p) { return std::to_string(p.chosen); }},
+        {"oracle", Kind::kNumber, [](P p) { return std::to_string(p.oracle); }},
+        {"initial_mean_direct", Kind::kNumber,
+         [](P p) { return p.ok && p.refined ? Num(p.initial_mean_direct) : std::string(); }},
+        {"refine_side", Kind::kText, [](P p) { return p.RefineSide(); }},
+        {"candidate_errors", Kind::kNumberList,
+         [](P p) {
+           std::string list;
+           for (size_t k = 0; k < p.candidate_errors.size(); ++k) {
+             list += (k ? " " : "") + Num(p.candidate_errors[k]);
+           }
+           return list;
+         }},
+        {"flip_message", Kind::kText, message_of("flip")},
+        {"refine_message", Kind::kText, message_of("refine")},
+        {"message", Kind::kText, [](P p) { return CsvField(p.message); }},
+    };
+    c.insert(c.end(), rest.begin(), rest.end());
+    return c;
+  }();
+  return columns;
+}
+
 std::string PairsCsv(std::vector<PairEvaluation> pairs) {
   SortPairs(pairs);
+  const auto& columns = PairsCsvColumns();
   std::ostringstream out;
-  out << "source,target,status,points,mean_direct,median_direct,max_direct";
-  for (const auto& key : ErrorThresholdKeys()) out << ",pct_direct_" << key;
-  out << ",mean_sym,mean_flip_tolerant,flip,chosen,oracle,initial_mean_direct,refine_side,"
-         "candidate_errors,flip_message,refine_message,message\n";
+  for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c].name;
+  out << '\n';
   for (const auto& p : pairs) {
-    out << CsvField(p.source) << ',' << CsvField(p.target) << ',' << (p.ok ? "ok" : "failed");
-    if (p.ok) {
-      out << ',' << p.points << ',' << Num(p.mean_direct) << ',' << Num(p.median_direct) << ','
-          << Num(p.max_direct);
-      for (double pct : p.pct_direct) out << ',' << Num(pct);
-      out << ',' << (p.has_sym ? Num(p.mean_sym) : "") << ',' << Num(p.mean_flip_tolerant) << ','
-          << FlipClassName(p.flip);
-    } else {
-      out << ",0,,,,,,,,,";
-    }
-    out << ',' << p.chosen << ',' << p.oracle << ','
-        << (p.ok && p.refined ? Num(p.initial_mean_direct) : "") << ',' << p.RefineSide() << ',';
-    for (size_t k = 0; k < p.candidate_errors.size(); ++k) {
-      out << (k ? " " : "") << Num(p.candidate_errors[k]);
-    }
-    const auto message_of = [&](const char* stage) {
-      const auto it = p.stage_messages.find(stage);
-      return it == p.stage_messages.end() ? std::string() : it->second;
-    };
-    out << ',' << CsvField(message_of("flip")) << ',' << CsvField(message_of("refine")) << ','
-        << CsvField(p.message) << '\n';
+    for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c].cell(p);
+    out << '\n';
   }
   return out.str();
 }
@@ -245,21 +404,16 @@ std::string TimingsCsv(std::vector<PairEvaluation> pairs, const VariantTimings& 
 }
 
 std::string ComparisonCsv(const std::vector<VariantSummary>& variants) {
+  std::vector<const SummaryEntry*> columns;
+  for (const auto& e : SummaryEntries()) {
+    if (!e.csv_column.empty()) columns.push_back(&e);
+  }
   std::ostringstream out;
-  out << "variant,pairs,failed_pairs,mean_direct,median_direct,mean_flip_tolerant";
-  for (const auto& key : ErrorThresholdKeys()) out << ",pct_direct_" << key;
-  for (const auto& key : ErrorThresholdKeys()) out << ",pct_flip_tolerant_" << key;
-  out << ",auc_direct,auc_flip_tolerant,flipped_left_right,flipped_front_back,flipped_up_down,"
-         "flipped_total,time_total_s,time_per_shape_s,time_per_pair_s,peak_rss_mb\n";
+  for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c]->csv_column;
+  out << '\n';
   for (const auto& s : variants) {
-    out << CsvField(s.variant) << ',' << s.pairs << ',' << s.failed_pairs << ','
-        << Num(s.mean_direct) << ',' << Num(s.median_direct) << ',' << Num(s.mean_flip_tolerant);
-    for (double pct : s.pct_direct) out << ',' << Num(pct);
-    for (double pct : s.pct_flip_tolerant) out << ',' << Num(pct);
-    out << ',' << Num(s.auc_direct) << ',' << Num(s.auc_flip_tolerant) << ','
-        << s.flipped_left_right << ',' << s.flipped_front_back << ',' << s.flipped_up_down << ','
-        << s.FlippedTotal() << ',' << Num(s.time_total_s) << ',' << Num(s.time_per_shape_s) << ','
-        << Num(s.time_per_pair_s) << ',' << Num(s.peak_rss_mb) << '\n';
+    for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c]->csv_cell(s);
+    out << '\n';
   }
   return out.str();
 }

@@ -14,6 +14,7 @@
 // on the set of per-pair records, so sharded runs merged reproduce a single run byte for byte.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,27 @@
 #include "eval/metrics.h"
 
 namespace symembed {
+
+// One value of summary.json, in the file's order: its key ("mean_direct", or "group.key" for a
+// member of an object, e.g. "pct_direct.0.05", "flipped_pairs.total"), its comparison.csv
+// column (empty: not in comparison.csv), and how it is written, read back and printed. Read:
+// kRequired (missing or of the wrong type fails), kOptional (a default when absent), kWritten
+// (derived, never read). to_json returns null for a value not written (shapes_lost_area of an
+// eval). Adding a value to the summary is one entry of SummaryEntries().
+struct SummaryEntry {
+  enum class Read { kRequired, kOptional, kWritten };
+  std::string key;
+  std::string csv_column;
+  Read read = Read::kOptional;
+  std::function<JsonValue(const VariantSummary&)> to_json;
+  // value: the key's value (null when absent); present: whether the key was there; key, where:
+  // for messages.
+  std::function<void(VariantSummary&, const JsonValue& value, bool present,
+                     const std::string& key, const std::string& where)>
+      from_json;
+  std::function<std::string(const VariantSummary&)> csv_cell;
+};
+const std::vector<SummaryEntry>& SummaryEntries();
 
 // summary.json: pairs, failed_pairs, points, mean_direct, median_direct, mean_flip_tolerant,
 // median_flip_tolerant, mean_of_pair_means_direct, mean_of_pair_means_flip_tolerant,
@@ -36,6 +58,21 @@ JsonValue SummaryToJson(const VariantSummary& summary);
 VariantSummary SummaryFromJson(const JsonValue& json, const std::string& where = "summary");
 void WriteSummaryJson(const std::string& path, const VariantSummary& summary);
 VariantSummary ReadSummaryJson(const std::string& path);
+
+// One column of pairs.csv: its name, what its cells hold, and the cell of one pair (CSV-escaped;
+// empty where the pair has no value, e.g. errors of a failed pair).
+struct PairsCsvColumn {
+  enum class Kind { kText, kNumber, kNumberList };  // a number list is space-separated
+  std::string name;
+  Kind kind = Kind::kNumber;
+  std::function<std::string(const PairEvaluation&)> cell;
+};
+
+// The columns of pairs.csv, in order: source, target, status, points, mean_direct,
+// median_direct, max_direct, pct_direct_<threshold> per ErrorThresholdKeys(), mean_sym,
+// mean_flip_tolerant, flip, chosen, oracle, initial_mean_direct, refine_side, candidate_errors,
+// flip_message, refine_message, message.
+const std::vector<PairsCsvColumn>& PairsCsvColumns();
 
 // File contents (deterministic; pairs are sorted by (source, target)).
 std::string PairsCsv(std::vector<PairEvaluation> pairs);

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/errors.h"
+#include "eval/report.h"
 #include "registry/files.h"
 #include "registry/pair_names.h"
 #include "registry/run_outputs.h"
@@ -19,12 +20,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Columns of pairs.csv that hold text even when they look like numbers (shape names may).
-const std::set<std::string>& TextColumns() {
-  static const std::set<std::string> columns = {"source",         "target",      "status",
-                                                "flip",           "refine_side", "flip_message",
-                                                "refine_message", "message"};
-  return columns;
+// What a column of pairs.csv holds (text columns stay text even where they look like numbers,
+// as shape names may); a column this version does not write reads as numbers.
+PairsCsvColumn::Kind ColumnKind(const std::string& name) {
+  for (const auto& column : PairsCsvColumns()) {
+    if (column.name == name) return column.kind;
+  }
+  return PairsCsvColumn::Kind::kNumber;
 }
 
 // A CSV field as JSON: null when empty or nan, a number when the whole field is one, else text.
@@ -135,12 +137,16 @@ JsonValue PairRows(const std::string& path, const Timings& timings) {
   for (const auto& row : rows) {
     JsonValue pair = JsonValue::Object();
     for (const auto& [column, text] : row) {
-      if (column == "candidate_errors") {
-        pair.Set(column, NumberList(text));
-      } else if (TextColumns().count(column)) {
-        pair.Set(column, JsonValue::String(text));
-      } else {
-        pair.Set(column, FieldValue(text));
+      switch (ColumnKind(column)) {
+        case PairsCsvColumn::Kind::kNumberList:
+          pair.Set(column, NumberList(text));
+          break;
+        case PairsCsvColumn::Kind::kText:
+          pair.Set(column, JsonValue::String(text));
+          break;
+        case PairsCsvColumn::Kind::kNumber:
+          pair.Set(column, FieldValue(text));
+          break;
       }
     }
     const auto it = timings.pair_seconds.find(

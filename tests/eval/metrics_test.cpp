@@ -8,6 +8,7 @@
 #include "eval/json.h"
 #include "eval/report.h"
 #include "registry/config.h"
+#include "registry/run_outputs.h"
 #include "tests/test_util.h"
 
 namespace symembed {
@@ -207,6 +208,61 @@ TEST(Report, ComparisonAndCurvePlots) {
   EXPECT_TRUE(plotted) << warning;
   EXPECT_FALSE(testing::ReadText(dir.File("curves.png")).empty());
   EXPECT_NE(testing::ReadText(dir.File("curves.svg")).find("<svg"), std::string::npos);
+}
+
+// The column tables: every pairs.csv row has the header's fields, a failed pair too, and the
+// report reads each column as the table says; every summary entry is written and read back,
+// and a summary without a required entry fails naming it.
+TEST(Report, ColumnTablesCoverEveryRowAndEntry) {
+  PairEvaluation failed;
+  failed.source = "a";
+  failed.target = "c,\"d\"";
+  failed.message = "bad map";
+  const std::string csv = PairsCsv({MakePair("a", "b", {0.1, 0.2}, {0.3, 0.0}), failed});
+  const auto rows = ParseCsv(csv, "pairs.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows[0].size(), PairsCsvColumns().size());
+  for (size_t c = 0; c < rows[0].size(); ++c) EXPECT_EQ(rows[0][c], PairsCsvColumns()[c].name);
+  for (const auto& row : rows) EXPECT_EQ(row.size(), rows[0].size());
+  EXPECT_EQ(rows[2][1], "c,\"d\"");
+  EXPECT_EQ(rows[2][2], "failed");
+
+  EvaluationOptions options;
+  const VariantSummary s =
+      Summarize("v", {MakePair("a", "b", {0.01, 0.2}, {0.1, 0.1})}, options, VariantTimings{});
+  const JsonValue j = SummaryToJson(s);
+  const auto comparison = ParseCsv(ComparisonCsv({s}), "comparison.csv");
+  ASSERT_EQ(comparison.size(), 2u);
+  EXPECT_EQ(comparison[0].size(), comparison[1].size());
+  for (const auto& e : SummaryEntries()) {
+    const size_t dot = e.key.find('.');
+    const std::string group = dot == std::string::npos ? "" : e.key.substr(0, dot);
+    const std::string key = dot == std::string::npos ? e.key : e.key.substr(dot + 1);
+    const JsonValue& holder = group.empty() ? j : j.Get(group);
+    if (e.key != "shapes_lost_area") EXPECT_TRUE(holder.Has(key)) << e.key;
+    EXPECT_EQ(e.read == SummaryEntry::Read::kWritten, !e.from_json) << e.key;
+    EXPECT_EQ(e.csv_column.empty(), !e.csv_cell) << e.key;
+    if (e.read != SummaryEntry::Read::kRequired) continue;
+    // The summary without this entry.
+    JsonValue without = JsonValue::Object();
+    for (const auto& [name, value] : j.members()) {
+      if (name == group) {
+        JsonValue members = JsonValue::Object();
+        for (const auto& [k, v] : value.members()) {
+          if (k != key) members.Set(k, v);
+        }
+        without.Set(name, members);
+      } else if (name != e.key) {
+        without.Set(name, value);
+      }
+    }
+    try {
+      SummaryFromJson(without, "summary.json");
+      ADD_FAILURE() << "no error without " << e.key;
+    } catch (const InvalidInputError& error) {
+      EXPECT_NE(std::string(error.what()).find(key), std::string::npos) << error.what();
+    }
+  }
 }
 
 TEST(Json, ParseErrorsNameLineAndColumn) {
