@@ -218,12 +218,28 @@ std::vector<int> OptionReader::GetIntList(const std::string& key,
   return value;
 }
 
+double OptionReader::GetDoubleIfGiven(const std::string& key, double default_value, double min,
+                                      double max) {
+  if (Has(key)) return GetDouble(key, default_value, min, max);
+  read_.insert(key);
+  unset_defaults_[key] = FormatNumber(default_value);
+  return default_value;
+}
+
+int OptionReader::GetIntIfGiven(const std::string& key, int default_value, int min, int max) {
+  if (Has(key)) return GetInt(key, default_value, min, max);
+  read_.insert(key);
+  unset_defaults_[key] = default_value;
+  return default_value;
+}
+
 OptionReader OptionReader::Child(const std::string& key) {
   return OptionReader(Lookup(key), file_, KeyPath(key));
 }
 
 void OptionReader::AdoptChild(const std::string& key, const OptionReader& child) {
   resolved_[key] = child.resolved();
+  if (child.unset_defaults().size() > 0) unset_defaults_[key] = child.unset_defaults();
 }
 
 void OptionReader::Finish() const {

@@ -34,6 +34,15 @@ class OptionReader {
                    double max = std::numeric_limits<double>::infinity());
   int GetInt(const std::string& key, int default_value, int min = std::numeric_limits<int>::min(),
              int max = std::numeric_limits<int>::max());
+  // An option read only when given, so that the resolved node (and every cache key made from
+  // it) stays as it was without it: as GetDouble / GetInt when `key` is present; else
+  // default_value, recorded in unset_defaults() (and as a known key) instead of resolved().
+  double GetDoubleIfGiven(const std::string& key, double default_value,
+                          double min = -std::numeric_limits<double>::infinity(),
+                          double max = std::numeric_limits<double>::infinity());
+  int GetIntIfGiven(const std::string& key, int default_value,
+                    int min = std::numeric_limits<int>::min(),
+                    int max = std::numeric_limits<int>::max());
   bool GetBool(const std::string& key, bool default_value);
   std::string GetString(const std::string& key, const std::string& default_value);
   // A required string (throws ConfigError when missing).
@@ -76,6 +85,9 @@ class OptionReader {
   [[noreturn]] void Fail(const std::string& key, const std::string& what) const;
 
   const YAML::Node& resolved() const { return resolved_; }
+  // The defaults of the options read only when given that were not (a map like resolved(),
+  // children's under their key): what `symembed stages --options` lists besides resolved().
+  const YAML::Node& unset_defaults() const { return unset_defaults_; }
   const std::string& file() const { return file_; }
   const std::string& path() const { return path_; }
 
@@ -94,6 +106,7 @@ class OptionReader {
   std::string path_;
   std::set<std::string> read_;
   YAML::Node resolved_;
+  YAML::Node unset_defaults_;
 };
 
 }  // namespace symembed

@@ -51,6 +51,7 @@ std::unique_ptr<Stage> Registry::Create(const std::string& kind, const YAML::Nod
   SYMEMBED_CHECK(stage != nullptr, "factory of " << kind << " '" << type << "' returned null");
   reader.Finish();
   stage->set_resolved_options(YAML::Clone(reader.resolved()));
+  stage->set_unset_defaults(YAML::Clone(reader.unset_defaults()));
   return stage;
 }
 

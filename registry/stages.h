@@ -20,9 +20,14 @@ class Stage {
   // The resolved options of this stage (type and every option with defaults filled in).
   const YAML::Node& resolved_options() const { return resolved_options_; }
   void set_resolved_options(YAML::Node node) { resolved_options_ = std::move(node); }
+  // The defaults of its options read only when given, which were not (OptionReader::
+  // unset_defaults; not part of the resolved options or of any cache key).
+  const YAML::Node& unset_defaults() const { return unset_defaults_; }
+  void set_unset_defaults(YAML::Node node) { unset_defaults_ = std::move(node); }
 
  private:
   YAML::Node resolved_options_;
+  YAML::Node unset_defaults_;
 };
 
 class PreprocessStage : public Stage {

@@ -45,11 +45,11 @@ std::unique_ptr<SyntheticDataset> CreateSyntheticDataset(OptionReader& options) 
   g.pairs = options.GetInt("pairs", 0, 0);
   // The failure modes are read (and so resolved) only when given, so that the resolved config of
   // every dataset without them stays what it was.
-  if (options.Has("plane_cuts")) g.plane_cuts = options.GetDouble("plane_cuts", 0.0, 0.0, 1.0);
-  if (options.Has("holes")) g.holes = options.GetDouble("holes", 0.0, 0.0, 1.0);
-  if (options.Has("glue")) g.glue = options.GetDouble("glue", 0.0, 0.0, 1.0);
-  if (options.Has("glue_bridges")) g.glue_bridges = options.GetInt("glue_bridges", 8, 0, 1000);
-  if (options.Has("cross_class")) g.cross_class = options.GetDouble("cross_class", 0.0, 0.0, 0.49);
+  g.plane_cuts = options.GetDoubleIfGiven("plane_cuts", g.plane_cuts, 0.0, 1.0);
+  g.holes = options.GetDoubleIfGiven("holes", g.holes, 0.0, 1.0);
+  g.glue = options.GetDoubleIfGiven("glue", g.glue, 0.0, 1.0);
+  g.glue_bridges = options.GetIntIfGiven("glue_bridges", g.glue_bridges, 0, 1000);
+  g.cross_class = options.GetDoubleIfGiven("cross_class", g.cross_class, 0.0, 0.49);
   std::string error;
   if (!g.IsValid(&error)) options.Fail("", error);
   std::string cache = options.GetString("cache", "");

@@ -98,10 +98,8 @@ void RegisterSymmetryStages(Registry& registry) {
                                  p.spectral.eigenvalue_tolerance, 0.0, 1.0);
                  // Read (and so written to the resolved config) only when given: off, the
                  // stage's resolved options, and with them every cache key, stay as they were.
-                 if (o.Has("distance_confidence")) {
-                   p.distance_confidence =
-                       o.GetDouble("distance_confidence", p.distance_confidence, 0.0);
-                 }
+                 p.distance_confidence =
+                     o.GetDoubleIfGiven("distance_confidence", p.distance_confidence, 0.0);
                  p.threads = o.GetInt("threads", p.threads, 0, 256);
                  std::string error;
                  if (!p.IsValid(&error)) o.Fail("", error);
