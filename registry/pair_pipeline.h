@@ -1,4 +1,4 @@
-// Per-pair work of one variant (DESIGN.md, "Data flow"), source A -> target B:
+// Per-pair work of one variant (docs/design.md, "Data flow"), source A -> target B:
 //   flip scorer picks one of CandidateRotations() -> B's embedding rotated (y' = R y) ->
 //   matching(Y_A, R Y_B) -> refine(pair, map) -> map in input vertex ids. With
 //   `evaluation.refine_start: ground_truth` the refine stage starts from the ground truth

@@ -1,4 +1,4 @@
-// Per-shape work of one variant (DESIGN.md, "Data flow"): load -> preprocess -> sampling ->
+// Per-shape work of one variant (docs/design.md, "Data flow"): load -> preprocess -> sampling ->
 // geodesics -> embedding -> symmetry -> symmetrize -> canonical frame -> ShapeData, then what the
 // per-pair stages (flip, matching, refine) declare they need of the shape (PairStage::Needs:
 // a Laplace-Beltrami basis, products; registry/product_needs.h).

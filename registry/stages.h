@@ -1,6 +1,6 @@
-// The stage interfaces, one per kind of DESIGN.md's table. Each implementation is a thin
-// adapter around a free function; it parses its options in its factory (OptionReader) and
-// does no file I/O. Stages are const after construction and safe to call from several threads.
+// The stage interfaces, one per stage kind (registry/stage_kinds.h; docs/design.md). Each
+// implementation is a thin adapter around a free function; it parses its options in its
+// factory (OptionReader) and does no file I/O. Stages are const after construction and safe to call from several threads.
 #pragma once
 
 #include <memory>
