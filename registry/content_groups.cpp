@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <map>
+#include <set>
 
 #include "core/errors.h"
 #include "core/parallel.h"
+#include "registry/shards.h"
 
 namespace symembed {
 
@@ -34,6 +36,18 @@ std::vector<ContentGroup> GroupByContent(const std::vector<std::string>& names,
       }
     }
     groups.push_back({{names[i]}, keys[i]});
+  }
+  return groups;
+}
+
+std::vector<ContentGroup> ContentGroupsOfShard(const std::vector<std::string>& sorted_names,
+                                               const DatasetIndex& dataset, int index, int count,
+                                               int jobs) {
+  const std::vector<std::string> mine = ShapesOfShard(sorted_names, index, count);
+  const std::set<std::string> firsts(mine.begin(), mine.end());
+  std::vector<ContentGroup> groups;
+  for (ContentGroup& group : GroupByContent(sorted_names, dataset, jobs)) {
+    if (firsts.count(group.names.front())) groups.push_back(std::move(group));
   }
   return groups;
 }

@@ -32,6 +32,12 @@ struct ContentGroup {
 std::vector<ContentGroup> GroupByContent(const std::vector<std::string>& names,
                                          const DatasetIndex& index, int jobs);
 
+// The groups a shapes-only shard computes (runner.h): those whose first name is one of
+// ShapesOfShard(sorted_names, index, count), so that no content is computed by two shards.
+std::vector<ContentGroup> ContentGroupsOfShard(const std::vector<std::string>& sorted_names,
+                                               const DatasetIndex& dataset, int index, int count,
+                                               int jobs);
+
 // What one name of a group came to: its outcome, or its failure.
 struct NamedOutcome {
   std::unique_ptr<ShapeOutcome> outcome;  // null when the name failed

@@ -81,9 +81,9 @@ class VariantRun {
 
   void Run() {
     if (options_.shapes_only) {
-      ComputeShapes(GroupByContent(ShapesOfShard(ShapesOfPairs(SortedPairs(index_.pairs)),
-                                                 options_.shard_index, options_.shard_count),
-                                   index_, options_.jobs));
+      ComputeShapes(ContentGroupsOfShard(ShapesOfPairs(SortedPairs(index_.pairs)), index_,
+                                         options_.shard_index, options_.shard_count,
+                                         options_.jobs));
       stats_->failures.insert(stats_->failures.end(), failures_.begin(), failures_.end());
       return;
     }

@@ -29,9 +29,9 @@
 //
 // A shapes-only run computes the per-shape stages (and what the per-pair stages need of each
 // shape) of the shapes of shard i of N (ShapesOfShard over the shapes of all the variant's
-// pairs) for every variant, into the cache, and writes nothing else: run with N shards before
-// the pair shards, no shape is computed by two processes and the pair shards find every shape
-// cached.
+// pairs; a shape whose mesh bytes are another's goes with the first of them) for every variant,
+// into the cache, and writes nothing else: run with N shards before the pair shards, no shape
+// is computed by two processes and the pair shards find every shape cached.
 //
 // The evaluation lives above this library (eval/), so it is reached through RunEvaluation.
 #pragma once

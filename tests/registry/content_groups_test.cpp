@@ -183,5 +183,35 @@ TEST(ContentGroups, FailuresAndWarningsOfTheSharedComputationNameEachFile) {
                                    tmp.File("data/shapes/s1.off")}));
 }
 
+// Shapes-only shards: a mesh under several names is computed by the shard of its first name
+// only, and each other name is reported as computed with it.
+TEST(ContentGroups, ShapesOnlyShardsComputeAMeshUnderSeveralNamesOnce) {
+  TempDir tmp;
+  const std::string config = WriteAliasedDataset(tmp.File("data"), false);
+  std::map<std::string, std::string> reported;  // shape -> "computed" or the shape it went with
+  int preprocessed = 0;
+  for (int i = 0; i < 2; ++i) {
+    RunOptions shapes;
+    shapes.shapes_only = true;
+    shapes.shard_index = i;
+    shapes.shard_count = 2;
+    shapes.on_shape = [&](const std::string& shape, const std::string&,
+                          const std::vector<std::string>& computed,
+                          const std::string& computed_with) {
+      EXPECT_EQ(reported.count(shape), 0u) << shape;
+      reported[shape] = computed_with.empty() ? "computed" : computed_with;
+      EXPECT_EQ(computed.empty(), !computed_with.empty()) << shape;
+    };
+    const RunStats run = RunAliased(config, tmp.File("none"), tmp.File("cache"), shapes);
+    EXPECT_TRUE(run.ok());
+    preprocessed += Get(run.executed, "preprocess");
+  }
+  EXPECT_EQ(preprocessed, 3);
+  EXPECT_EQ(
+      reported,
+      (std::map<std::string, std::string>{
+          {"a0", "computed"}, {"p0", "a0"}, {"s0", "a0"}, {"s1", "computed"}, {"s2", "computed"}}));
+}
+
 }  // namespace
 }  // namespace symembed
