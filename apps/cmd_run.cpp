@@ -129,12 +129,15 @@ RunOptions RunOptionsOf(const ArgParser& parser) {
       throw UsageError{"--shapes-only needs a --cache folder: the cache is all it writes"};
     if (!options.quiet) {
       options.on_shape = [](const std::string& shape, const std::string& variant,
-                            const std::vector<std::string>& computed) {
+                            const std::vector<std::string>& computed,
+                            const std::string& computed_with) {
         std::string list;
         for (const std::string& stage : computed) list += (list.empty() ? "" : " ") + stage;
-        std::cerr << "symembed run: shape " << shape << " [" << variant
-                  << "]: " << (list.empty() ? "all stages from the cache" : "computed " + list)
-                  << "\n";
+        std::string what = list.empty() ? "all stages from the cache" : "computed " + list;
+        if (!computed_with.empty()) {
+          what = "same mesh bytes as " + computed_with + ", computed with it";
+        }
+        std::cerr << "symembed run: shape " << shape << " [" << variant << "]: " << what << "\n";
       };
     }
   }
@@ -150,7 +153,12 @@ void PrintRunOutcome(const RunOptions& options, const RunStats& stats,
   }
   if (!options.quiet) {
     std::cerr << "symembed run: stages computed: " << CountsText(stats.executed)
-              << "; from the cache: " << CountsText(stats.cache_hits) << "\n";
+              << "; from the cache: " << CountsText(stats.cache_hits);
+    if (stats.shapes_shared > 0) {
+      std::cerr << "; " << stats.shapes_shared
+                << " shapes had the mesh bytes of another and were computed with it";
+    }
+    std::cerr << "\n";
   }
   if (!options.quiet && options.shapes_only) {
     std::cerr << "symembed run: shard " << options.shard_index << "/" << options.shard_count

@@ -11,6 +11,7 @@
 #include "core/map_io.h"
 #include "core/mesh_io.h"
 #include "core/parallel.h"
+#include "registry/content_groups.h"
 #include "registry/files.h"
 #include "registry/options.h"
 #include "registry/pair_names.h"
@@ -80,8 +81,9 @@ class VariantRun {
 
   void Run() {
     if (options_.shapes_only) {
-      ComputeShapes(ShapesOfShard(ShapesOfPairs(SortedPairs(index_.pairs)), options_.shard_index,
-                                  options_.shard_count));
+      ComputeShapes(ContentGroupsOfShard(ShapesOfPairs(SortedPairs(index_.pairs)), index_,
+                                         options_.shard_index, options_.shard_count,
+                                         options_.jobs));
       stats_->failures.insert(stats_->failures.end(), failures_.begin(), failures_.end());
       return;
     }
@@ -102,7 +104,7 @@ class VariantRun {
     if (!options_.resume) RemoveEarlierOutputs();
     WriteFileAtomically(VariantConfigPath(dir_), resolved);
     SelectPairs();
-    ComputeShapes(ShapesOfPending());
+    ComputeShapes(GroupByContent(ShapesOfPending(), index_, options_.jobs));
     VerifyKeptPairs();
     ComputePairs();
     shapes_.clear();
@@ -186,51 +188,73 @@ class VariantRun {
     SaveMesh(dir + "/" + outcome.name + ".off", Surface{outcome.data->Y, outcome.data->surface.F});
   }
 
-  // Computes (or loads) the shapes `order`. A full run keeps them for its pairs and writes
-  // their records; a shapes-only run only leaves them in the cache and reports each.
-  void ComputeShapes(const std::vector<std::string>& order) {
-    std::vector<std::unique_ptr<ShapeOutcome>> outcomes(order.size());
-    Progress progress(variant_.name + ": shapes", static_cast<int>(order.size()),
-                      DefaultProgressMode(options_.quiet), std::cerr);
+  // Computes (or loads) the shapes of `groups`, each group's content once. A full run keeps them
+  // for its pairs and writes their records; a shapes-only run only leaves them in the cache and
+  // reports each.
+  void ComputeShapes(const std::vector<ContentGroup>& groups) {
+    int count = 0;
+    for (const ContentGroup& group : groups) count += static_cast<int>(group.names.size());
+    std::vector<std::vector<NamedOutcome>> outcomes(groups.size());
+    Progress progress(variant_.name + ": shapes", count, DefaultProgressMode(options_.quiet),
+                      std::cerr);
     ParallelFor(
-        static_cast<int>(order.size()),
-        [&](int i) {
-          const DatasetShape* shape = index_.Find(order[i]);
-          try {
-            if (!shape) throw InvalidInputError("no shape '" + order[i] + "' in the dataset");
-            // Counted per shape first, so a shapes-only run can say what this shape computed.
-            StageCounters shape_counters;
-            ShapeContext context{&cache_, &shape_counters, options_.load_mesh};
-            auto outcome = std::make_unique<ShapeOutcome>(ComputeShape(*shape, pipeline_, context));
-            const std::vector<std::string> warnings = std::move(outcome->warnings);
-            counters_->Add(shape_counters);
-            if (options_.shapes_only) {
-              ReportShape(order[i], shape_counters);
+        static_cast<int>(groups.size()),
+        [&](int g) {
+          // Counted per group first, so a shapes-only run can say what this content computed.
+          StageCounters group_counters;
+          const ShapeContext context{&cache_, &group_counters};
+          outcomes[g] =
+              ComputeContentGroup(groups[g], index_, pipeline_, options_.load_mesh, context);
+          bool any_done = false;
+          for (size_t k = 0; k < outcomes[g].size(); ++k) {
+            NamedOutcome& named = outcomes[g][k];
+            const std::string& name = groups[g].names[k];
+            if (named.outcome) {
+              any_done = true;
+              try {
+                FinishShape(name, named, group_counters);
+              } catch (const std::exception& e) {
+                const std::string& path = index_.Find(name)->mesh_path;
+                Fail("shape", name, "", FailureNamingFile(e.what(), path, path));
+                named.outcome.reset();
+              }
+              if (options_.shapes_only) named.outcome.reset();  // it is in the cache
             } else {
-              ShapeRecord record{outcome->name, outcome->times, outcome->report};
-              WriteFileAtomically(ShapeRecordPath(dir_, outcome->name), FormatShapeRecord(record));
-              if (options_.write_embeddings) WriteEmbedding(*outcome);
-              outcomes[i] = std::move(outcome);
+              Fail("shape", name, "", named.failure);
             }
-            std::lock_guard<std::mutex> lock(mutex_);
-            ++stats_->shapes_computed;
-            for (const std::string& warning : warnings) {
-              stats_->warnings.push_back(shape->mesh_path + ": " + warning);
-            }
-          } catch (const std::exception& e) {
-            // Stages see a surface, not a file: name the file for the user.
-            std::string message = e.what();
-            if (shape && message.compare(0, shape->mesh_path.size(), shape->mesh_path) != 0) {
-              message = shape->mesh_path + ": " + message;
-            }
-            Fail("shape", order[i], "", message);
+            progress.Tick();
           }
-          progress.Tick();
+          if (any_done) counters_->Add(group_counters);
         },
         options_.jobs, 1);
     progress.Finish();
-    for (size_t i = 0; i < order.size(); ++i) {
-      if (outcomes[i]) shapes_[order[i]] = std::move(outcomes[i]);
+    for (size_t g = 0; g < groups.size(); ++g) {
+      for (size_t k = 0; k < groups[g].names.size(); ++k) {
+        if (outcomes[g][k].outcome) {
+          shapes_[groups[g].names[k]] = std::move(outcomes[g][k].outcome);
+        }
+      }
+    }
+  }
+
+  // Writes the record (and embedding) of a shape that has its outcome, or reports it in a
+  // shapes-only run, and counts it. counters: what its group's computation ran or loaded.
+  void FinishShape(const std::string& name, NamedOutcome& named, const StageCounters& counters) {
+    ShapeOutcome& outcome = *named.outcome;
+    const std::vector<std::string> warnings = std::move(outcome.warnings);
+    if (options_.shapes_only) {
+      ReportShape(name, named.reused ? nullptr : &counters, named.computed_with);
+    } else {
+      ShapeRecord record{outcome.name, outcome.times, outcome.report};
+      WriteFileAtomically(ShapeRecordPath(dir_, outcome.name), FormatShapeRecord(record));
+      if (options_.write_embeddings) WriteEmbedding(outcome);
+    }
+    const std::string& mesh_path = index_.Find(name)->mesh_path;
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++stats_->shapes_computed;
+    if (named.reused) ++stats_->shapes_shared;
+    for (const std::string& warning : warnings) {
+      stats_->warnings.push_back(mesh_path + ": " + warning);
     }
   }
 
@@ -321,12 +345,17 @@ class VariantRun {
     return names_.Stem(pair.source, pair.target);
   }
 
-  void ReportShape(const std::string& name, const StageCounters& counters) {
+  // counters: what the shape's computation ran or loaded; null when it was computed with
+  // another shape (computed_with).
+  void ReportShape(const std::string& name, const StageCounters* counters,
+                   const std::string& computed_with) {
     if (!options_.on_shape) return;
     std::vector<std::string> computed;
-    for (const auto& [stage, n] : counters.executed()) computed.push_back(stage);
+    if (counters) {
+      for (const auto& [stage, n] : counters->executed()) computed.push_back(stage);
+    }
     std::lock_guard<std::mutex> lock(mutex_);
-    options_.on_shape(name, variant_.name, computed);
+    options_.on_shape(name, variant_.name, computed, computed_with);
   }
 
   void ComputePairs() {

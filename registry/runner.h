@@ -1,6 +1,8 @@
 // The experiment runner (`symembed run`): every variant of a config (or one), per-shape work
 // then per-pair work on a thread pool, per-shape stage outputs cached on disk
 // (registry/shape_pipeline.h), every finished pair written at once so that a killed run resumes.
+// Shapes whose mesh files hold identical bytes are computed once, with or without the cache,
+// each keeping its own record, ground truth and failures (registry/content_groups.h).
 //
 // Outputs under out_dir (results/<experiment>):
 //   variants.txt                    the config's variant names in order
@@ -27,8 +29,9 @@
 //
 // A shapes-only run computes the per-shape stages (and what the per-pair stages need of each
 // shape) of the shapes of shard i of N (ShapesOfShard over the shapes of all the variant's
-// pairs) for every variant, into the cache, and writes nothing else: run with N shards before the pair
-// shards, no shape is computed by two processes and the pair shards find every shape cached.
+// pairs; a shape whose mesh bytes are another's goes with the first of them) for every variant,
+// into the cache, and writes nothing else: run with N shards before the pair shards, no shape
+// is computed by two processes and the pair shards find every shape cached.
 //
 // The evaluation lives above this library (eval/), so it is reached through RunEvaluation.
 #pragma once
@@ -104,9 +107,11 @@ struct RunOptions {
   ShardSplit shard_split = ShardSplit::kPair;  // how pairs are split into shards
   bool shapes_only = false;  // compute and cache the shard's shapes only (needs cache_dir)
   // Called after each shape of a shapes-only run with the shape, the variant and the stages
-  // it computed (not found in the cache), sorted by name. The runner serialises the calls.
+  // it computed (not found in the cache), sorted by name; for a shape whose mesh file has the
+  // bytes of another shape's, nothing computed and that shape (computed_with, else empty).
+  // The runner serialises the calls.
   std::function<void(const std::string& shape, const std::string& variant,
-                     const std::vector<std::string>& computed)>
+                     const std::vector<std::string>& computed, const std::string& computed_with)>
       on_shape;
   bool quiet = false;
   // Also write each shape's canonical embedding, the surface the matching stage compares (the
@@ -120,6 +125,9 @@ struct RunStats {
   std::map<std::string, int> executed;    // stage -> computations (cache misses included)
   std::map<std::string, int> cache_hits;  // stage -> disk cache hits
   int shapes_computed = 0;         // shapes done (computed or loaded), all variants
+  // Of those, shapes whose mesh file has the bytes of another shape's of the variant: computed
+  // once with it (registry/content_groups.h).
+  int shapes_shared = 0;
   int pairs_total = 0;            // pairs of the run (shard), all variants
   int pairs_skipped = 0;          // kept from an earlier run (--resume)
   int pairs_recomputed = 0;       // --resume: had a record that did not prove itself

@@ -261,9 +261,8 @@ double CanonicalXSpread(const Eigen::MatrixX3d& Y) {
 
 namespace {
 
-// The per-shape measures of shapes.csv: what the sampling, embedding, symmetry, symmetrize and
-// canonical-frame stages report, and with symmetric ground truth the error of the symmetric
-// embedding against it.
+// The per-shape measures of shapes.csv that depend only on the mesh content: what the sampling,
+// embedding, symmetry, symmetrize and canonical-frame stages report.
 void AddShapeMeasures(const SamplingResult& sampling, const SymmetrizeResult& symmetrized,
                       double axis_ratio, const ShapeData& data, ShapeOutcome* out) {
   out->report.push_back({"samples", static_cast<double>(data.samples.size())});
@@ -278,17 +277,24 @@ void AddShapeMeasures(const SamplingResult& sampling, const SymmetrizeResult& sy
   out->report.push_back({"frame_axis_ratio", axis_ratio});
   out->report.push_back({"self_map_displacement", SelfMapDisplacement(data)});
   out->report.push_back({"canonical_x_spread", CanonicalXSpread(data.Y)});
-  if (!out->ground_truth.sym_ids.empty()) {
-    // The shape's lines against themselves: target_sym_ids are the symmetric partners, in
-    // preprocessed ids like the pairs' ground truth (lines of removed vertices dropped).
-    const PreprocessedGroundTruth self =
-        ToPreprocessedIds(PairLines(out->ground_truth, out->ground_truth), *out, *out);
-    const double error = SymmetryGroundTruthError(data.Y, self.source_ids, self.target_sym_ids);
-    if (error >= 0.0) out->report.push_back({"symmetry_gt_error", error});
-    const double asymmetry =
-        GroundTruthGeodesicAsymmetry(data.surface, self.source_ids, self.target_sym_ids);
-    if (asymmetry >= 0.0) out->report.push_back({"gt_geodesic_asymmetry", asymmetry});
-  }
+}
+
+// The per-shape measures of shapes.csv against a shape's symmetric ground truth (none without
+// one): the error of the symmetric embedding, and the asymmetry of the surface's own geodesics.
+Report GroundTruthMeasures(const ShapeOutcome& out) {
+  Report report;
+  if (out.ground_truth.sym_ids.empty()) return report;
+  // The shape's lines against themselves: target_sym_ids are the symmetric partners, in
+  // preprocessed ids like the pairs' ground truth (lines of removed vertices dropped).
+  const PreprocessedGroundTruth self =
+      ToPreprocessedIds(PairLines(out.ground_truth, out.ground_truth), out, out);
+  const ShapeData& data = *out.data;
+  const double error = SymmetryGroundTruthError(data.Y, self.source_ids, self.target_sym_ids);
+  if (error >= 0.0) report.push_back({"symmetry_gt_error", error});
+  const double asymmetry =
+      GroundTruthGeodesicAsymmetry(data.surface, self.source_ids, self.target_sym_ids);
+  if (asymmetry >= 0.0) report.push_back({"gt_geodesic_asymmetry", asymmetry});
+  return report;
 }
 
 // The cache keys of what a product can be computed from (ProductInput).
@@ -364,19 +370,13 @@ uint64_t PrepareNeeds(const Pipeline& pipeline, const ShapeContext& context, con
   return pair_key.Digest();
 }
 
-// The cache keys of the per-shape stages' outputs: H(mesh bytes, file extension), then for each
-// stage H(previous key, kind, resolved options).
+// The cache keys of the per-shape stages' outputs: the MeshKey, then for each stage
+// H(previous key, kind, resolved options).
 struct ShapeStageKeys {
   uint64_t preprocess, sampling, geodesics, embedding, symmetry, symmetrize;
 };
 
-ShapeStageKeys ShapeStageKeysOf(const std::string& mesh_path, const Pipeline& pipeline) {
-  const std::string extension = std::filesystem::path(mesh_path).extension().string();
-  const uint64_t mesh_key = Hasher()
-                                .AddString(kCacheScheme)
-                                .AddString(extension)
-                                .AddU64(HashFile(mesh_path))
-                                .Digest();
+ShapeStageKeys ShapeStageKeysOf(uint64_t mesh_key, const Pipeline& pipeline) {
   ShapeStageKeys keys;
   keys.preprocess = StageKey(mesh_key, "preprocess", *pipeline.preprocess);
   keys.sampling = StageKey(keys.preprocess, "sampling", *pipeline.sampling);
@@ -389,22 +389,23 @@ ShapeStageKeys ShapeStageKeysOf(const std::string& mesh_path, const Pipeline& pi
 
 }  // namespace
 
-ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
-                          const ShapeContext& context) {
-  ShapeOutcome out;
-  out.name = shape.name;
-  auto start = std::chrono::steady_clock::now();
-  out.input = context.load_mesh(shape.mesh_path);
-  out.times.push_back({"load", Since(start), false});
-  out.ground_truth = pipeline.dataset->GroundTruth(shape, out.input.NumVertices());
+uint64_t MeshKey(const std::string& mesh_path) {
+  const std::string extension = std::filesystem::path(mesh_path).extension().string();
+  return Hasher().AddString(kCacheScheme).AddString(extension).AddU64(HashFile(mesh_path)).Digest();
+}
 
-  const ShapeStageKeys keys = ShapeStageKeysOf(shape.mesh_path, pipeline);
+ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mesh_key,
+                                const Pipeline& pipeline, const ShapeContext& context) {
+  ShapeOutcome out;
+  out.input = std::move(input);
+  out.times.push_back({"load", load_seconds, false});
+
+  const ShapeStageKeys keys = ShapeStageKeysOf(mesh_key, pipeline);
   out.surface_key = keys.preprocess;
   const uint64_t pre_key = keys.preprocess, samp_key = keys.sampling, geo_key = keys.geodesics,
                  emb_key = keys.embedding, sym_key = keys.symmetry, symz_key = keys.symmetrize;
 
   auto data = std::make_shared<ShapeData>();
-  data->name = shape.name;
   const PreprocessResult pre = Cached<PreprocessResult>(
       context, "preprocess", pre_key, [&] { return pipeline.preprocess->Run(out.input); },
       &out.times);
@@ -480,7 +481,7 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
   });
   distances.reset();
 
-  start = std::chrono::steady_clock::now();
+  const auto start = std::chrono::steady_clock::now();
   double axis_ratio = 0.0;
   data->Y = CanonicalFrame(symmetrized.Y, nullptr, nullptr, &axis_ratio);
   out.times.push_back({"canonical_frame", Since(start), false});
@@ -504,9 +505,35 @@ ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
         "second plane hypothesis dropped (the shape goes on with its first plane): " +
         second_failure);
   }
+  // Last: OutcomeOfShape puts the ground-truth measures before it.
   out.report.push_back(
       {"second_plane", !second_failure.empty() ? -1.0 : (out.alternative ? 1.0 : 0.0)});
   out.data = std::move(data);
+  return out;
+}
+
+ShapeOutcome OutcomeOfShape(ShapeOutcome content, const DatasetShape& shape, ShapeGroundTruth truth,
+                            bool reused) {
+  SYMEMBED_CHECK(
+      content.data && !content.report.empty() && content.report.back().first == "second_plane",
+      "not an outcome of ComputeMeshOutcome");
+  ShapeOutcome out = std::move(content);
+  out.name = shape.name;
+  out.ground_truth = std::move(truth);
+  // The per-pair stages name the shape through its data: an outcome of another name keeps its
+  // own copy.
+  for (std::shared_ptr<ShapeData>* data : {&out.data, &out.alternative}) {
+    if (!*data) continue;
+    if (data->use_count() > 1) *data = std::make_shared<ShapeData>(**data);
+    (*data)->name = shape.name;
+  }
+  // Where a single computation of the shape put them, so that shapes.csv's columns keep their
+  // order.
+  const Report measures = GroundTruthMeasures(out);
+  out.report.insert(out.report.end() - 1, measures.begin(), measures.end());
+  if (reused) {
+    for (StageTime& time : out.times) time.cached = true;
+  }
   return out;
 }
 

@@ -3,6 +3,11 @@
 // per-pair stages (flip, matching, refine) declare they need of the shape (PairStage::Needs:
 // a Laplace-Beltrami basis, products; registry/product_needs.h).
 //
+// The work is done once per mesh content, not per name: ComputeMeshOutcome runs the stages on a
+// loaded mesh, and OutcomeOfShape gives each dataset shape whose file has those bytes its own
+// outcome (its name, its ground truth and the measures against it). A mesh under several names
+// (a symlink, a copy) is therefore computed once.
+//
 // Every stage output is cached on disk under a chained key: H(mesh bytes, file extension), then
 // for each stage H(previous key, kind, resolved options as YAML text). A variant that changes
 // only a later stage therefore finds every earlier output in the cache. A basis is keyed by the
@@ -81,13 +86,27 @@ struct ShapeOutcome {
 struct ShapeContext {
   const DiskCache* cache = nullptr;
   StageCounters* counters = nullptr;
-  MeshLoader load_mesh;
 };
 
-// Runs or loads every per-shape stage of `pipeline` for one dataset shape. Throws what the
-// loader or a stage throws (InvalidInputError, SolverError, ...): the caller records it.
-ShapeOutcome ComputeShape(const DatasetShape& shape, const Pipeline& pipeline,
-                          const ShapeContext& context);
+// The content key of a mesh file, the root of every per-shape cache key: H(key scheme, file
+// extension, the file's bytes). Files with equal keys have equal per-shape outputs whatever the
+// shapes' names. Throws IoError when the file cannot be read.
+uint64_t MeshKey(const std::string& mesh_path);
+
+// Runs or loads every per-shape stage of `pipeline` on `input`, the mesh of a file whose MeshKey
+// is mesh_key, loaded in load_seconds (the first time entry). The outcome has no name and no
+// ground truth: it is what every dataset shape with that file content shares (OutcomeOfShape).
+// Throws what a stage throws (InvalidInputError, SolverError, ...): the caller records it.
+ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mesh_key,
+                                const Pipeline& pipeline, const ShapeContext& context);
+
+// The outcome of dataset shape `shape` from the outcome of its mesh content: named shape.name
+// (data and alternative too: copied when `content` shares them with another outcome), with
+// `truth` and the shapes.csv measures against it. `reused`: the content was computed for another
+// shape, so every time entry is marked cached, as a cache hit is (the seconds of the
+// computation).
+ShapeOutcome OutcomeOfShape(ShapeOutcome content, const DatasetShape& shape, ShapeGroundTruth truth,
+                            bool reused);
 
 // Maps every input vertex to a preprocessed vertex: itself when kept, else the kept vertex
 // nearest in input coordinates. input_ids: #V_kept input id of each kept vertex.

@@ -599,7 +599,7 @@ TEST(Runner, ShapesOnlyShardsThenTargetShardsComputeEachShapeOnceAndEqualASingle
     shapes.shard_index = i;
     shapes.shard_count = 2;
     shapes.on_shape = [&](const std::string& shape, const std::string& variant,
-                          const std::vector<std::string>& stages) {
+                          const std::vector<std::string>& stages, const std::string&) {
       if (variant == "base") {
         // preprocess ... symmetrize, the second plane (none here), the flip's product
         EXPECT_EQ(stages.size(), 8u) << shape;
