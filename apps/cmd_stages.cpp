@@ -61,6 +61,17 @@ std::vector<Option> DefaultOptions(const Registry& registry, const Registry::Ent
   return options;
 }
 
+// Plain text as Markdown: the characters that would start emphasis, an HTML tag, a link or a
+// table cell are escaped (a description's "shapes/*.off", "Data/<SET>/Meshes").
+std::string MarkdownText(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (std::string("\\*_<>[]|`").find(c) != std::string::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 // Items as one Markdown paragraph of `code` spans separated by commas, wrapped at 100 columns.
 std::string WrappedCodeList(const std::vector<std::string>& items) {
   std::string out, line;
@@ -89,7 +100,8 @@ void PrintMarkdown(const Registry& registry) {
       kind = entry.kind;
       std::cout << "\n## " << kind << "\n";
     }
-    std::cout << "\n### `" << entry.name << "`\n\n" << entry.description << "\n\n";
+    std::cout << "\n### `" << entry.name << "`\n\n"
+              << MarkdownText(entry.description) << "\n\n";
     std::vector<std::string> items;
     for (const auto& [name, value] : DefaultOptions(registry, entry)) {
       items.push_back(name + ": " + value);

@@ -55,6 +55,8 @@ TEST(Cli, StagesListOptionsWithDefaultsAndDocsOptionsIsCurrent) {
   EXPECT_NE(markdown.find("`terms.refined_maps.weight: 1`,"), std::string::npos);
   EXPECT_NE(markdown.find("`candidate_errors`,"), std::string::npos);
   EXPECT_NE(markdown.find("`flipped_pairs.total`,"), std::string::npos);
+  // Descriptions are text, not Markdown: "Data/<SET>/Meshes" is not a tag, "*.vts" no emphasis.
+  EXPECT_NE(markdown.find("Data/\\<SET\\>/Meshes, Corrs/\\*.pid"), std::string::npos);
   EXPECT_TRUE(markdown == testing::ReadText(testing::SourceDir() + "/docs/options.md"))
       << "docs/options.md is not the output of `symembed stages --markdown`: regenerate it with "
          "build/release/symembed stages --markdown > docs/options.md";
