@@ -89,7 +89,8 @@ ArgParser EvalParser() {
   parser.Switch("reverse", "the file A_B.map maps B to A (scored as the pair B -> A)");
   parser.Option("out", "output folder", "results/NAME");
   parser.Option("jobs", "worker threads (0 = all cores)", "0");
-  parser.Option("cache-mb", "memory budget of the geodesic distance cache in MiB", "2048");
+  parser.Option("cache-mb", "memory budget of the geodesic distance cache in MiB",
+                std::to_string(static_cast<int>(kDefaultEvaluationCacheMb)));
   parser.Switch("no-report", "do not write the HTML report (OUT/report; see symembed report)");
   return parser;
 }

@@ -49,12 +49,16 @@ EvalShape MakeEvalShape(const PreprocessResult& pre, int num_input_vertices);
 // (Kim et al. 2011 evaluate 1,024 FPS points; Euclidean FPS is deterministic and cheap.)
 InputGroundTruth SelectPoints(const InputGroundTruth& gt, const EvalShape& target, int n);
 
+// Default memory budget of the cached distance rows, MiB: a 5k-vertex target with every
+// ground-truth point takes about 100 MB, and rows are computed only from the sources pairs need.
+inline constexpr double kDefaultEvaluationCacheMb = 1024.0;
+
 class Evaluator {
  public:
   // geodesics must outlive the Evaluator. cache_budget_mb bounds the cached distance rows
   // (float, #V each); whole targets are evicted least recently used first.
   Evaluator(const EvaluationOptions& options, const GeodesicsStage& geodesics,
-            double cache_budget_mb = 2048.0);
+            double cache_budget_mb = kDefaultEvaluationCacheMb);
   ~Evaluator();
 
   // Scores one map A -> B. target: B (name target_name, same shape for every call with that

@@ -19,12 +19,13 @@
 namespace symembed {
 namespace {
 
-// The evaluator's distance cache budget: $SYMEMBED_EVAL_CACHE_MB, default 2048. Every target of
-// TOSCA 5k with all ground-truth points needs about 100 MB; a budget that holds all of them lets
-// the variants of a run share the distances instead of recomputing them per variant.
+// The evaluator's distance cache budget: $SYMEMBED_EVAL_CACHE_MB, default
+// kDefaultEvaluationCacheMb. Every target of TOSCA 5k with all ground-truth points needs about
+// 100 MB; a budget that holds all of them lets the variants of a run share the distances instead
+// of recomputing them per variant, at that cost in memory.
 double EvaluationCacheBudgetMb() {
   const char* env = std::getenv("SYMEMBED_EVAL_CACHE_MB");
-  if (env == nullptr || *env == '\0') return 2048.0;
+  if (env == nullptr || *env == '\0') return kDefaultEvaluationCacheMb;
   char* end = nullptr;
   const double mb = std::strtod(env, &end);
   if (end == env || *end != '\0' || !(mb >= 0.0)) {
