@@ -51,12 +51,16 @@ const JsonValue& Require(const JsonValue& json, const std::string& key, const st
   return json.Get(key);
 }
 
-double RequireNumber(const JsonValue& json, const std::string& key, const std::string& where) {
-  const JsonValue& v = Require(json, key, where);
+// The number `v`, the value of `key` (null: NaN); anything else fails.
+double NumberOf(const JsonValue& v, const std::string& key, const std::string& where) {
   if (!v.IsNumber() && !v.IsNull()) {
     throw InvalidInputError(where + ": key '" + key + "' must be a number");
   }
   return v.NumberOr(kNaN);
+}
+
+double RequireNumber(const JsonValue& json, const std::string& key, const std::string& where) {
+  return NumberOf(Require(json, key, where), key, where);
 }
 
 JsonValue NumberArray(const std::vector<double>& x) {
@@ -96,10 +100,7 @@ Entry NumberEntry(std::string key, T VariantSummary::*member, std::string csv_co
                                         const std::string& key, const std::string& where) {
     double x = missing;
     if (read == Entry::Read::kRequired) {
-      if (!value.IsNumber() && !value.IsNull()) {
-        throw InvalidInputError(where + ": key '" + key + "' must be a number");
-      }
-      x = value.NumberOr(kNaN);
+      x = NumberOf(value, key, where);
     } else if (present) {
       x = value.NumberOr(missing);
     }
@@ -126,10 +127,7 @@ Entry ThresholdEntry(const std::string& group, std::array<double, 3> VariantSumm
   e.to_json = [member, k](const VariantSummary& s) { return JsonValue::Number((s.*member)[k]); };
   e.from_json = [member, k](VariantSummary& s, const JsonValue& value, bool,
                             const std::string& key, const std::string& where) {
-    if (!value.IsNumber() && !value.IsNull()) {
-      throw InvalidInputError(where + ": key '" + key + "' must be a number");
-    }
-    (s.*member)[k] = value.NumberOr(kNaN);
+    (s.*member)[k] = NumberOf(value, key, where);
   };
   e.csv_cell = [member, k](const VariantSummary& s) { return Num((s.*member)[k]); };
   return e;

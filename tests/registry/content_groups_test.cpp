@@ -18,23 +18,9 @@ namespace fs = std::filesystem;
 using testing::ReadText;
 using testing::TempDir;
 using testing::WriteText;
-using testing::runner::ReadOff;
+using testing::runner::RunConfig;
 using testing::runner::TestEvaluation;
-using testing::runner::TestRegistry;
 using testing::runner::WriteTestDataset;
-
-RunStats RunAliased(const std::string& config_text, const std::string& out,
-                    const std::string& cache, RunOptions options = {}) {
-  const Registry registry = TestRegistry();
-  const ExperimentConfig config = ParseExperimentConfig(config_text, "test.yaml", registry);
-  options.out_dir = out;
-  options.cache_dir = cache;
-  options.quiet = true;
-  options.jobs = 2;
-  options.load_mesh = ReadOff;
-  TestEvaluation evaluation;
-  return RunExperiment(config, registry, options, evaluation);
-}
 
 int Get(const std::map<std::string, int>& m, const std::string& key) {
   auto it = m.find(key);
@@ -88,13 +74,13 @@ const char* const kPairs[] = {"s0_s1", "s1_s0", "s1_s2", "s2_s0",
 TEST(ContentGroups, IdenticalMeshBytesUnderSeveralNamesAreComputedOnce) {
   TempDir tmp;
   const std::string distinct_config = WriteAliasedDataset(tmp.File("distinct"), true);
-  const RunStats distinct = RunAliased(distinct_config, tmp.File("distinct_out"), "");
+  const RunStats distinct = RunConfig(distinct_config, tmp.File("distinct_out"), "").stats;
   ASSERT_TRUE(distinct.ok());
   const std::string aliased_config = WriteAliasedDataset(tmp.File("aliased"), false);
   for (const std::string& cache : {std::string(""), tmp.File("cache")}) {
     SCOPED_TRACE("cache '" + cache + "'");
     const std::string out = tmp.File(cache.empty() ? "out_uncached" : "out_cached");
-    const RunStats run = RunAliased(aliased_config, out, cache);
+    const RunStats run = RunConfig(aliased_config, out, cache).stats;
     ASSERT_TRUE(run.ok());
     EXPECT_EQ(run.pairs_done, 8);
     EXPECT_EQ(run.shapes_computed, 5);
@@ -140,7 +126,8 @@ TEST(ContentGroups, IdenticalMeshBytesUnderSeveralNamesAreComputedOnce) {
 // mesh: the key is the content, not the parsed surface.
 TEST(ContentGroups, NamesWithDifferentBytesAreComputedSeparately) {
   TempDir tmp;
-  const RunStats run = RunAliased(WriteAliasedDataset(tmp.File("data"), true), tmp.File("out"), "");
+  const RunStats run =
+      RunConfig(WriteAliasedDataset(tmp.File("data"), true), tmp.File("out"), "").stats;
   ASSERT_TRUE(run.ok());
   EXPECT_EQ(run.shapes_computed, 5);
   EXPECT_EQ(run.shapes_shared, 0);
@@ -164,7 +151,7 @@ TEST(ContentGroups, FailuresAndWarningsOfTheSharedComputationNameEachFile) {
   const std::string from = "symmetry: {type: test}";
   config.replace(config.find(from), from.size(),
                  "symmetry: {type: test, second: true, second_fails: true}");
-  const RunStats run = RunAliased(config, tmp.File("out"), "");
+  const RunStats run = RunConfig(config, tmp.File("out"), "").stats;
   EXPECT_EQ(run.pairs_done, 2);
   std::set<std::string> failures;
   for (const Failure& f : run.failures) {
@@ -202,7 +189,7 @@ TEST(ContentGroups, ShapesOnlyShardsComputeAMeshUnderSeveralNamesOnce) {
       reported[shape] = computed_with.empty() ? "computed" : computed_with;
       EXPECT_EQ(computed.empty(), !computed_with.empty()) << shape;
     };
-    const RunStats run = RunAliased(config, tmp.File("none"), tmp.File("cache"), shapes);
+    const RunStats run = RunConfig(config, tmp.File("none"), tmp.File("cache"), shapes).stats;
     EXPECT_TRUE(run.ok());
     preprocessed += Get(run.executed, "preprocess");
   }

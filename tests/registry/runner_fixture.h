@@ -422,4 +422,31 @@ class TestEvaluation : public RunEvaluation {
   bool throw_in_write = false;  // WriteVariant throws IoError
 };
 
+// A run of config_text with the test registry and stages (2 jobs, quiet), and the test stages
+// called during it.
+struct RunResult {
+  RunStats stats;
+  std::map<std::string, int> calls;  // test stage calls during the run
+};
+
+inline RunResult RunConfig(const std::string& config_text, const std::string& out,
+                    const std::string& cache, RunOptions options = {},
+                    TestEvaluation* evaluation = nullptr,
+                    const std::string& file = "test.yaml") {
+  const Registry registry = TestRegistry();
+  const ExperimentConfig config = ParseExperimentConfig(config_text, file, registry);
+  options.out_dir = out;
+  options.cache_dir = cache;
+  options.quiet = true;
+  options.jobs = 2;
+  options.load_mesh = ReadOff;
+  TestEvaluation default_evaluation;
+  CallCounter::Get().Take();
+  RunResult run;
+  run.stats =
+      RunExperiment(config, registry, options, evaluation ? *evaluation : default_evaluation);
+  run.calls = CallCounter::Get().Take();
+  return run;
+}
+
 }  // namespace symembed::testing::runner

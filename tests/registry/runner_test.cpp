@@ -43,6 +43,8 @@ using testing::ReadText;
 using testing::TempDir;
 using testing::WriteText;
 using testing::runner::CallCounter;
+using testing::runner::RunConfig;
+using testing::runner::RunResult;
 using testing::runner::ReadOff;
 using testing::runner::TestEvaluation;
 using testing::runner::TestRegistry;
@@ -152,31 +154,6 @@ TEST(CanonicalXSpread, SmallForABodyPressedIntoItsPlane) {
   Y.col(0) *= 0.05;
   EXPECT_NEAR(CanonicalXSpread(Y), 0.05 * spread, 1e-12);
   EXPECT_EQ(CanonicalXSpread(Eigen::MatrixX3d::Zero(1, 3)), -1.0);
-}
-
-struct RunResult {
-  RunStats stats;
-  std::map<std::string, int> calls;  // test stage calls during the run
-};
-
-RunResult RunConfig(const std::string& config_text, const std::string& out,
-                    const std::string& cache, RunOptions options = {},
-                    TestEvaluation* evaluation = nullptr,
-                    const std::string& file = "test.yaml") {
-  const Registry registry = TestRegistry();
-  const ExperimentConfig config = ParseExperimentConfig(config_text, file, registry);
-  options.out_dir = out;
-  options.cache_dir = cache;
-  options.quiet = true;
-  options.jobs = 2;
-  options.load_mesh = ReadOff;
-  TestEvaluation default_evaluation;
-  CallCounter::Get().Take();
-  RunResult run;
-  run.stats =
-      RunExperiment(config, registry, options, evaluation ? *evaluation : default_evaluation);
-  run.calls = CallCounter::Get().Take();
-  return run;
 }
 
 // Every file below dir (relative path -> bytes), without the shape records (they hold times)
