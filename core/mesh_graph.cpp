@@ -252,7 +252,11 @@ std::vector<int> NearestSeeds(const MeshGraph& g, const std::vector<int>& seeds)
 
 Eigen::MatrixXd EdgeGraphDistances(const Surface& surface, const std::vector<int>& sources,
                                    int threads) {
-  const MeshGraph graph = BuildMeshGraph(surface);
+  return EdgeGraphDistances(BuildMeshGraph(surface), sources, threads);
+}
+
+Eigen::MatrixXd EdgeGraphDistances(const MeshGraph& graph, const std::vector<int>& sources,
+                                   int threads) {
   return ParallelRows(sources, graph.NumVertices(), threads, [&](int i, double* out) {
     thread_local DijkstraWorkspace<double> ws;
     Dijkstra<double>(graph, sources[i], out, &ws);

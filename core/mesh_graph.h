@@ -37,6 +37,9 @@ MeshGraph BuildMeshGraph(const Surface& surface);
 // InvalidInputError for a source outside [0, #V).
 Eigen::MatrixXd EdgeGraphDistances(const Surface& surface, const std::vector<int>& sources,
                                    int threads = 0);
+// The same on a graph built once (BuildMeshGraph), for several calls on one surface.
+Eigen::MatrixXd EdgeGraphDistances(const MeshGraph& graph, const std::vector<int>& sources,
+                                   int threads = 0);
 
 // Reusable per-thread state of Dijkstra's algorithm, so repeated calls do not allocate.
 template <typename Scalar>

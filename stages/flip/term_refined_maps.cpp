@@ -49,7 +49,7 @@ bool RefinedMapsTermOptions::IsValid(std::string* error) const {
   return out.str().empty();
 }
 
-double GeodesicDistortion(const Eigen::MatrixXd& source_distances, const Surface& target,
+double GeodesicDistortion(const Eigen::MatrixXd& source_distances, const MeshGraph& target,
                           const std::vector<int>& samples, int targets,
                           const std::vector<int>& map) {
   const int sources = static_cast<int>(source_distances.rows());
@@ -143,10 +143,12 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
     long_axis_scales = FeatureScales(*Cs, *Ct);
   }
   std::array<double, 4> distortion{}, disagreement{}, orientation{}, diffused{};
+  // The target's edge graph once for the four candidates' distances.
+  const MeshGraph target_graph = BuildMeshGraph(target.surface);
   for (int k = 0; k < 4; ++k) {
     const ZoomOutResult refined = candidates.Refine(k);
     distortion[k] =
-        GeodesicDistortion(source_distances, target.surface, prefix, targets, refined.map);
+        GeodesicDistortion(source_distances, target_graph, prefix, targets, refined.map);
     disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
     orientation[k] = candidates.Orientation(refined.map);
     if (long_axis) {

@@ -58,6 +58,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/mesh_graph.h"
 #include "registry/options.h"
 #include "stages/flip/flip_term.h"
 #include "stages/flip/zoomout_schedule.h"
@@ -98,9 +99,10 @@ struct RefinedMapsTermOptions {
 
 // The distortion d of `map` (target vertex per source vertex, at least at the samples) between
 // the first sources.size() x targets samples: source_distances is #sources x #Vs (graph
-// geodesics from samples[0..sources)), the target's are computed from the images. Returns 1 when
-// the source distances sum to 0. Throws InvalidInputError for ids out of range.
-double GeodesicDistortion(const Eigen::MatrixXd& source_distances, const Surface& target,
+// geodesics from samples[0..sources)), the target's are computed from the images on the target's
+// edge graph (BuildMeshGraph). Returns 1 when the source distances sum to 0. Throws
+// InvalidInputError for ids out of range.
+double GeodesicDistortion(const Eigen::MatrixXd& source_distances, const MeshGraph& target,
                           const std::vector<int>& samples, int targets,
                           const std::vector<int>& map);
 

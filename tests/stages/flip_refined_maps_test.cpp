@@ -9,6 +9,7 @@
 #include "core/canonical_frame.h"
 #include "core/errors.h"
 #include "core/fmap/functional_map.h"
+#include "core/mesh_graph.h"
 #include "core/primitives.h"
 #include "core/spectral.h"
 #include "eval/synthetic/synthetic.h"
@@ -42,12 +43,13 @@ TEST(RefinedMapsFlip, DistortionMatchesABruteForceSum) {
   synth.vertices = 400;
   const Surface surface = GenerateClass(FigureKind::kHumanoid, synth).shapes[0].shape.surface;
   const int n = surface.NumVertices();
+  const MeshGraph graph = BuildMeshGraph(surface);
   std::vector<int> samples = EuclideanFarthestPoints(surface.V, 30);
   const std::vector<int> sources(samples.begin(), samples.begin() + 5);
   const Eigen::MatrixXd Ds = DijkstraDistances(surface, sources);
   std::vector<int> identity(n);
   for (int i = 0; i < n; ++i) identity[i] = i;
-  EXPECT_NEAR(GeodesicDistortion(Ds, surface, samples, 30, identity), 0.0, 1e-12);
+  EXPECT_NEAR(GeodesicDistortion(Ds, graph, samples, 30, identity), 0.0, 1e-12);
 
   // A map that shifts every vertex: the sum over all pairs, with every distance from Dijkstra.
   std::vector<int> shifted(n);
@@ -65,13 +67,13 @@ TEST(RefinedMapsFlip, DistortionMatchesABruteForceSum) {
       length += ds;
     }
   }
-  EXPECT_NEAR(GeodesicDistortion(Ds, surface, samples, 30, shifted), difference / length, 1e-9);
+  EXPECT_NEAR(GeodesicDistortion(Ds, graph, samples, 30, shifted), difference / length, 1e-9);
   EXPECT_GT(difference / length, 0.1);
 
   std::vector<int> bad = identity;
   bad[samples[3]] = n;
-  EXPECT_THROW(GeodesicDistortion(Ds, surface, samples, 30, bad), InvalidInputError);
-  EXPECT_THROW(GeodesicDistortion(Ds, surface, samples, 31, identity), InvalidInputError);
+  EXPECT_THROW(GeodesicDistortion(Ds, graph, samples, 30, bad), InvalidInputError);
+  EXPECT_THROW(GeodesicDistortion(Ds, graph, samples, 31, identity), InvalidInputError);
 }
 
 // For each turn R_j of the target's canonical embedding, the term alone gives the oracle's
