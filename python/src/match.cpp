@@ -193,11 +193,11 @@ SolverError.)doc")
           },
           "the preprocessed surface (V, F): consistently oriented, cleaned, unit area")
       .def_property_readonly(
-          "input_ids", [](const Shape& s) { return s.outcome->data->input_ids; },
-          "input vertex id of each preprocessed vertex")
+          "input_ids", [](const Shape& s) { return IdsToNumpy(s.outcome->data->input_ids); },
+          "input vertex id of each preprocessed vertex (int32 array)")
       .def_property_readonly(
-          "samples", [](const Shape& s) { return s.outcome->data->samples; },
-          "sample vertex ids (preprocessed ids)")
+          "samples", [](const Shape& s) { return IdsToNumpy(s.outcome->data->samples); },
+          "sample vertex ids, preprocessed ids (int32 array)")
       .def_property_readonly(
           "embedding", [](const Shape& s) { return Eigen::MatrixX3d(s.outcome->data->Y); },
           "the canonical symmetric embedding, one row per preprocessed vertex")
