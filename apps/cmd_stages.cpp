@@ -7,6 +7,7 @@
 
 #include "apps/args.h"
 #include "apps/commands.h"
+#include "apps/stage_options.h"
 #include "core/errors.h"
 #include "eval/report.h"
 #include "registry/registry.h"
@@ -14,52 +15,6 @@
 
 namespace symembed {
 namespace {
-
-using Option = std::pair<std::string, std::string>;  // dotted name, default value
-
-// The resolved options of a node as dotted names and YAML values, in the node's order; a list
-// is one value in flow style.
-void Flatten(const YAML::Node& node, const std::string& prefix, std::vector<Option>* out) {
-  for (const auto& item : node) {
-    const std::string name = prefix + item.first.Scalar();
-    if (item.second.IsMap()) {
-      Flatten(item.second, name + ".", out);
-    } else {
-      YAML::Emitter emitter;
-      emitter << YAML::Flow << item.second;
-      out->emplace_back(name, emitter.c_str());
-    }
-  }
-}
-
-// Every option of a registered stage with its default, as the stage resolves an empty section
-// (`type` alone). A dataset loader that needs a root is created with a placeholder, listed as
-// "(required)".
-std::vector<Option> DefaultOptions(const Registry& registry, const Registry::Entry& entry) {
-  const bool dataset = entry.kind == "dataset";
-  const std::string type_key = dataset ? "format" : "type";
-  const auto resolve = [&](bool with_root) {
-    YAML::Node node;
-    node[type_key] = entry.name;
-    if (with_root) node["root"] = "(required)";
-    std::vector<Option> options;
-    const auto stage = registry.Create(entry.kind, node, "(defaults)", entry.kind, "", type_key);
-    Flatten(stage->resolved_options(), "", &options);
-    Flatten(stage->unset_defaults(), "", &options);
-    return options;
-  };
-  std::vector<Option> options;
-  try {
-    options = resolve(false);
-  } catch (const ConfigError&) {
-    if (!dataset) throw;
-    options = resolve(true);
-  }
-  options.erase(std::remove_if(options.begin(), options.end(),
-                               [&](const Option& o) { return o.first == type_key; }),
-                options.end());
-  return options;
-}
 
 // Plain text as Markdown: the characters that would start emphasis, an HTML tag, a link or a
 // table cell are escaped (a description's "shapes/*.off", "Data/<SET>/Meshes").
@@ -103,7 +58,7 @@ void PrintMarkdown(const Registry& registry) {
     std::cout << "\n### `" << entry.name << "`\n\n"
               << MarkdownText(entry.description) << "\n\n";
     std::vector<std::string> items;
-    for (const auto& [name, value] : DefaultOptions(registry, entry)) {
+    for (const auto& [name, value] : StageDefaultOptions(registry, entry)) {
       items.push_back(name + ": " + value);
     }
     std::cout << (items.empty() ? std::string("No options.\n") : WrappedCodeList(items));
@@ -146,7 +101,7 @@ int StagesCommand(const Args& args) {
     std::cout << e.kind << std::string(kind_width + 2 - e.kind.size(), ' ') << e.name
               << std::string(name_width + 2 - e.name.size(), ' ') << e.description << "\n";
     if (!parser.Flag("options")) continue;
-    for (const auto& [name, value] : DefaultOptions(registry, e)) {
+    for (const auto& [name, value] : StageDefaultOptions(registry, e)) {
       std::cout << std::string(kind_width + 2, ' ') << "  " << name << ": " << value << "\n";
     }
   }

@@ -1,5 +1,6 @@
 #include "eval/report.h"
 
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -432,18 +433,32 @@ bool WriteComparison(const std::string& experiment_dir, const std::vector<Varian
 
 namespace {
 
+// The file of the binary or shared object that holds this code: the symembed binary, or the
+// Python module (BUILD/python/symembed/_core*.so) when python3 is the process. Empty if unknown.
+fs::path CodeFile() {
+  Dl_info info;
+  if (dladdr(reinterpret_cast<void*>(&PlotCurves), &info) == 0 || info.dli_fname == nullptr) {
+    return {};
+  }
+  std::error_code ec;
+  const fs::path path = fs::canonical(info.dli_fname, ec);
+  return ec ? fs::path() : path;
+}
+
 std::string FindPlotScript() {
   if (const char* root = std::getenv("SYMEMBED_ROOT")) {
     const fs::path p = fs::path(root) / "scripts" / "plot-curves";
     if (fs::exists(p)) return p.string();
   }
   std::error_code ec;
-  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-  for (int up = 0; !ec && up < 5 && !dir.empty(); ++up) {
-    const fs::path p = dir / "scripts" / "plot-curves";
-    if (fs::exists(p)) return p.string();
-    if (dir == dir.parent_path()) break;
-    dir = dir.parent_path();
+  for (fs::path dir : {fs::read_symlink("/proc/self/exe", ec).parent_path(),
+                       CodeFile().parent_path()}) {
+    for (int up = 0; up < 5 && !dir.empty(); ++up) {
+      const fs::path p = dir / "scripts" / "plot-curves";
+      if (fs::exists(p)) return p.string();
+      if (dir == dir.parent_path()) break;
+      dir = dir.parent_path();
+    }
   }
   return "";
 }

@@ -4,6 +4,7 @@
 #include <any>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -392,6 +393,27 @@ ShapeStageKeys ShapeStageKeysOf(uint64_t mesh_key, const Pipeline& pipeline) {
 uint64_t MeshKey(const std::string& mesh_path) {
   const std::string extension = std::filesystem::path(mesh_path).extension().string();
   return Hasher().AddString(kCacheScheme).AddString(extension).AddU64(HashFile(mesh_path)).Digest();
+}
+
+uint64_t SurfaceMeshKey(const Surface& surface) {
+  Hasher hasher;
+  hasher.AddString(kCacheScheme).AddString("arrays");
+  hasher.AddU64(static_cast<uint64_t>(surface.V.rows()))
+      .AddU64(static_cast<uint64_t>(surface.F.rows()));
+  for (Eigen::Index i = 0; i < surface.V.rows(); ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const double x = surface.V(i, j);
+      uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      hasher.AddU64(bits);
+    }
+  }
+  for (Eigen::Index i = 0; i < surface.F.rows(); ++i) {
+    for (int j = 0; j < 3; ++j) {
+      hasher.AddU64(static_cast<uint64_t>(static_cast<int64_t>(surface.F(i, j))));
+    }
+  }
+  return hasher.Digest();
 }
 
 ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mesh_key,

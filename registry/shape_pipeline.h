@@ -93,6 +93,11 @@ struct ShapeContext {
 // shapes' names. Throws IoError when the file cannot be read.
 uint64_t MeshKey(const std::string& mesh_path);
 
+// The content key of a mesh given as arrays instead of a file (the Python module): H(key
+// scheme, "arrays", #V, #F, the coordinates and ids row by row). A file's MeshKey hashes its
+// bytes, so the same mesh read from a file and passed as arrays is cached under two keys.
+uint64_t SurfaceMeshKey(const Surface& surface);
+
 // Runs or loads every per-shape stage of `pipeline` on `input`, the mesh of a file whose MeshKey
 // is mesh_key, loaded in load_seconds (the first time entry). The outcome has no name and no
 // ground truth: it is what every dataset shape with that file content shares (OutcomeOfShape).
