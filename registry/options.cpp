@@ -1,8 +1,6 @@
 #include "registry/options.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 
 #include "core/errors.h"
@@ -16,15 +14,6 @@ std::string NodeLocation(const std::string& file, const YAML::Node& node) {
     out << ":" << node.Mark().line + 1 << ":" << node.Mark().column + 1;
   }
   return out.str();
-}
-
-std::string FormatNumber(double x) {
-  char buffer[64];
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, x);
-    if (std::strtod(buffer, nullptr) == x) break;
-  }
-  return buffer;
 }
 
 namespace {

@@ -15,10 +15,9 @@
 #include <utility>
 #include <vector>
 
-namespace symembed {
+#include "core/range.h"
 
-// Shortest decimal text that reads back to exactly x ("0.1", not "0.10000000000000001").
-std::string FormatNumber(double x);
+namespace symembed {
 
 // "file:line:col" of a node (1-based), or "file" when the node has no position.
 std::string NodeLocation(const std::string& file, const YAML::Node& node);
