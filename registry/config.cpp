@@ -346,8 +346,8 @@ EvaluationOptions ParseEvaluationOptions(const YAML::Node& node, const std::stri
   e.geodesics = registry != nullptr
                     ? r.GetChoice("geodesics", e.geodesics, registry->Names("geodesics"))
                     : r.GetString("geodesics", e.geodesics);
-  e.max_error = r.GetDouble("max_error", e.max_error, 1e-6, 10.0);
-  e.step = r.GetDouble("step", e.step, 1e-6, e.max_error);
+  e.max_error = r.GetDouble("max_error", e.max_error, Range::Closed(1e-6, 10.0));
+  e.step = r.GetDouble("step", e.step, Range::Closed(1e-6, e.max_error));
   const std::string points = r.GetString("points", "all");
   if (points != "all") {
     char* end = nullptr;

@@ -1,8 +1,7 @@
 #include "registry/options.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "core/errors.h"
@@ -16,15 +15,6 @@ std::string NodeLocation(const std::string& file, const YAML::Node& node) {
     out << ":" << node.Mark().line + 1 << ":" << node.Mark().column + 1;
   }
   return out.str();
-}
-
-std::string FormatNumber(double x) {
-  char buffer[64];
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, x);
-    if (std::strtod(buffer, nullptr) == x) break;
-  }
-  return buffer;
 }
 
 namespace {
@@ -85,8 +75,7 @@ YAML::Node OptionReader::Lookup(const std::string& key) {
   return v;
 }
 
-double OptionReader::GetDouble(const std::string& key, double default_value, double min,
-                               double max) {
+double OptionReader::GetDouble(const std::string& key, double default_value, const Range& range) {
   YAML::Node v = Lookup(key);
   double value = default_value;
   if (v.IsDefined() && !v.IsNull()) {
@@ -98,17 +87,13 @@ double OptionReader::GetDouble(const std::string& key, double default_value, dou
     }
     if (!std::isfinite(value)) Fail(key, "expected a finite number, got '" + Scalar(v) + "'");
   }
-  if (value < min || value > max) {
-    std::ostringstream out;
-    out << "value " << value << " is out of range [" << min << ", " << max << "]";
-    Fail(key, out.str());
-  }
+  CheckRange(key, value, range);
   resolved_[key] = FormatNumber(value);
   return value;
 }
 
-long long OptionReader::ReadInteger(const std::string& key, const YAML::Node& v, long long min,
-                                     long long max, const std::string& expected) const {
+int OptionReader::ReadInteger(const std::string& key, const YAML::Node& v, const Range& range,
+                              const std::string& expected) const {
   long long value = 0;
   try {
     if (!v.IsScalar()) throw YAML::Exception(YAML::Mark(), "");
@@ -116,26 +101,23 @@ long long OptionReader::ReadInteger(const std::string& key, const YAML::Node& v,
   } catch (const YAML::Exception&) {
     Fail(key, "expected " + expected + ", got '" + Scalar(v) + "'");
   }
-  CheckIntRange(key, value, min, max);
-  return value;
+  CheckRange(key, static_cast<double>(value),
+             Range::Closed(std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+  CheckRange(key, static_cast<double>(value), range);
+  return static_cast<int>(value);
 }
 
-void OptionReader::CheckIntRange(const std::string& key, long long value, long long min,
-                                 long long max) const {
-  if (value < min || value > max) {
-    std::ostringstream out;
-    out << "value " << value << " is out of range [" << min << ", " << max << "]";
-    Fail(key, out.str());
-  }
+void OptionReader::CheckRange(const std::string& key, double value, const Range& range) const {
+  if (!range.Contains(value)) Fail(key, range.Violation(value));
 }
 
-int OptionReader::GetInt(const std::string& key, int default_value, int min, int max) {
+int OptionReader::GetInt(const std::string& key, int default_value, const Range& range) {
   YAML::Node v = Lookup(key);
   int value = default_value;
   if (v.IsDefined() && !v.IsNull()) {
-    value = static_cast<int>(ReadInteger(key, v, min, max, "an integer"));
+    value = ReadInteger(key, v, range, "an integer");
   } else {
-    CheckIntRange(key, value, min, max);
+    CheckRange(key, value, range);
   }
   resolved_[key] = value;
   return value;
@@ -200,17 +182,17 @@ std::vector<std::string> OptionReader::GetStringList(const std::string& key,
 }
 
 std::vector<int> OptionReader::GetIntList(const std::string& key,
-                                          const std::vector<int>& default_value, int min,
-                                          int max) {
+                                          const std::vector<int>& default_value,
+                                          const Range& range) {
   YAML::Node v = Lookup(key);
   std::vector<int> value = default_value;
   if (v.IsDefined() && v.IsSequence()) {
     value.clear();
     for (const auto& item : v) {
-      value.push_back(static_cast<int>(ReadInteger(key, item, min, max, "a list of integers")));
+      value.push_back(ReadInteger(key, item, range, "a list of integers"));
     }
   } else if (v.IsDefined() && !v.IsNull()) {
-    value = {static_cast<int>(ReadInteger(key, v, min, max, "a list of integers"))};
+    value = {ReadInteger(key, v, range, "a list of integers")};
   }
   YAML::Node out(YAML::NodeType::Sequence);
   for (int x : value) out.push_back(x);
@@ -218,16 +200,16 @@ std::vector<int> OptionReader::GetIntList(const std::string& key,
   return value;
 }
 
-double OptionReader::GetDoubleIfGiven(const std::string& key, double default_value, double min,
-                                      double max) {
-  if (Has(key)) return GetDouble(key, default_value, min, max);
+double OptionReader::GetDoubleIfGiven(const std::string& key, double default_value,
+                                      const Range& range) {
+  if (Has(key)) return GetDouble(key, default_value, range);
   read_.insert(key);
   unset_defaults_[key] = FormatNumber(default_value);
   return default_value;
 }
 
-int OptionReader::GetIntIfGiven(const std::string& key, int default_value, int min, int max) {
-  if (Has(key)) return GetInt(key, default_value, min, max);
+int OptionReader::GetIntIfGiven(const std::string& key, int default_value, const Range& range) {
+  if (Has(key)) return GetInt(key, default_value, range);
   read_.insert(key);
   unset_defaults_[key] = default_value;
   return default_value;

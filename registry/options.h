@@ -9,16 +9,14 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <limits>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace symembed {
+#include "core/range.h"
 
-// Shortest decimal text that reads back to exactly x ("0.1", not "0.10000000000000001").
-std::string FormatNumber(double x);
+namespace symembed {
 
 // "file:line:col" of a node (1-based), or "file" when the node has no position.
 std::string NodeLocation(const std::string& file, const YAML::Node& node);
@@ -29,20 +27,18 @@ class OptionReader {
   // from. path: the dotted path of node in the config ("pipeline.embedding").
   OptionReader(YAML::Node node, std::string file, std::string path);
 
-  double GetDouble(const std::string& key, double default_value,
-                   double min = -std::numeric_limits<double>::infinity(),
-                   double max = std::numeric_limits<double>::infinity());
-  int GetInt(const std::string& key, int default_value, int min = std::numeric_limits<int>::min(),
-             int max = std::numeric_limits<int>::max());
+  // The number at `key`, or default_value when absent; either must lie in `range` (declared
+  // with the option, e.g. SmacofOptions::kRelaxation, which IsValid checks too). Throws
+  // ConfigError naming file:line:col, the dotted key, the range and the value.
+  double GetDouble(const std::string& key, double default_value, const Range& range = Range::Any());
+  // As GetDouble, for an integer (which must also fit an int).
+  int GetInt(const std::string& key, int default_value, const Range& range = Range::Any());
   // An option read only when given, so that the resolved node (and every cache key made from
   // it) stays as it was without it: as GetDouble / GetInt when `key` is present; else
   // default_value, recorded in unset_defaults() (and as a known key) instead of resolved().
   double GetDoubleIfGiven(const std::string& key, double default_value,
-                          double min = -std::numeric_limits<double>::infinity(),
-                          double max = std::numeric_limits<double>::infinity());
-  int GetIntIfGiven(const std::string& key, int default_value,
-                    int min = std::numeric_limits<int>::min(),
-                    int max = std::numeric_limits<int>::max());
+                          const Range& range = Range::Any());
+  int GetIntIfGiven(const std::string& key, int default_value, const Range& range = Range::Any());
   bool GetBool(const std::string& key, bool default_value);
   std::string GetString(const std::string& key, const std::string& default_value);
   // A required string (throws ConfigError when missing).
@@ -68,10 +64,9 @@ class OptionReader {
   }
   std::vector<std::string> GetStringList(const std::string& key,
                                          const std::vector<std::string>& default_value);
-  // A list of integers, each in [min, max] (a single integer is a list of one).
+  // A list of integers, each in `range` (a single integer is a list of one).
   std::vector<int> GetIntList(const std::string& key, const std::vector<int>& default_value,
-                              int min = std::numeric_limits<int>::min(),
-                              int max = std::numeric_limits<int>::max());
+                              const Range& range = Range::Any());
   // A nested map, read with its own reader (recorded as read; its keys checked by its Finish).
   OptionReader Child(const std::string& key);
   // Marks the nested reader's resolved values as part of this reader's resolved node.
@@ -94,11 +89,11 @@ class OptionReader {
  private:
   YAML::Node Lookup(const std::string& key);
   // The integer in the scalar `v` (the value of `key`, or an item of its list), checked against
-  // [min, max]; fails with "expected <expected>" when v is not an integer.
-  long long ReadInteger(const std::string& key, const YAML::Node& v, long long min, long long max,
-                        const std::string& expected) const;
-  // Fails with "value V is out of range [min, max]" unless min <= value <= max.
-  void CheckIntRange(const std::string& key, long long value, long long min, long long max) const;
+  // `range` and the limits of int; fails with "expected <expected>" when v is not an integer.
+  int ReadInteger(const std::string& key, const YAML::Node& v, const Range& range,
+                  const std::string& expected) const;
+  // Fails with range.Violation(value) unless range contains value.
+  void CheckRange(const std::string& key, double value, const Range& range) const;
   std::string KeyPath(const std::string& key) const;
 
   YAML::Node node_;

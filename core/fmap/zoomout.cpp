@@ -11,12 +11,14 @@ namespace symembed {
 
 bool ZoomOutOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (k_start < 1) {
-    out << "k_start must be >= 1, got " << k_start;
+  if (!kKStart.Contains(k_start)) {
+    out << "k_start " << kKStart.Violation(k_start);
+  } else if (!kKEnd.Contains(k_end)) {
+    out << "k_end " << kKEnd.Violation(k_end);
   } else if (k_end < k_start) {
     out << "k_end (" << k_end << ") must be >= k_start (" << k_start << ")";
-  } else if (step < 1) {
-    out << "step must be >= 1, got " << step;
+  } else if (!kStep.Contains(step)) {
+    out << "step " << kStep.Violation(step);
   }
   for (size_t i = 0; i < extra_k_starts.size() && out.str().empty(); ++i) {
     const int k = extra_k_starts[i];

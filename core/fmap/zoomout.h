@@ -18,17 +18,21 @@
 #include <string>
 #include <vector>
 
+#include "core/range.h"
 #include "core/spectral.h"
 #include "core/stage_status.h"
 
 namespace symembed {
 
 struct ZoomOutOptions {
-  int k_start = 20;  // basis size of the first functional map (>= 1)
-  int k_end = 120;   // basis size of the last one (>= k_start; both bases need k_end pairs)
-  int step = 5;      // increment of k per iteration (>= 1); k_end is always the last size
-  // Further first basis sizes to run from, each in [1, k_end], distinct and != k_start; empty:
-  // one run.
+  int k_start = 20;  // basis size of the first functional map
+  static constexpr Range kKStart = Range::Closed(1, 1000);
+  int k_end = 120;  // basis size of the last one (>= k_start; both bases need k_end pairs)
+  static constexpr Range kKEnd = Range::Closed(1, 1000);
+  int step = 5;  // increment of k per iteration; k_end is always the last size
+  static constexpr Range kStep = Range::Closed(1, 1000);
+  // Further first basis sizes to run from, each in kKStart and <= k_end, distinct and
+  // != k_start; empty: one run.
   std::vector<int> extra_k_starts;
   // With samples: true maps every source vertex in the last iteration; false maps only the
   // samples (the other entries of the result keep the initial map).

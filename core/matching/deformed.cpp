@@ -13,14 +13,23 @@ namespace symembed {
 
 bool DeformOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (k_start < 1) out << "k_start must be >= 1, got " << k_start;
+  if (!kKStart.Contains(k_start))
+    out << "k_start " << kKStart.Violation(k_start);
+  else if (!kKEnd.Contains(k_end))
+    out << "k_end " << kKEnd.Violation(k_end);
   else if (k_end < k_start) out << "k_end must be >= k_start (" << k_start << "), got " << k_end;
-  else if (step < 1) out << "step must be >= 1, got " << step;
-  else if (iterations < 1) out << "iterations must be >= 1, got " << iterations;
-  else if (!(smoothness >= 0.0)) out << "smoothness must be >= 0, got " << smoothness;
-  else if (samples < 1) out << "samples must be >= 1, got " << samples;
-  else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0, got " << normal_weight;
-  else if (threads < 0) out << "threads must be >= 0, got " << threads;
+  else if (!kStep.Contains(step))
+    out << "step " << kStep.Violation(step);
+  else if (!kIterations.Contains(iterations))
+    out << "iterations " << kIterations.Violation(iterations);
+  else if (!kSmoothness.Contains(smoothness))
+    out << "smoothness " << kSmoothness.Violation(smoothness);
+  else if (!kSamples.Contains(samples))
+    out << "samples " << kSamples.Violation(samples);
+  else if (!kNormalWeight.Contains(normal_weight))
+    out << "normal_weight " << kNormalWeight.Violation(normal_weight);
+  else if (!kThreads.Contains(threads))
+    out << "threads " << kThreads.Violation(threads);
   if (error) *error = out.str();
   return out.str().empty();
 }

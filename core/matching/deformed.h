@@ -26,20 +26,29 @@
 #include <vector>
 
 #include "core/matching/nearest.h"
+#include "core/range.h"
 #include "core/spectral.h"
 
 namespace symembed {
 
 struct DeformOptions {
-  int k_start = 4;          // first basis size (>= 1)
-  int k_end = 20;           // last basis size (>= k_start)
-  int step = 4;             // increment of k (>= 1); k_end is always the last size
-  int iterations = 2;       // ICP iterations per basis size (>= 1)
-  double smoothness = 0.01; // weight of the Dirichlet energy (>= 0)
-  int samples = 1000;       // samples of each shape the fit runs on (>= 1; fewer: all there are)
+  int k_start = 4;  // first basis size
+  static constexpr Range kKStart = Range::Closed(1, 1000);
+  int k_end = 20;  // last basis size (>= k_start)
+  static constexpr Range kKEnd = Range::Closed(1, 1000);
+  int step = 4;  // increment of k; k_end is always the last size
+  static constexpr Range kStep = Range::Closed(1, 1000);
+  int iterations = 2;  // ICP iterations per basis size
+  static constexpr Range kIterations = Range::Closed(1, 1000);
+  double smoothness = 0.01;  // weight of the Dirichlet energy
+  static constexpr Range kSmoothness = Range::AtLeast(0.0);
+  int samples = 1000;  // samples of each shape the fit runs on (fewer: all there are)
+  static constexpr Range kSamples = Range::Closed(1, 1000000);
   // Weight of the normals in the correspondences and the final match (MatchNearest).
   double normal_weight = kDefaultNormalWeight;
+  static constexpr Range kNormalWeight = Range::AtLeast(0.0);
   int threads = 1;  // of the final nearest-neighbour query (0: DefaultThreadCount())
+  static constexpr Range kThreads = Range::Closed(0, 256);
 
   bool IsValid(std::string* error) const;
 };

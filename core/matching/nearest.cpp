@@ -65,11 +65,16 @@ MatchResult MatchNearest(const EmbeddedPoints& source, const EmbeddedPoints& tar
 
 bool ScaledIcpOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (iterations < 0) out << "iterations must be >= 0, got " << iterations;
-  else if (!(min_scale > 0.0 && min_scale <= 1.0)) out << "min_scale must be in (0, 1], got " << min_scale;
-  else if (!(max_scale >= 1.0)) out << "max_scale must be >= 1, got " << max_scale;
-  else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0, got " << normal_weight;
-  else if (threads < 0) out << "threads must be >= 0, got " << threads;
+  if (!kIterations.Contains(iterations))
+    out << "iterations " << kIterations.Violation(iterations);
+  else if (!kMinScale.Contains(min_scale))
+    out << "min_scale " << kMinScale.Violation(min_scale);
+  else if (!kMaxScale.Contains(max_scale))
+    out << "max_scale " << kMaxScale.Violation(max_scale);
+  else if (!kNormalWeight.Contains(normal_weight))
+    out << "normal_weight " << kNormalWeight.Violation(normal_weight);
+  else if (!kThreads.Contains(threads))
+    out << "threads " << kThreads.Violation(threads);
   if (error) *error = out.str();
   return out.str().empty();
 }

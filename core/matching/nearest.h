@@ -20,6 +20,7 @@
 #include <string>
 
 #include "core/matching/match.h"
+#include "core/range.h"
 
 namespace symembed {
 
@@ -39,17 +40,22 @@ inline constexpr double kDefaultNormalWeight = 0.1;
 struct ScaledIcpOptions {
   // ICP iterations (NN, then per-axis scale and translation by least squares).
   int iterations = 10;
+  static constexpr Range kIterations = Range::Closed(0, 1000);
   // Use pairs in both directions (source -> target and target -> source); one direction alone
   // can shrink the source onto part of the target.
   bool symmetric = true;
   // Per-axis scales are clamped to [min_scale, max_scale].
   double min_scale = 0.5;
+  static constexpr Range kMinScale = Range::Closed(1e-3, 1.0);
   double max_scale = 2.0;
+  static constexpr Range kMaxScale = Range::Closed(1.0, 1e3);
   // Weight of the normals in the final nearest-neighbour match (MatchNearest above); the ICP
   // itself uses the positions. The normals follow the per-axis scale (n / s, renormalised).
   double normal_weight = kDefaultNormalWeight;
+  static constexpr Range kNormalWeight = Range::AtLeast(0.0);
   // Threads of the NN queries (0: DefaultThreadCount()).
   int threads = 0;
+  static constexpr Range kThreads = Range::Closed(0, 256);
 
   bool IsValid(std::string* error) const;
 };

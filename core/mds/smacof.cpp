@@ -14,18 +14,18 @@ namespace symembed {
 
 bool SmacofOptions::IsValid(std::string* error) const {
   std::ostringstream why;
-  if (!(tolerance >= 0.0))
-    why << "tolerance must be >= 0, got " << tolerance;
-  else if (max_iterations < 0)
-    why << "max_iterations must be >= 0, got " << max_iterations;
-  else if (!(weight_power >= 0.0 && weight_power <= 8.0))
-    why << "weight_power must be in [0, 8], got " << weight_power;
-  else if (!(relaxation >= 1.0 && relaxation < 2.0))
-    why << "relaxation must be in [1, 2), got " << relaxation;
-  else if (anderson_window < 0 || anderson_window > 20)
-    why << "anderson_window must be in [0, 20], got " << anderson_window;
-  else if (threads < 0)
-    why << "threads must be >= 0, got " << threads;
+  if (!kTolerance.Contains(tolerance))
+    why << "tolerance " << kTolerance.Violation(tolerance);
+  else if (!kMaxIterations.Contains(max_iterations))
+    why << "max_iterations " << kMaxIterations.Violation(max_iterations);
+  else if (!kWeightPower.Contains(weight_power))
+    why << "weight_power " << kWeightPower.Violation(weight_power);
+  else if (!kRelaxation.Contains(relaxation))
+    why << "relaxation " << kRelaxation.Violation(relaxation);
+  else if (!kAndersonWindow.Contains(anderson_window))
+    why << "anderson_window " << kAndersonWindow.Violation(anderson_window);
+  else if (!kThreads.Contains(threads))
+    why << "threads " << kThreads.Violation(threads);
   if (why.str().empty()) return true;
   if (error) *error = why.str();
   return false;

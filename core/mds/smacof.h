@@ -30,23 +30,33 @@
 #include <string>
 #include <vector>
 
+#include "core/range.h"
+
 namespace symembed {
 
 struct SmacofOptions {
-  // Stop when (sigma_{k-1} - sigma_k) / sigma_{k-1} < tolerance.
+  // Stop when (sigma_{k-1} - sigma_k) / sigma_{k-1} < tolerance (that ratio is at most 1).
   double tolerance = 1e-6;
+  static constexpr Range kTolerance = Range::Closed(0.0, 1.0);
   // Stop after this many Guttman updates even when not converged.
   int max_iterations = 1000;
+  static constexpr Range kMaxIterations = Range::AtLeast(0);
   // Weights w_ij = d_ij^-weight_power (0: uniform weights, the fast path). Pairs with d_ij = 0
   // get weight 0 when weight_power > 0.
   double weight_power = 0.0;
-  // Over-relaxation factor alpha in [1, 2) (1: plain Guttman steps).
+  static constexpr Range kWeightPower = Range::Closed(0.0, 8.0);
+  // Over-relaxation factor alpha (1: plain Guttman steps; below 2 the relaxed step keeps the
+  // majorizer at or below the stress).
   double relaxation = 1.9;
-  // Anderson acceleration window m in [0, 20] (0: off).
+  static constexpr Range kRelaxation = Range::ClosedOpen(1.0, 2.0);
+  // Anderson acceleration window m (0: off).
   int anderson_window = 5;
+  static constexpr Range kAndersonWindow = Range::Closed(0, 20);
   // Threads for the O(n^2) passes (0: DefaultThreadCount()).
   int threads = 0;
+  static constexpr Range kThreads = Range::AtLeast(0);
 
+  // Whether every option lies in its range; else the first violation, naming the field.
   bool IsValid(std::string* error) const;
 };
 

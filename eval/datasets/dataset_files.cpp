@@ -51,7 +51,7 @@ std::vector<std::string> ReadTextLines(const std::string& path) {
 DatasetRestrictions ReadRestrictions(OptionReader& options) {
   DatasetRestrictions r;
   r.classes = options.GetStringList("classes", {});
-  r.max_pairs = options.GetInt("max_pairs", 0, 0);
+  r.max_pairs = options.GetInt("max_pairs", 0, Range::AtLeast(0));
   r.pairs_file = options.GetString("pairs_file", "");
   return r;
 }

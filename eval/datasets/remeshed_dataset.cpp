@@ -76,10 +76,12 @@ void RemeshedDataset::Write(const std::string& dir) const {
 std::unique_ptr<Dataset> CreatePairsVtsDataset(OptionReader& options) {
   PairsVtsOptions o = ReadPairsVtsOptions(options);
   RemeshDatasetOptions remesh;
-  remesh.vertices = options.GetInt("remesh", 0, 0);
-  remesh.anisotropy = options.GetDouble("remesh_anisotropy", 1.0, 1.0, 20.0);
-  remesh.seed = options.GetInt("remesh_seed", 1, 0);
-  remesh.subdivide = options.GetInt("remesh_subdivide", 0, 0, 2);
+  // 0: no remeshing; else RemeshDatasetOptions::kVertices, checked by IsValid below.
+  remesh.vertices = options.GetInt("remesh", 0, Range::AtLeast(0));
+  remesh.anisotropy =
+      options.GetDouble("remesh_anisotropy", 1.0, RemeshDatasetOptions::kAnisotropy);
+  remesh.seed = options.GetInt("remesh_seed", 1, Range::AtLeast(0));
+  remesh.subdivide = options.GetInt("remesh_subdivide", 0, RemeshDatasetOptions::kSubdivide);
   std::string cache = options.GetString("cache", "");
   if (remesh.vertices == 0) {
     if (remesh.anisotropy != 1.0) {

@@ -18,12 +18,13 @@ namespace fs = std::filesystem;
 
 bool RemeshDatasetOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (vertices < 50)
-    out << "vertices: a target below 50 vertices is degenerate, got " << vertices;
-  else if (!(anisotropy >= 1.0 && anisotropy <= 20.0))
-    out << "anisotropy: must be in [1, 20], got " << anisotropy;
-  else if (subdivide < 0 || subdivide > 2)
-    out << "subdivide: Loop subdivision levels must be in [0, 2], got " << subdivide;
+  if (!kVertices.Contains(vertices))
+    out << "vertices: " << kVertices.Violation(vertices)
+        << " (a target below 50 vertices is degenerate)";
+  else if (!kAnisotropy.Contains(anisotropy))
+    out << "anisotropy: " << kAnisotropy.Violation(anisotropy);
+  else if (!kSubdivide.Contains(subdivide))
+    out << "subdivide: Loop subdivision levels " << kSubdivide.Violation(subdivide);
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -21,13 +21,20 @@
 
 #include <string>
 
+#include "core/range.h"
+
 namespace symembed {
 
 struct RemeshDatasetOptions {
-  int vertices = 2500;      // target vertex count of every shape (>= 50); larger shapes only
-  double anisotropy = 1.0;  // in [1, 20]; > 1: edges measured this many times longer along a
-                            // random direction per shape (kept short along it)
-  int subdivide = 0;        // Loop subdivision levels before the decimation, in [0, 2]
+  // Target vertex count of every shape (larger shapes only; a smaller target is degenerate).
+  int vertices = 2500;
+  static constexpr Range kVertices = Range::AtLeast(50);
+  // > 1: edges measured this many times longer along a random direction per shape (kept short
+  // along it).
+  double anisotropy = 1.0;
+  static constexpr Range kAnisotropy = Range::Closed(1.0, 20.0);
+  int subdivide = 0;  // Loop subdivision levels before the decimation
+  static constexpr Range kSubdivide = Range::Closed(0, 2);
   int seed = 1;
 
   bool IsValid(std::string* error) const;

@@ -29,27 +29,33 @@ bool SynthOptions::IsValid(std::string* error) const {
       if (kinds[i] == kinds[j]) return fail("kinds: '" + FigureKindName(kinds[i]) + "' twice");
     }
   }
-  if (poses < 1) return fail("poses: must be >= 1");
-  if (vertices < 100) return fail("vertices: must be >= 100");
-  if (seed < 0) return fail("seed: must be >= 0");
-  if (remesh < 0) return fail("remesh: must be >= 0 (0 = off)");
-  if (remesh > 0 && remesh < 50) return fail("remesh: a target below 50 vertices is degenerate");
-  if (!(remesh_anisotropy >= 1.0 && remesh_anisotropy <= 20.0)) {
-    return fail("remesh_anisotropy: must be in [1, 20]");
+  struct Bounded {
+    const char* name;
+    double value;
+    Range range;
+  };
+  const Bounded bounded[] = {{"poses", static_cast<double>(poses), kPoses},
+                             {"vertices", static_cast<double>(vertices), kVertices},
+                             {"seed", static_cast<double>(seed), kSeed},
+                             {"remesh", static_cast<double>(remesh), kRemesh},
+                             {"remesh_anisotropy", remesh_anisotropy, kRemeshAnisotropy},
+                             {"nonisometric", nonisometric, kNonisometric},
+                             {"noise", noise, kNoise},
+                             {"partial", partial, kFraction},
+                             {"plane_cuts", plane_cuts, kFraction},
+                             {"holes", holes, kFraction},
+                             {"glue", glue, kFraction},
+                             {"glue_bridges", static_cast<double>(glue_bridges), kGlueBridges},
+                             {"cross_class", cross_class, kCrossClass},
+                             {"pairs", static_cast<double>(pairs), kPairs}};
+  for (const Bounded& b : bounded) {
+    if (!b.range.Contains(b.value))
+      return fail(std::string(b.name) + ": " + b.range.Violation(b.value));
   }
+  if (remesh > 0 && remesh < 50) return fail("remesh: a target below 50 vertices is degenerate");
   if (remesh_anisotropy > 1.0 && remesh == 0) {
     return fail("remesh_anisotropy: needs remesh > 0 (the anisotropy is the remeshing's)");
   }
-  if (!(nonisometric >= 0.0 && nonisometric < 0.5))
-    return fail("nonisometric: must be in [0, 0.5)");
-  if (!(noise >= 0.0 && noise <= 1.0)) return fail("noise: must be in [0, 1]");
-  if (!(partial >= 0.0 && partial <= 1.0)) return fail("partial: must be in [0, 1]");
-  if (!(plane_cuts >= 0.0 && plane_cuts <= 1.0)) return fail("plane_cuts: must be in [0, 1]");
-  if (!(holes >= 0.0 && holes <= 1.0)) return fail("holes: must be in [0, 1]");
-  if (!(glue >= 0.0 && glue <= 1.0)) return fail("glue: must be in [0, 1]");
-  if (glue_bridges < 0 || glue_bridges > 1000) return fail("glue_bridges: must be in [0, 1000]");
-  if (!(cross_class >= 0.0 && cross_class < 0.5)) return fail("cross_class: must be in [0, 0.5)");
-  if (pairs < 0) return fail("pairs: must be >= 0 (0 = all pairs)");
   return true;
 }
 

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "core/range.h"
 #include "eval/synthetic/rest_shape.h"
 #include "eval/synthetic/variations.h"
 
@@ -29,36 +30,53 @@ namespace symembed {
 
 struct SynthOptions {
   std::vector<FigureKind> kinds = {FigureKind::kHumanoid};  // one class per kind
-  int poses = 8;                                            // shapes per class, >= 1
-  int vertices = 5000;             // approximate rest vertex count (see ChooseResolution), >= 100
-  int seed = 1;                    // >= 0
-  int remesh = 0;                  // > 0: decimate every pose independently to this many vertices
-  double remesh_anisotropy = 1.0;  // > 1: the remeshing measures edges this many times longer
-                                   // along a random direction per pose (needs remesh > 0)
-  double nonisometric = 0.0;  // > 0: per-pose bone length/thickness factors in [1-R, 1+R], < 0.5
-  double noise = 0.0;         // > 0: normal noise amplitude as a fraction of the mean edge length
-  double partial = 0.0;       // in [0, 1]: fraction of poses with a hand, foot or head cut away
-  // in [0, 1]: fraction of poses with a part of the surface cut away by a plane, removing a
-  // fraction of the vertices uniform in [0.1, 0.4] (SHREC'16 partial "cuts")
+  // Shapes per class.
+  int poses = 8;
+  static constexpr Range kPoses = Range::Closed(1, 10000);
+  int vertices = 5000;  // approximate rest vertex count (see ChooseResolution)
+  static constexpr Range kVertices = Range::Closed(100, 10000000);
+  int seed = 1;
+  static constexpr Range kSeed = Range::AtLeast(0);
+  // > 0: decimate every pose independently to this many vertices (a target below 50 is
+  // degenerate); 0: off.
+  int remesh = 0;
+  static constexpr Range kRemesh = Range::AtLeast(0);
+  // > 1: the remeshing measures edges this many times longer along a random direction per pose
+  // (needs remesh > 0).
+  double remesh_anisotropy = 1.0;
+  static constexpr Range kRemeshAnisotropy = Range::Closed(1.0, 20.0);
+  // > 0: per-pose bone length/thickness factors in [1-R, 1+R] (R < 0.5 keeps them positive).
+  double nonisometric = 0.0;
+  static constexpr Range kNonisometric = Range::ClosedOpen(0.0, 0.5);
+  double noise = 0.0;  // > 0: normal noise amplitude as a fraction of the mean edge length
+  static constexpr Range kNoise = Range::Closed(0.0, 1.0);
+  // The fractions of poses below, partial to glue, are each in kFraction.
+  static constexpr Range kFraction = Range::Closed(0.0, 1.0);
+  double partial = 0.0;  // fraction of poses with a hand, foot or head cut away
+  // Fraction of poses with a part of the surface cut away by a plane, removing a fraction of the
+  // vertices uniform in [0.1, 0.4] (SHREC'16 partial "cuts").
   double plane_cuts = 0.0;
-  // in [0, 1]: fraction of poses with 1 to 3 holes, each of graph radius uniform in
-  // [0.03, 0.12] x sqrt(area) around a random vertex (SHREC'16 partial "holes")
+  // Fraction of poses with 1 to 3 holes, each of graph radius uniform in [0.03, 0.12] x
+  // sqrt(area) around a random vertex (SHREC'16 partial "holes").
   double holes = 0.0;
-  // in [0, 1]: fraction of poses with topological noise: each is the closest to contact of
+  // Fraction of poses with topological noise: each is the closest to contact of
   // kContactDraws seeded pose draws (two parts far apart in the skeleton coming closest,
   // GlueGap), pulled into contact there (PullIntoContact) and glued by glue_bridges tubes
   // (GlueParts); glue_bridges = 0 keeps the same contact poses unglued, the control of the
   // same shapes without the noise
   double glue = 0.0;
   int glue_bridges = 8;
-  // in [0, 0.5): > 0 gives every kind a second class, KIND_cross, of another body plan on the
+  static constexpr Range kGlueBridges = Range::Closed(0, 1000);
+  // > 0 gives every kind a second class, KIND_cross, of another body plan on the
   // same mesh (so rest vertex ids still correspond): bone lengths and thicknesses, the torso's
   // included, scaled by class factors uniform in [1 - R, 1 + R] (equal on mirrored bones, so the
   // body stays bilaterally symmetric), and the body bent forwards (z += R/2 (y - y0)^2 / height,
   // y0 the lowest point: a stooped, ape-like stance whose back and front curve unlike the
   // base class's). Pairs then cross classes (see test_pairs.txt).
   double cross_class = 0.0;
+  static constexpr Range kCrossClass = Range::ClosedOpen(0.0, 0.5);
   int pairs = 0;  // > 0: pairs per class in test_pairs.txt; 0: all unordered pairs
+  static constexpr Range kPairs = Range::AtLeast(0);
 
   bool IsValid(std::string* error) const;
 };

@@ -13,16 +13,16 @@ namespace symembed {
 
 bool OutOfSampleOptions::IsValid(std::string* error) const {
   std::ostringstream why;
-  if (neighbors < 1 || neighbors > 64)
-    why << "neighbors must be in [1, 64], got " << neighbors;
-  else if (!(weight_power >= 0.0 && weight_power <= 4.0))
-    why << "weight_power must be in [0, 4], got " << weight_power;
-  else if (max_iterations < 0)
-    why << "max_iterations must be >= 0, got " << max_iterations;
-  else if (!(tolerance >= 0.0))
-    why << "tolerance must be >= 0, got " << tolerance;
-  else if (threads < 0)
-    why << "threads must be >= 0, got " << threads;
+  if (!kNeighbors.Contains(neighbors))
+    why << "neighbors " << kNeighbors.Violation(neighbors);
+  else if (!kWeightPower.Contains(weight_power))
+    why << "weight_power " << kWeightPower.Violation(weight_power);
+  else if (!kMaxIterations.Contains(max_iterations))
+    why << "max_iterations " << kMaxIterations.Violation(max_iterations);
+  else if (!kTolerance.Contains(tolerance))
+    why << "tolerance " << kTolerance.Violation(tolerance);
+  else if (!kThreads.Contains(threads))
+    why << "threads " << kThreads.Violation(threads);
   if (why.str().empty()) return true;
   if (error) *error = why.str();
   return false;

@@ -25,15 +25,22 @@
 #include <string>
 #include <vector>
 
+#include "core/range.h"
+
 namespace symembed {
 
 struct OutOfSampleOptions {
-  int neighbors = 12;         // k nearest samples per query, <= 64 (clamped to #samples)
-  double weight_power = 2.0;  // p of the weights (d_a1 / d_aj)^p, in [0, 4]
-  int max_iterations = 20;    // Levenberg-Marquardt iterations per query
+  int neighbors = 12;  // k nearest samples per query (clamped to #samples)
+  static constexpr Range kNeighbors = Range::Closed(1, 64);
+  double weight_power = 2.0;  // p of the weights (d_a1 / d_aj)^p
+  static constexpr Range kWeightPower = Range::Closed(0.0, 4.0);
+  int max_iterations = 20;  // Levenberg-Marquardt iterations per query
+  static constexpr Range kMaxIterations = Range::AtLeast(0);
   // Stop when a step is shorter than tolerance * the mean distance to the k samples.
   double tolerance = 1e-7;
+  static constexpr Range kTolerance = Range::AtLeast(0.0);
   int threads = 0;  // 0: DefaultThreadCount()
+  static constexpr Range kThreads = Range::AtLeast(0);
 
   bool IsValid(std::string* error) const;
 };

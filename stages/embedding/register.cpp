@@ -36,7 +36,7 @@ class IsomapStage : public EmbeddingStage {
 // plane, symmetrization, canonical frame, flip, matching) work in 3D: another value could only
 // fail later, on every shape.
 int ReadDims(OptionReader& reader, int default_dims) {
-  const int dims = reader.GetInt("dims", default_dims, 1, 100);
+  const int dims = reader.GetInt("dims", default_dims, Range::Closed(1, 100));
   if (dims != 3) {
     reader.Fail("dims", "the pipeline's symmetry, frame and matching stages need a 3D "
                         "embedding; only 3 is supported, got " + std::to_string(dims));
@@ -51,17 +51,22 @@ std::unique_ptr<Stage> MakeLsmds(OptionReader& reader) {
                                      {{"original", LsmdsInit::kOriginal},
                                       {"isomap", LsmdsInit::kIsomap},
                                       {"random", LsmdsInit::kRandom}});
-  o.seed = static_cast<unsigned>(reader.GetInt("seed", static_cast<int>(o.seed), 0));
-  o.smacof.tolerance = reader.GetDouble("tolerance", o.smacof.tolerance, 0.0, 1.0);
-  o.smacof.max_iterations = reader.GetInt("max_iterations", o.smacof.max_iterations, 0);
-  o.smacof.weight_power = reader.GetDouble("weight_power", o.smacof.weight_power, 0.0, 8.0);
-  o.smacof.relaxation = reader.GetDouble("relaxation", o.smacof.relaxation, 1.0, 1.999);
-  o.smacof.anderson_window = reader.GetInt("anderson_window", o.smacof.anderson_window, 0, 20);
-  o.out_of_sample.neighbors = reader.GetInt("neighbors", o.out_of_sample.neighbors, 1, 64);
+  o.seed =
+      static_cast<unsigned>(reader.GetInt("seed", static_cast<int>(o.seed), Range::AtLeast(0)));
+  using S = SmacofOptions;
+  o.smacof.tolerance = reader.GetDouble("tolerance", o.smacof.tolerance, S::kTolerance);
+  o.smacof.max_iterations =
+      reader.GetInt("max_iterations", o.smacof.max_iterations, S::kMaxIterations);
+  o.smacof.weight_power = reader.GetDouble("weight_power", o.smacof.weight_power, S::kWeightPower);
+  o.smacof.relaxation = reader.GetDouble("relaxation", o.smacof.relaxation, S::kRelaxation);
+  o.smacof.anderson_window =
+      reader.GetInt("anderson_window", o.smacof.anderson_window, S::kAndersonWindow);
+  using P = OutOfSampleOptions;
+  o.out_of_sample.neighbors = reader.GetInt("neighbors", o.out_of_sample.neighbors, P::kNeighbors);
   o.out_of_sample.weight_power =
-      reader.GetDouble("out_of_sample_weight_power", o.out_of_sample.weight_power, 0.0, 4.0);
+      reader.GetDouble("out_of_sample_weight_power", o.out_of_sample.weight_power, P::kWeightPower);
   o.out_of_sample.max_iterations =
-      reader.GetInt("out_of_sample_iterations", o.out_of_sample.max_iterations, 0);
+      reader.GetInt("out_of_sample_iterations", o.out_of_sample.max_iterations, P::kMaxIterations);
   std::string why;
   if (!o.IsValid(&why)) reader.Fail("", why);
   return std::make_unique<LsmdsStage>(o);

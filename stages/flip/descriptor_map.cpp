@@ -11,13 +11,21 @@ namespace symembed {
 
 bool DescriptorMapOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (k < 2) out << "k must be >= 2, got " << k;
+  if (!kK.Contains(k))
+    out << "k " << kK.Violation(k);
+  else if (!kEigenpairs.Contains(eigenpairs))
+    out << "eigenpairs " << kEigenpairs.Violation(eigenpairs);
   else if (eigenpairs < k) out << "eigenpairs must be >= k (" << k << "), got " << eigenpairs;
-  else if (energies < 1) out << "energies must be >= 1, got " << energies;
-  else if (!(sigma > 0.0)) out << "sigma must be > 0";
-  else if (!(mu >= 0.0)) out << "mu must be >= 0";
-  else if (samples < 1) out << "samples must be >= 1, got " << samples;
-  else if (axes != 1 && axes != 2) out << "axes must be 1 or 2, got " << axes;
+  else if (!kEnergies.Contains(energies))
+    out << "energies " << kEnergies.Violation(energies);
+  else if (!kSigma.Contains(sigma))
+    out << "sigma " << kSigma.Violation(sigma);
+  else if (!kMu.Contains(mu))
+    out << "mu " << kMu.Violation(mu);
+  else if (!kSamples.Contains(samples))
+    out << "samples " << kSamples.Violation(samples);
+  else if (!kAxes.Contains(axes))
+    out << "axes " << kAxes.Violation(axes);
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -24,19 +24,27 @@
 #include <vector>
 
 #include "core/fmap/descriptors.h"
+#include "core/range.h"
 #include "core/spectral.h"
 
 namespace symembed {
 
 struct DescriptorMapOptions {
-  int k = 30;          // basis size of the functional map (both bases need `eigenpairs`)
-  int eigenpairs = 60; // eigenpairs the wave kernel signatures are built from (>= k)
+  int k = 30;  // basis size of the functional map (both bases need `eigenpairs`)
+  static constexpr Range kK = Range::Closed(2, 1000);
+  int eigenpairs = 60;  // eigenpairs the wave kernel signatures are built from (>= k)
+  static constexpr Range kEigenpairs = Range::Closed(2, 1000);
   int energies = 100;  // number of wave kernel signature energies
+  static constexpr Range kEnergies = Range::Closed(1, 10000);
   double sigma = 7.0;  // energy bandwidth in units of the energy spacing [Aubry et al. 2011]
-  double mu = 1e-2;    // weight of the commutativity term, relative (see DescriptorFunctionalMap)
-  int samples = 300;   // source samples the point map is computed on
+  static constexpr Range kSigma = Range::Above(0.0);
+  double mu = 1e-2;  // weight of the commutativity term, relative (see DescriptorFunctionalMap)
+  static constexpr Range kMu = Range::AtLeast(0.0);
+  int samples = 300;  // source samples the point map is computed on
+  static constexpr Range kSamples = Range::Closed(1, 100000);
   // In-plane axes compared: 1 (the first in-plane axis of the canonical frame only) or 2 (both).
   int axes = 1;
+  static constexpr Range kAxes = Range::Closed(1, 2);
 
   bool IsValid(std::string* error) const;
 };

@@ -14,12 +14,18 @@ namespace symembed {
 bool ExtrinsicFlipOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string smoothing_error;
-  if (!(local_weight >= 0.0 && global_weight >= 0.0 && chamfer_weight >= 0.0))
-    out << "local_weight, global_weight and chamfer_weight must be >= 0";
+  if (!kWeight.Contains(local_weight))
+    out << "local_weight " << kWeight.Violation(local_weight);
+  else if (!kWeight.Contains(global_weight))
+    out << "global_weight " << kWeight.Violation(global_weight);
+  else if (!kWeight.Contains(chamfer_weight))
+    out << "chamfer_weight " << kWeight.Violation(chamfer_weight);
   else if (local_weight + global_weight + chamfer_weight <= 0.0)
     out << "at least one of local_weight, global_weight, chamfer_weight must be > 0";
-  else if (profile_bins < 1) out << "profile_bins must be >= 1, got " << profile_bins;
-  else if (histogram_bins < 1) out << "histogram_bins must be >= 1, got " << histogram_bins;
+  else if (!kBins.Contains(profile_bins))
+    out << "profile_bins " << kBins.Violation(profile_bins);
+  else if (!kBins.Contains(histogram_bins))
+    out << "histogram_bins " << kBins.Violation(histogram_bins);
   else if (!smoothing.IsValid(&smoothing_error))
     out << smoothing_error;
   if (error) *error = out.str();
@@ -28,18 +34,18 @@ bool ExtrinsicFlipOptions::IsValid(std::string* error) const {
 
 bool FeatureSmoothing::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (rings < 0)
-    out << "smoothing_rings must be >= 0, got " << rings;
-  else if (!(radius >= 0.0) || !std::isfinite(radius))
-    out << "smoothing_radius must be finite and >= 0, got " << radius;
+  if (!kRings.Contains(rings))
+    out << "smoothing_rings " << kRings.Violation(rings);
+  else if (!kRadius.Contains(radius))
+    out << "smoothing_radius " << kRadius.Violation(radius);
   if (error) *error = out.str();
   return out.str().empty();
 }
 
 FeatureSmoothing ReadFeatureSmoothing(OptionReader& o, const FeatureSmoothing& defaults) {
   FeatureSmoothing s;
-  s.rings = o.GetInt("smoothing_rings", defaults.rings, 0, 100);
-  s.radius = o.GetDouble("smoothing_radius", defaults.radius, 0.0);
+  s.rings = o.GetInt("smoothing_rings", defaults.rings, FeatureSmoothing::kRings);
+  s.radius = o.GetDouble("smoothing_radius", defaults.radius, FeatureSmoothing::kRadius);
   return s;
 }
 

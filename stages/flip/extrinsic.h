@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/range.h"
 #include "registry/options.h"
 #include "stages/flip/flip_common.h"
 
@@ -34,8 +35,10 @@ namespace symembed {
 // surface, or one with elongated triangles, give each vertex neighbourhoods of other sizes and
 // shapes, and the features differ where the surfaces do not. A radius is a size on the surface.
 struct FeatureSmoothing {
-  int rings = 2;        // >= 0
-  double radius = 0.0;  // >= 0, finite; > 0 overrides rings
+  int rings = 2;
+  static constexpr Range kRings = Range::Closed(0, 100);
+  double radius = 0.0;  // > 0 overrides rings
+  static constexpr Range kRadius = Range::AtLeast(0.0);
 
   bool IsValid(std::string* error) const;
 };
@@ -44,13 +47,16 @@ struct FeatureSmoothing {
 FeatureSmoothing ReadFeatureSmoothing(OptionReader& options, const FeatureSmoothing& defaults);
 
 struct ExtrinsicFlipOptions {
+  // Weights of the local, global and Chamfer scores (at least one > 0).
   double local_weight = 1.0;
   double global_weight = 1.0;
   double chamfer_weight = 0.0;
+  static constexpr Range kWeight = Range::AtLeast(0.0);
   // Bins of the area profiles along y and z (over [-2, 2] RMS radii).
   int profile_bins = 16;
   // Bins of the shape-index histograms of each half.
   int histogram_bins = 8;
+  static constexpr Range kBins = Range::Closed(1, 1000);
   // Averaging of the curvatures against noise (FeatureSmoothing): the paper's scorer over 2 rings.
   FeatureSmoothing smoothing = {};
 

@@ -118,12 +118,12 @@ class ExtrinsicStage : public FlipStage {
 }  // namespace
 
 std::unique_ptr<FlipStage> ReadExtrinsicStage(OptionReader& o) {
-  const int threads = o.GetInt("threads", 1, 0, 256);
+  const int threads = o.GetInt("threads", 1, Range::Closed(0, 256));
   OptionReader terms_options = o.Child("terms");
   std::vector<std::unique_ptr<FlipTerm>> terms;
   for (const FlipTermEntry& entry : kFlipTerms) {
     OptionReader r = terms_options.Child(entry.name);
-    const double weight = r.GetDouble("weight", entry.default_weight, 0.0);
+    const double weight = r.GetDouble("weight", entry.default_weight, Range::AtLeast(0.0));
     std::unique_ptr<FlipTerm> term = entry.read(r, weight);
     r.Finish();
     terms_options.AdoptChild(entry.name, r);

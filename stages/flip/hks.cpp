@@ -11,9 +11,12 @@ namespace symembed {
 
 bool HksFlipOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (eigenpairs < 2) out << "eigenpairs must be >= 2, got " << eigenpairs;
-  else if (num_times < 1) out << "num_times must be >= 1, got " << num_times;
-  else if (threads < 0) out << "threads must be >= 0, got " << threads;
+  if (!kEigenpairs.Contains(eigenpairs))
+    out << "eigenpairs " << kEigenpairs.Violation(eigenpairs);
+  else if (!kNumTimes.Contains(num_times))
+    out << "num_times " << kNumTimes.Violation(num_times);
+  else if (!kThreads.Contains(threads))
+    out << "threads " << kThreads.Violation(threads);
   if (error) *error = out.str();
   return out.str().empty();
 }

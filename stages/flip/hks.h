@@ -15,6 +15,7 @@
 #include <array>
 #include <string>
 
+#include "core/range.h"
 #include "core/spectral.h"
 
 namespace symembed {
@@ -22,9 +23,12 @@ namespace symembed {
 struct HksFlipOptions {
   // Laplace-Beltrami eigenpairs used.
   int eigenpairs = 50;
+  static constexpr Range kEigenpairs = Range::Closed(2, 10000);
   // Number of diffusion times.
   int num_times = 16;
-  int threads = 1;
+  static constexpr Range kNumTimes = Range::Closed(1, 1000);
+  int threads = 1;  // 0: DefaultThreadCount()
+  static constexpr Range kThreads = Range::Closed(0, 256);
 
   bool IsValid(std::string* error) const;
 };

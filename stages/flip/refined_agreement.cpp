@@ -33,8 +33,10 @@ bool RefinedAgreementOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string schedule;
   if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
-  else if (!(margin >= 0.0)) out << "margin must be >= 0";
-  else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0";
+  else if (!kMargin.Contains(margin))
+    out << "margin " << kMargin.Violation(margin);
+  else if (!kNormalWeight.Contains(normal_weight))
+    out << "normal_weight " << kNormalWeight.Violation(normal_weight);
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -52,10 +52,12 @@ struct RefinedAgreementOptions {
                               /*target_samples=*/1000};
   // How much lower the partner's score must be for it to replace the best candidate.
   double margin = 0.05;
+  static constexpr Range kMargin = Range::AtLeast(0.0);
   // Weight of the embedded surfaces' normals in the initial nearest-neighbour maps
   // (core/matching/nearest.h): without them the map of a thin part mixes its two sides, and
   // ZoomOut from k_start cannot tell which side is which.
   double normal_weight = 0.1;
+  static constexpr Range kNormalWeight = Range::AtLeast(0.0);
 
   bool IsValid(std::string* error) const;
 };

@@ -66,25 +66,26 @@ void RegisterFlipStages(Registry& registry) {
                "best candidate's front-back partner replaces it when their maps, after ZoomOut "
                "from k = 20, say so clearly (decide: refined_front_back) or not (argmin)",
                ReadExtrinsicStage);
-  registry.Add("flip", "chamfer", "symmetric Chamfer distance of the embeddings only",
-               [](OptionReader& o) -> std::unique_ptr<Stage> {
-                 return std::make_unique<ChamferStage>(o.GetInt("threads", 1, 0, 256));
-               });
+  registry.Add(
+      "flip", "chamfer", "symmetric Chamfer distance of the embeddings only",
+      [](OptionReader& o) -> std::unique_ptr<Stage> {
+        return std::make_unique<ChamferStage>(o.GetInt("threads", 1, Range::Closed(0, 256)));
+      });
   registry.Add("flip", "hks",
                "heat kernel signatures (Laplace-Beltrami eigenpairs) compared through each "
                "candidate's NN map",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  HksFlipOptions h;
-                 h.eigenpairs = o.GetInt("eigenpairs", h.eigenpairs, 2, 10000);
-                 h.num_times = o.GetInt("num_times", h.num_times, 1, 1000);
-                 h.threads = o.GetInt("threads", h.threads, 0, 256);
+                 h.eigenpairs = o.GetInt("eigenpairs", h.eigenpairs, HksFlipOptions::kEigenpairs);
+                 h.num_times = o.GetInt("num_times", h.num_times, HksFlipOptions::kNumTimes);
+                 h.threads = o.GetInt("threads", h.threads, HksFlipOptions::kThreads);
                  return std::make_unique<HksStage>(h);
                });
-  registry.Add("flip", "oracle",
-               "lowest ground-truth error (evaluation only; fails without ground truth)",
-               [](OptionReader& o) -> std::unique_ptr<Stage> {
-                 return std::make_unique<OracleStage>(o.GetInt("threads", 1, 0, 256));
-               });
+  registry.Add(
+      "flip", "oracle", "lowest ground-truth error (evaluation only; fails without ground truth)",
+      [](OptionReader& o) -> std::unique_ptr<Stage> {
+        return std::make_unique<OracleStage>(o.GetInt("threads", 1, Range::Closed(0, 256)));
+      });
 }
 
 }  // namespace symembed

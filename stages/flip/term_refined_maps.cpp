@@ -32,19 +32,27 @@ bool RefinedMapsTermOptions::IsValid(std::string* error) const {
   std::string feature_error;
   std::string schedule;
   if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
-  else if (sources < 1) out << "sources must be >= 1, got " << sources;
+  else if (!kSources.Contains(sources))
+    out << "sources " << kSources.Violation(sources);
+  else if (!kTargets.Contains(targets))
+    out << "targets " << kTargets.Violation(targets);
   else if (targets < sources) out << "targets must be >= sources (" << sources << "), got " << targets;
   else if (targets > zoomout.samples)
     out << "targets must be <= zoomout.samples (" << zoomout.samples << "), got " << targets;
-  else if (!(distortion_weight >= 0.0 && disagreement_weight >= 0.0 && orientation_weight >= 0.0 &&
-             long_axis_weight >= 0.0))
-    out << "distortion_weight, disagreement_weight, orientation_weight and long_axis_weight must "
-           "be >= 0";
-  else if (!(long_axis_time > 0.0 && std::isfinite(long_axis_time)))
-    out << "long_axis_time must be > 0 and finite, got " << long_axis_time;
+  else if (!kWeight.Contains(distortion_weight))
+    out << "distortion_weight " << kWeight.Violation(distortion_weight);
+  else if (!kWeight.Contains(disagreement_weight))
+    out << "disagreement_weight " << kWeight.Violation(disagreement_weight);
+  else if (!kWeight.Contains(orientation_weight))
+    out << "orientation_weight " << kWeight.Violation(orientation_weight);
+  else if (!kWeight.Contains(long_axis_weight))
+    out << "long_axis_weight " << kWeight.Violation(long_axis_weight);
+  else if (!kLongAxisTime.Contains(long_axis_time))
+    out << "long_axis_time " << kLongAxisTime.Violation(long_axis_time);
   else if (!smoothing.IsValid(&feature_error))
     out << feature_error;
-  else if (!(normal_weight >= 0.0)) out << "normal_weight must be >= 0";
+  else if (!kNormalWeight.Contains(normal_weight))
+    out << "normal_weight " << kNormalWeight.Violation(normal_weight);
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -182,16 +190,17 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
 std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
   RefinedMapsTermOptions r;
   r.zoomout = ReadFlipZoomOutSchedule(o, "zoomout", r.zoomout);
-  r.sources = o.GetInt("sources", r.sources, 1, 100000);
-  r.targets = o.GetInt("targets", r.targets, 1, 100000);
-  r.distortion_weight = o.GetDouble("distortion_weight", r.distortion_weight, 0.0);
+  using R = RefinedMapsTermOptions;
+  r.sources = o.GetInt("sources", r.sources, R::kSources);
+  r.targets = o.GetInt("targets", r.targets, R::kTargets);
+  r.distortion_weight = o.GetDouble("distortion_weight", r.distortion_weight, R::kWeight);
   r.distortion_front_back = o.GetBool("distortion_front_back", r.distortion_front_back);
-  r.disagreement_weight = o.GetDouble("disagreement_weight", r.disagreement_weight, 0.0);
-  r.orientation_weight = o.GetDouble("orientation_weight", r.orientation_weight, 0.0);
-  r.long_axis_weight = o.GetDouble("long_axis_weight", r.long_axis_weight, 0.0);
-  r.long_axis_time = o.GetDouble("long_axis_time", r.long_axis_time, 0.0);
+  r.disagreement_weight = o.GetDouble("disagreement_weight", r.disagreement_weight, R::kWeight);
+  r.orientation_weight = o.GetDouble("orientation_weight", r.orientation_weight, R::kWeight);
+  r.long_axis_weight = o.GetDouble("long_axis_weight", r.long_axis_weight, R::kWeight);
+  r.long_axis_time = o.GetDouble("long_axis_time", r.long_axis_time, R::kLongAxisTime);
   r.smoothing = ReadFeatureSmoothing(o, r.smoothing);
-  r.normal_weight = o.GetDouble("normal_weight", r.normal_weight, 0.0);
+  r.normal_weight = o.GetDouble("normal_weight", r.normal_weight, R::kNormalWeight);
   r.deformed_start = o.GetBool("deformed_start", r.deformed_start);
   std::string error;
   if (!r.IsValid(&error)) o.Fail("", error);

@@ -68,8 +68,11 @@ namespace symembed {
 struct RefinedMapsTermOptions {
   FlipZoomOutSchedule zoomout{/*k_start=*/20, /*k_end=*/60, /*step=*/5, /*samples=*/1000,
                               /*target_samples=*/1000};
-  int sources = 40;    // samples the geodesics start from (on the target: their images)
-  int targets = 200;   // samples whose distances to the sources are compared
+  int sources = 40;  // samples the geodesics start from (on the target: their images)
+  static constexpr Range kSources = Range::Closed(1, 100000);
+  // Samples whose distances to the sources are compared (>= sources, <= zoomout.samples).
+  int targets = 200;
+  static constexpr Range kTargets = Range::Closed(1, 100000);
   // The curvature disagreement carries the front-back decision of near-symmetric humans, the
   // distortion the head-tail and up-down decisions of shapes whose curvature differs (species,
   // body shapes); the orientation of a refined map can favour a front-back reflected map on a
@@ -84,11 +87,15 @@ struct RefinedMapsTermOptions {
   // Of the long-axis measure, and the heat diffusion time of its features (relative to the
   // area; an extent of about a third of sqrt(area) at 0.03: the body's scale).
   double long_axis_weight = 1.0;
+  // Of distortion_weight, disagreement_weight, orientation_weight and long_axis_weight.
+  static constexpr Range kWeight = Range::AtLeast(0.0);
   double long_axis_time = 0.03;
+  static constexpr Range kLongAxisTime = Range::Above(0.0);
   // Of the curvature features (ExtrinsicFeatures, extrinsic.h).
   FeatureSmoothing smoothing = {};
   // Weight of the embedded normals in the initial maps (RefinedAgreementOptions::normal_weight).
   double normal_weight = 0.1;
+  static constexpr Range kNormalWeight = Range::AtLeast(0.0);
   // Whether each candidate's initial map bends the source embedding onto the turned target's
   // first, as the `deformed` matching stage does with its defaults (core/matching/deformed.h),
   // so that the candidates are judged from the maps the pipeline would start from.

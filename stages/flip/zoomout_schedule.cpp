@@ -8,10 +8,19 @@ namespace symembed {
 
 bool FlipZoomOutSchedule::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (k_start < 1 || k_end < k_start) out << "need 1 <= k_start <= k_end";
-  else if (step < 1) out << "step must be >= 1, got " << step;
+  if (!kKStart.Contains(k_start))
+    out << "k_start " << kKStart.Violation(k_start);
+  else if (!kKEnd.Contains(k_end))
+    out << "k_end " << kKEnd.Violation(k_end);
+  else if (k_end < k_start)
+    out << "need 1 <= k_start <= k_end";
+  else if (!kStep.Contains(step))
+    out << "step " << kStep.Violation(step);
+  else if (!kSamples.Contains(samples))
+    out << "samples " << kSamples.Violation(samples);
   else if (samples < k_end) out << "samples must be >= k_end (" << k_end << "), got " << samples;
-  else if (target_samples < 0) out << "target_samples must be >= 0, got " << target_samples;
+  else if (!kTargetSamples.Contains(target_samples))
+    out << "target_samples " << kTargetSamples.Violation(target_samples);
   if (error) *error = out.str();
   return out.str().empty();
 }
@@ -36,11 +45,12 @@ FlipZoomOutSchedule ReadFlipZoomOutSchedule(OptionReader& options, const std::st
                                             const FlipZoomOutSchedule& defaults) {
   OptionReader o = options.Child(key);
   FlipZoomOutSchedule s;
-  s.k_start = o.GetInt("k_start", defaults.k_start, 1, 1000);
-  s.k_end = o.GetInt("k_end", defaults.k_end, 1, 1000);
-  s.step = o.GetInt("step", defaults.step, 1, 1000);
-  s.samples = o.GetInt("samples", defaults.samples, 1, 100000);
-  s.target_samples = o.GetInt("target_samples", defaults.target_samples, 0, 100000);
+  s.k_start = o.GetInt("k_start", defaults.k_start, FlipZoomOutSchedule::kKStart);
+  s.k_end = o.GetInt("k_end", defaults.k_end, FlipZoomOutSchedule::kKEnd);
+  s.step = o.GetInt("step", defaults.step, FlipZoomOutSchedule::kStep);
+  s.samples = o.GetInt("samples", defaults.samples, FlipZoomOutSchedule::kSamples);
+  s.target_samples =
+      o.GetInt("target_samples", defaults.target_samples, FlipZoomOutSchedule::kTargetSamples);
   o.Finish();
   std::string error;
   if (!s.IsValid(&error)) o.Fail("", error);

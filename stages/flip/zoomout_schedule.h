@@ -8,18 +8,24 @@
 #include <vector>
 
 #include "core/fmap/zoomout.h"
+#include "core/range.h"
 #include "registry/options.h"
 
 namespace symembed {
 
 struct FlipZoomOutSchedule {
   int k_start = 0;  // first basis size
-  int k_end = 0;    // last basis size (both bases need k_end eigenpairs)
-  int step = 0;     // basis size increment
+  static constexpr Range kKStart = Range::Closed(1, 1000);
+  int k_end = 0;  // last basis size (>= k_start; both bases need k_end eigenpairs)
+  static constexpr Range kKEnd = Range::Closed(1, 1000);
+  int step = 0;  // basis size increment
+  static constexpr Range kStep = Range::Closed(1, 1000);
   // Source samples the iterations run on (the first `samples` of the shape's; >= k_end).
   int samples = 0;
+  static constexpr Range kSamples = Range::Closed(1, 100000);
   // Target samples the iterations map onto (the first of the target's; 0: every target vertex).
   int target_samples = 0;
+  static constexpr Range kTargetSamples = Range::Closed(0, 100000);
 
   bool IsValid(std::string* error) const;
   // ZoomOut's options for the schedule: the sampled iterations only (dense_result false).

@@ -10,8 +10,8 @@
 namespace symembed {
 
 bool FastMarchingOptions::IsValid(std::string* error) const {
-  if (max_unfold_steps < 0) {
-    if (error) *error = "max_unfold_steps must be >= 0, got " + std::to_string(max_unfold_steps);
+  if (!kMaxUnfoldSteps.Contains(max_unfold_steps)) {
+    if (error) *error = "max_unfold_steps " + kMaxUnfoldSteps.Violation(max_unfold_steps);
     return false;
   }
   return common.IsValid(error);

@@ -34,6 +34,7 @@ namespace symembed {
 struct FastMarchingOptions {
   GeodesicsCommonOptions common;  // threads, precision
   int max_unfold_steps = 10;      // triangles unfolded per obtuse corner; 0 = no splitting
+  static constexpr Range kMaxUnfoldSteps = Range::Closed(0, 1000);
 
   bool IsValid(std::string* error) const;
 };

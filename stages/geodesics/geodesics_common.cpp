@@ -5,8 +5,8 @@
 namespace symembed {
 
 bool GeodesicsCommonOptions::IsValid(std::string* error) const {
-  if (threads < 0) {
-    if (error) *error = "threads must be >= 0 (0 = all cores), got " + std::to_string(threads);
+  if (!kThreads.Contains(threads)) {
+    if (error) *error = "threads " + kThreads.Violation(threads) + " (0 = all cores)";
     return false;
   }
   return true;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/parallel.h"
+#include "core/range.h"
 
 namespace symembed {
 
@@ -14,6 +15,7 @@ enum class GeodesicPrecision { kDouble, kFloat };
 
 struct GeodesicsCommonOptions {
   int threads = 0;                                           // worker threads, 0 = all cores
+  static constexpr Range kThreads = Range::Closed(0, 1024);
   GeodesicPrecision precision = GeodesicPrecision::kDouble;  // internal accumulation
 
   bool IsValid(std::string* error) const;

@@ -10,8 +10,8 @@
 namespace symembed {
 
 bool HeatOptions::IsValid(std::string* error) const {
-  if (!(time_factor > 0.0) || !std::isfinite(time_factor)) {
-    if (error) *error = "time_factor must be finite and > 0";
+  if (!kTimeFactor.Contains(time_factor)) {
+    if (error) *error = "time_factor " + kTimeFactor.Violation(time_factor);
     return false;
   }
   return common.IsValid(error);

@@ -44,6 +44,7 @@ enum class HeatBoundary { kAverage, kNeumann, kDirichlet };
 struct HeatOptions {
   GeodesicsCommonOptions common;                   // threads; precision is accepted, see above
   double time_factor = 1.0;                        // t = time_factor * (mean edge length)^2
+  static constexpr Range kTimeFactor = Range::Closed(1e-6, 1e6);
   HeatBoundary boundary = HeatBoundary::kAverage;  // only matters on surfaces with a boundary
   bool intrinsic_delaunay = true;                  // operators on the intrinsic Delaunay mesh
 

@@ -28,7 +28,7 @@ class SolverStage : public GeodesicsStage {
 // `threads` and `precision`, shared by every solver.
 GeodesicsCommonOptions ReadCommonOptions(OptionReader& reader) {
   GeodesicsCommonOptions o;
-  o.threads = reader.GetInt("threads", o.threads, 0, 1024);
+  o.threads = reader.GetInt("threads", o.threads, GeodesicsCommonOptions::kThreads);
   o.precision = reader.GetEnum<GeodesicPrecision>(
       "precision", o.precision,
       {{"double", GeodesicPrecision::kDouble}, {"float", GeodesicPrecision::kFloat}});
@@ -54,8 +54,8 @@ void RegisterGeodesicsStages(Registry& registry) {
       [](OptionReader& reader) -> std::unique_ptr<Stage> {
         FastMarchingOptions options;
         options.common = ReadCommonOptions(reader);
-        options.max_unfold_steps =
-            reader.GetInt("max_unfold_steps", options.max_unfold_steps, 0, 1000);
+        options.max_unfold_steps = reader.GetInt("max_unfold_steps", options.max_unfold_steps,
+                                                 FastMarchingOptions::kMaxUnfoldSteps);
         return std::make_unique<SolverStage<FastMarchingGeodesicSolver, FastMarchingOptions>>(
             options);
       });
@@ -66,7 +66,8 @@ void RegisterGeodesicsStages(Registry& registry) {
       [](OptionReader& reader) -> std::unique_ptr<Stage> {
         HeatOptions options;
         options.common = ReadCommonOptions(reader);
-        options.time_factor = reader.GetDouble("time_factor", options.time_factor, 1e-6, 1e6);
+        options.time_factor =
+            reader.GetDouble("time_factor", options.time_factor, HeatOptions::kTimeFactor);
         options.boundary = reader.GetEnum<HeatBoundary>("boundary", options.boundary,
                                                         {{"average", HeatBoundary::kAverage},
                                                          {"neumann", HeatBoundary::kNeumann},

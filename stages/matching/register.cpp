@@ -65,41 +65,44 @@ void RegisterMatchingStages(Registry& registry) {
   registry.Add("matching", "nearest", "nearest neighbour in the aligned embeddings (FLANN kd-tree)",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  const double normal_weight =
-                     o.GetDouble("normal_weight", kDefaultNormalWeight, 0.0);
-                 return std::make_unique<NearestStage>(normal_weight,
-                                                       o.GetInt("threads", 1, 0, 256));
+                     o.GetDouble("normal_weight", kDefaultNormalWeight, Range::AtLeast(0.0));
+                 return std::make_unique<NearestStage>(
+                     normal_weight, o.GetInt("threads", 1, Range::Closed(0, 256)));
                });
   registry.Add("matching", "nearest_scaled",
                "ICP up to per-axis scale and translation, then nearest neighbour",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
+                 using S = ScaledIcpOptions;
                  ScaledIcpOptions s;
-                 s.iterations = o.GetInt("iterations", s.iterations, 0, 1000);
+                 s.iterations = o.GetInt("iterations", s.iterations, S::kIterations);
                  s.symmetric = o.GetBool("symmetric", s.symmetric);
-                 s.min_scale = o.GetDouble("min_scale", s.min_scale, 1e-3, 1.0);
-                 s.max_scale = o.GetDouble("max_scale", s.max_scale, 1.0, 1e3);
-                 s.normal_weight = o.GetDouble("normal_weight", s.normal_weight, 0.0);
-                 s.threads = o.GetInt("threads", 1, 0, 256);
+                 s.min_scale = o.GetDouble("min_scale", s.min_scale, S::kMinScale);
+                 s.max_scale = o.GetDouble("max_scale", s.max_scale, S::kMaxScale);
+                 s.normal_weight = o.GetDouble("normal_weight", s.normal_weight, S::kNormalWeight);
+                 s.threads = o.GetInt("threads", 1, S::kThreads);
                  std::string error;
                  if (!s.IsValid(&error)) o.Fail("", error);
                  return std::make_unique<NearestScaledStage>(s);
                });
-  registry.Add("matching", "deformed",
-               "the source embedding bent onto the target's by a deformation smooth along the "
-               "source surface (non-rigid ICP in its Laplace-Beltrami basis), then nearest neighbour",
-               [](OptionReader& o) -> std::unique_ptr<Stage> {
-                 DeformOptions d;
-                 d.k_start = o.GetInt("k_start", d.k_start, 1, 1000);
-                 d.k_end = o.GetInt("k_end", d.k_end, 1, 1000);
-                 d.step = o.GetInt("step", d.step, 1, 1000);
-                 d.iterations = o.GetInt("iterations", d.iterations, 1, 1000);
-                 d.smoothness = o.GetDouble("smoothness", d.smoothness, 0.0);
-                 d.samples = o.GetInt("samples", d.samples, 1, 1000000);
-                 d.normal_weight = o.GetDouble("normal_weight", d.normal_weight, 0.0);
-                 d.threads = o.GetInt("threads", 1, 0, 256);
-                 std::string error;
-                 if (!d.IsValid(&error)) o.Fail("", error);
-                 return std::make_unique<DeformedStage>(d);
-               });
+  registry.Add(
+      "matching", "deformed",
+      "the source embedding bent onto the target's by a deformation smooth along the "
+      "source surface (non-rigid ICP in its Laplace-Beltrami basis), then nearest neighbour",
+      [](OptionReader& o) -> std::unique_ptr<Stage> {
+        using D = DeformOptions;
+        DeformOptions d;
+        d.k_start = o.GetInt("k_start", d.k_start, D::kKStart);
+        d.k_end = o.GetInt("k_end", d.k_end, D::kKEnd);
+        d.step = o.GetInt("step", d.step, D::kStep);
+        d.iterations = o.GetInt("iterations", d.iterations, D::kIterations);
+        d.smoothness = o.GetDouble("smoothness", d.smoothness, D::kSmoothness);
+        d.samples = o.GetInt("samples", d.samples, D::kSamples);
+        d.normal_weight = o.GetDouble("normal_weight", d.normal_weight, D::kNormalWeight);
+        d.threads = o.GetInt("threads", 1, D::kThreads);
+        std::string error;
+        if (!d.IsValid(&error)) o.Fail("", error);
+        return std::make_unique<DeformedStage>(d);
+      });
 }
 
 }  // namespace symembed

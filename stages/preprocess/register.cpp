@@ -36,10 +36,12 @@ void RegisterPreprocessStages(Registry& registry) {
                  options.keep_largest_component =
                      reader.GetBool("keep_largest_component", options.keep_largest_component);
                  options.max_removed_area =
-                     reader.GetDouble("max_removed_area", options.max_removed_area, 0.0, 1.0);
+                     reader.GetDouble("max_removed_area", options.max_removed_area,
+                                      StandardPreprocessOptions::kMaxRemovedArea);
                  options.normalize = reader.GetBool("normalize", options.normalize);
-                 options.degenerate_tolerance = reader.GetDouble(
-                     "degenerate_tolerance", options.degenerate_tolerance, 0.0, 0.5);
+                 options.degenerate_tolerance =
+                     reader.GetDouble("degenerate_tolerance", options.degenerate_tolerance,
+                                      StandardPreprocessOptions::kDegenerateTolerance);
                  options.cut_handles = reader.GetBool("cut_handles", options.cut_handles);
                  return std::make_unique<StandardPreprocessStage>(options);
                });

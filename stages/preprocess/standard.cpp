@@ -15,12 +15,13 @@
 namespace symembed {
 
 bool StandardPreprocessOptions::IsValid(std::string* error) const {
-  if (!(degenerate_tolerance >= 0.0 && degenerate_tolerance < 1.0)) {
-    if (error) *error = "degenerate_tolerance must be in [0, 1)";
+  if (!kDegenerateTolerance.Contains(degenerate_tolerance)) {
+    if (error)
+      *error = "degenerate_tolerance " + kDegenerateTolerance.Violation(degenerate_tolerance);
     return false;
   }
-  if (!(max_removed_area >= 0.0 && max_removed_area <= 1.0)) {
-    if (error) *error = "max_removed_area must be in [0, 1]";
+  if (!kMaxRemovedArea.Contains(max_removed_area)) {
+    if (error) *error = "max_removed_area " + kMaxRemovedArea.Violation(max_removed_area);
     return false;
   }
   return true;

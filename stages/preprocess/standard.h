@@ -33,6 +33,7 @@
 #include <string>
 
 #include "core/mesh.h"
+#include "core/range.h"
 #include "registry/types.h"
 
 namespace symembed {
@@ -42,8 +43,12 @@ struct StandardPreprocessOptions {
   bool weld_boundary_duplicates = true;  // step 0
   bool keep_largest_component = true;   // step 2
   double max_removed_area = 0.05;       // step 2: fraction of the area other components may hold
+  static constexpr Range kMaxRemovedArea = Range::Closed(0.0, 1.0);
   bool normalize = true;                // step 5 (centre and unit area)
   double degenerate_tolerance = 1e-12;  // step 1, relative to the longest edge squared
+  // A triangle's area is at most sqrt(3)/4 ~ 0.433 times its longest edge squared: a tolerance
+  // above that drops every face.
+  static constexpr Range kDegenerateTolerance = Range::Closed(0.0, 0.5);
   bool cut_handles = true;              // step 3b
 
   bool IsValid(std::string* error) const;

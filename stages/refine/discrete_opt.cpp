@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 #include <sstream>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/fmap/descriptors.h"
@@ -15,20 +16,31 @@ namespace symembed {
 bool DiscreteOptOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   const DiscreteOptWeights& w = weights;
-  if (k_start < 1) {
-    out << "k_start must be >= 1, got " << k_start;
+  const std::pair<const char*, double> named_weights[] = {{"orthogonality", w.orthogonality},
+                                                          {"bijectivity", w.bijectivity},
+                                                          {"proper", w.proper},
+                                                          {"laplacian", w.laplacian},
+                                                          {"descriptor", w.descriptor},
+                                                          {"embedding", w.embedding}};
+  if (!kKStart.Contains(k_start)) {
+    out << "k_start " << kKStart.Violation(k_start);
+  } else if (!kKEnd.Contains(k_end)) {
+    out << "k_end " << kKEnd.Violation(k_end);
   } else if (k_end < k_start) {
     out << "k_end (" << k_end << ") must be >= k_start (" << k_start << ")";
-  } else if (step < 1) {
-    out << "step must be >= 1, got " << step;
-  } else if (descriptors < 1) {
-    out << "descriptors must be >= 1, got " << descriptors;
-  } else if (!(w.orthogonality >= 0 && w.bijectivity >= 0 && w.proper >= 0 && w.laplacian >= 0 &&
-               w.descriptor >= 0 && w.embedding >= 0)) {
-    out << "weights must be >= 0";
-  } else if (!(w.orthogonality + w.bijectivity + w.proper + w.laplacian > 0)) {
-    // The descriptor and embedding terms alone do not depend on the functional maps: the
-    // iterations would repeat one query.
+  } else if (!kStep.Contains(step)) {
+    out << "step " << kStep.Violation(step);
+  } else if (!kDescriptors.Contains(descriptors)) {
+    out << "descriptors " << kDescriptors.Violation(descriptors);
+  }
+  for (const auto& [name, value] : named_weights) {
+    if (out.str().empty() && !DiscreteOptWeights::kWeight.Contains(value)) {
+      out << "weights." << name << " " << DiscreteOptWeights::kWeight.Violation(value);
+    }
+  }
+  // The descriptor and embedding terms alone do not depend on the functional maps: the
+  // iterations would repeat one query.
+  if (out.str().empty() && !(w.orthogonality + w.bijectivity + w.proper + w.laplacian > 0)) {
     out << "one of the weights orthogonality, bijectivity, proper, laplacian must be > 0";
   }
   if (out.str().empty()) return true;

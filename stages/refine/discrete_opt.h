@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/fmap/descriptors.h"
+#include "core/range.h"
 #include "core/spectral.h"
 #include "registry/types.h"
 
@@ -39,14 +40,19 @@ struct DiscreteOptWeights {
   double descriptor = 1.0;
   // Needs the pair's embedded points (DiscreteOptPoints); the refine stage's default is 100.
   double embedding = 0.0;
+  static constexpr Range kWeight = Range::AtLeast(0.0);  // of each weight above
 };
 
 struct DiscreteOptOptions {
-  int k_start = 20;  // first basis size (>= 1)
-  int k_end = 120;   // last basis size (>= k_start; both bases need k_end eigenpairs)
-  int step = 5;      // increment of k (>= 1); k_end is always the last size
+  int k_start = 20;  // first basis size
+  static constexpr Range kKStart = Range::Closed(1, 1000);
+  int k_end = 120;  // last basis size (>= k_start; both bases need k_end eigenpairs)
+  static constexpr Range kKEnd = Range::Closed(1, 1000);
+  int step = 5;  // increment of k; k_end is always the last size
+  static constexpr Range kStep = Range::Closed(1, 1000);
   DiscreteOptWeights weights;
-  int descriptors = 50;  // wave kernel energies of the descriptor term (>= 1)
+  int descriptors = 50;  // wave kernel energies of the descriptor term
+  static constexpr Range kDescriptors = Range::Closed(1, 1000);
   // With samples: true lands the iterations' maps on the other shape's samples; false on every
   // vertex of the other shape (costlier queries, no rounding of the images to the samples).
   bool sample_candidates = true;

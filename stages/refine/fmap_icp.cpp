@@ -10,10 +10,10 @@ namespace symembed {
 
 bool FunctionalMapIcpOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (k < 1) {
-    out << "k must be >= 1, got " << k;
-  } else if (max_iterations < 1) {
-    out << "max_iterations must be >= 1, got " << max_iterations;
+  if (!kK.Contains(k)) {
+    out << "k " << kK.Violation(k);
+  } else if (!kMaxIterations.Contains(max_iterations)) {
+    out << "max_iterations " << kMaxIterations.Violation(max_iterations);
   }
   if (out.str().empty()) return true;
   if (error != nullptr) *error = out.str();

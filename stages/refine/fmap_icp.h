@@ -11,14 +11,17 @@
 #include <string>
 #include <vector>
 
+#include "core/range.h"
 #include "core/spectral.h"
 #include "registry/types.h"
 
 namespace symembed {
 
 struct FunctionalMapIcpOptions {
-  int k = 50;               // basis size (>= 1; both bases need k eigenpairs)
-  int max_iterations = 20;  // upper bound on Procrustes / nearest-neighbour rounds (>= 1)
+  int k = 50;  // basis size (both bases need k eigenpairs)
+  static constexpr Range kK = Range::Closed(1, 1000);
+  int max_iterations = 20;  // upper bound on Procrustes / nearest-neighbour rounds
+  static constexpr Range kMaxIterations = Range::Closed(1, 10000);
 
   bool IsValid(std::string* error) const;
 };

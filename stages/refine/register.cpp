@@ -186,9 +186,9 @@ class DiscreteRefine : public RefineStage {
 // The basis sizes of a schedule grown like ZoomOut's: k_start, k_end and step.
 template <typename Options>
 void ReadBasisSizes(OptionReader& reader, Options* options) {
-  options->k_start = reader.GetInt("k_start", options->k_start, 1, 1000);
-  options->k_end = reader.GetInt("k_end", options->k_end, 1, 1000);
-  options->step = reader.GetInt("step", options->step, 1, 1000);
+  options->k_start = reader.GetInt("k_start", options->k_start, Options::kKStart);
+  options->k_end = reader.GetInt("k_end", options->k_end, Options::kKEnd);
+  options->step = reader.GetInt("step", options->step, Options::kStep);
 }
 
 // A sample must determine k_end coefficients.
@@ -228,12 +228,13 @@ void RegisterRefineStages(Registry& registry) {
         for (int k : {5, 10, 15}) {
           if (k != options.k_start && k <= options.k_end) default_starts.push_back(k);
         }
-        options.extra_k_starts = reader.GetIntList("extra_k_starts", default_starts, 1, 1000);
+        options.extra_k_starts =
+            reader.GetIntList("extra_k_starts", default_starts, ZoomOutOptions::kKStart);
         // The iterations on 1,000 farthest-point samples of each shape, then one dense query:
         // the runs from several starts cost less together than one dense run.
-        const int sample_count = reader.GetInt("sample_count", kDefaultSamples, 0);
-        const int target_sample_count =
-            reader.GetInt("target_sample_count", sample_count == 0 ? 0 : kDefaultSamples, 0);
+        const int sample_count = reader.GetInt("sample_count", kDefaultSamples, Range::AtLeast(0));
+        const int target_sample_count = reader.GetInt(
+            "target_sample_count", sample_count == 0 ? 0 : kDefaultSamples, Range::AtLeast(0));
         std::string error;
         if (!options.IsValid(&error)) reader.Fail("", error);
         CheckSampleCount(reader, "sample_count", sample_count, options.k_end);
@@ -252,25 +253,27 @@ void RegisterRefineStages(Registry& registry) {
       [](OptionReader& reader) -> std::unique_ptr<Stage> {
         DiscreteOptOptions options;
         ReadBasisSizes(reader, &options);
-        options.descriptors = reader.GetInt("descriptors", options.descriptors, 1, 1000);
+        options.descriptors =
+            reader.GetInt("descriptors", options.descriptors, DiscreteOptOptions::kDescriptors);
         options.sample_candidates =
             reader.GetChoice("candidates", "samples", {"samples", "vertices"}) == "samples";
         OptionReader w = reader.Child("weights");
         DiscreteOptWeights& weights = options.weights;
-        weights.orthogonality = w.GetDouble("orthogonality", weights.orthogonality, 0.0);
-        weights.bijectivity = w.GetDouble("bijectivity", weights.bijectivity, 0.0);
-        weights.proper = w.GetDouble("proper", weights.proper, 0.0);
-        weights.laplacian = w.GetDouble("laplacian", weights.laplacian, 0.0);
-        weights.descriptor = w.GetDouble("descriptor", weights.descriptor, 0.0);
+        constexpr Range kWeight = DiscreteOptWeights::kWeight;
+        weights.orthogonality = w.GetDouble("orthogonality", weights.orthogonality, kWeight);
+        weights.bijectivity = w.GetDouble("bijectivity", weights.bijectivity, kWeight);
+        weights.proper = w.GetDouble("proper", weights.proper, kWeight);
+        weights.laplacian = w.GetDouble("laplacian", weights.laplacian, kWeight);
+        weights.descriptor = w.GetDouble("descriptor", weights.descriptor, kWeight);
         // The stage anchors the map to the matching stage's aligned embeddings by default:
         // on a pair that is far from isometric the spectral terms alone move whole regions
         // away from where the embedding put them. The embedding is in units of the unit-area
         // surface: at weight 100 a point 0.1 away from its image costs 1, a unit of each
         // spectral term (whose eigenfunctions have unit norm).
-        weights.embedding = w.GetDouble("embedding", kDefaultEmbeddingWeight, 0.0);
+        weights.embedding = w.GetDouble("embedding", kDefaultEmbeddingWeight, kWeight);
         w.Finish();
         reader.AdoptChild("weights", w);
-        const int sample_count = reader.GetInt("sample_count", kDefaultSamples, 0);
+        const int sample_count = reader.GetInt("sample_count", kDefaultSamples, Range::AtLeast(0));
         std::string error;
         if (!options.IsValid(&error)) reader.Fail("", error);
         CheckSampleCount(reader, "sample_count", sample_count, options.k_end);
@@ -280,9 +283,9 @@ void RegisterRefineStages(Registry& registry) {
                "functional-map ICP at a fixed basis size [Ovsjanikov et al. 2012] (baseline)",
                [](OptionReader& reader) -> std::unique_ptr<Stage> {
                  FunctionalMapIcpOptions options;
-                 options.k = reader.GetInt("k", options.k, 1, 1000);
-                 options.max_iterations =
-                     reader.GetInt("max_iterations", options.max_iterations, 1, 10000);
+                 options.k = reader.GetInt("k", options.k, FunctionalMapIcpOptions::kK);
+                 options.max_iterations = reader.GetInt("max_iterations", options.max_iterations,
+                                                        FunctionalMapIcpOptions::kMaxIterations);
                  std::string error;
                  if (!options.IsValid(&error)) reader.Fail("", error);
                  return std::make_unique<IcpRefine>(options);

@@ -11,8 +11,8 @@
 namespace symembed {
 
 bool FarthestPointOptions::IsValid(std::string* error) const {
-  if (count < 1) {
-    if (error) *error = "count must be >= 1, got " + std::to_string(count);
+  if (!kCount.Contains(count)) {
+    if (error) *error = "count " + kCount.Violation(count);
     return false;
   }
   return true;

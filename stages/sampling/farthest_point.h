@@ -14,12 +14,14 @@
 #include <string>
 
 #include "core/mesh.h"
+#include "core/range.h"
 #include "registry/types.h"
 
 namespace symembed {
 
 struct FarthestPointOptions {
   int count = 1000;        // number of samples; clamped to the number of usable vertices
+  static constexpr Range kCount = Range::AtLeast(1);
   std::uint32_t seed = 1;  // seeds the choice of the first sample
 
   bool IsValid(std::string* error) const;

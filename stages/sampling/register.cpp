@@ -36,9 +36,10 @@ void RegisterSamplingStages(Registry& registry) {
                "geodesic farthest point sampling from a seeded start (options: count, seed)",
                [](OptionReader& reader) -> std::unique_ptr<Stage> {
                  FarthestPointOptions options;
-                 options.count = reader.GetInt("count", options.count, 1);
+                 options.count =
+                     reader.GetInt("count", options.count, FarthestPointOptions::kCount);
                  options.seed = static_cast<std::uint32_t>(
-                     reader.GetInt("seed", static_cast<int>(options.seed), 0));
+                     reader.GetInt("seed", static_cast<int>(options.seed), Range::AtLeast(0)));
                  return std::make_unique<FarthestPointStage>(options);
                });
 }

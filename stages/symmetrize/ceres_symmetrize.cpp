@@ -15,20 +15,28 @@ namespace symembed {
 
 bool CeresSymmetrizeOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!(symmetry_weight >= 0.0)) out << "symmetry_weight must be >= 0, got " << symmetry_weight;
-  else if (!(plane_weight >= 0.0)) out << "plane_weight must be >= 0, got " << plane_weight;
-  else if (!(anchor_weight >= 0.0)) out << "anchor_weight must be >= 0, got " << anchor_weight;
-  else if (graph_neighbors < 1) out << "graph_neighbors must be >= 1, got " << graph_neighbors;
-  else if (mirror_neighbors < 1) out << "mirror_neighbors must be >= 1, got " << mirror_neighbors;
-  else if (follow_neighbors < 1) out << "follow_neighbors must be >= 1, got " << follow_neighbors;
-  else if (max_iterations < 0) out << "max_iterations must be >= 0, got " << max_iterations;
-  else if (!(function_tolerance > 0.0))
-    out << "function_tolerance must be > 0, got " << function_tolerance;
-  else if (threads < 1) out << "threads must be >= 1, got " << threads;
-  else if (warm_start_iterations < 0)
-    out << "warm_start_iterations must be >= 0, got " << warm_start_iterations;
-  else if (!(warm_start_tolerance >= 0.0))
-    out << "warm_start_tolerance must be >= 0, got " << warm_start_tolerance;
+  if (!kWeight.Contains(symmetry_weight))
+    out << "symmetry_weight " << kWeight.Violation(symmetry_weight);
+  else if (!kWeight.Contains(plane_weight))
+    out << "plane_weight " << kWeight.Violation(plane_weight);
+  else if (!kWeight.Contains(anchor_weight))
+    out << "anchor_weight " << kWeight.Violation(anchor_weight);
+  else if (!kGraphNeighbors.Contains(graph_neighbors))
+    out << "graph_neighbors " << kGraphNeighbors.Violation(graph_neighbors);
+  else if (!kMirrorNeighbors.Contains(mirror_neighbors))
+    out << "mirror_neighbors " << kMirrorNeighbors.Violation(mirror_neighbors);
+  else if (!kFollowNeighbors.Contains(follow_neighbors))
+    out << "follow_neighbors " << kFollowNeighbors.Violation(follow_neighbors);
+  else if (!kMaxIterations.Contains(max_iterations))
+    out << "max_iterations " << kMaxIterations.Violation(max_iterations);
+  else if (!kFunctionTolerance.Contains(function_tolerance))
+    out << "function_tolerance " << kFunctionTolerance.Violation(function_tolerance);
+  else if (!kThreads.Contains(threads))
+    out << "threads " << kThreads.Violation(threads);
+  else if (!kWarmStartIterations.Contains(warm_start_iterations))
+    out << "warm_start_iterations " << kWarmStartIterations.Violation(warm_start_iterations);
+  else if (!kWarmStartTolerance.Contains(warm_start_tolerance))
+    out << "warm_start_tolerance " << kWarmStartTolerance.Violation(warm_start_tolerance);
   if (error) *error = out.str();
   return out.str().empty();
 }

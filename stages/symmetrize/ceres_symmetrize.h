@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "core/range.h"
 #include "registry/types.h"
 #include "stages/symmetrize/stress_majorization.h"
 
@@ -45,25 +46,35 @@ struct CeresSymmetrizeOptions {
   double plane_weight = 10.0;
   // Weight pulling samples to their unsymmetrized positions (0: off).
   double anchor_weight = 0.0;
+  // Of symmetry_weight, plane_weight and anchor_weight.
+  static constexpr Range kWeight = Range::AtLeast(0.0);
   // Neighbours per sample in the stress graph.
   int graph_neighbors = 16;
+  static constexpr Range kGraphNeighbors = Range::Closed(1, 1000);
   // Samples combined into each mirror counterpart (1: x_sigma(i) itself, the default: sigma may
   // come from intrinsic information that the 3D embedding, which keeps part of the pose, does
   // not show; combinations fit only embeddings that are nearly symmetric already).
   int mirror_neighbors = 1;
+  static constexpr Range kMirrorNeighbors = Range::Closed(1, 64);
   // Nearest samples whose displacements a dense vertex follows.
   int follow_neighbors = 8;
+  static constexpr Range kFollowNeighbors = Range::Closed(1, 1000);
   // Stress-majorization iterations started from y before the Ceres solve (0: none), and their
   // stop: an iteration lowering the energy by less than this fraction (stress_majorization.h).
   // Levenberg-Marquardt alone crawls on this energy; the majorization iterations, each cheap,
   // bring it close to the minimum and the Ceres iterations after them polish
   // (docs/analysis.md, "Measurements behind the defaults").
   int warm_start_iterations = 1000;
+  static constexpr Range kWarmStartIterations = Range::AtLeast(0);
   double warm_start_tolerance = 1e-6;
+  static constexpr Range kWarmStartTolerance = Range::AtLeast(0.0);
   // Ceres limits.
   int max_iterations = 10;
+  static constexpr Range kMaxIterations = Range::AtLeast(0);
   double function_tolerance = 1e-7;
+  static constexpr Range kFunctionTolerance = Range::Above(0.0);
   int threads = 1;
+  static constexpr Range kThreads = Range::Closed(1, 256);
 
   bool IsValid(std::string* error) const;
 };

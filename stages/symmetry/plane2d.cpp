@@ -20,20 +20,27 @@ bool Plane2dOptions::IsValid(std::string* error) const {
   std::string sub;
   if (!search.IsValid(&sub)) out << sub;
   else if (!spectral.IsValid(&sub)) out << sub;
-  else if (num_angles < 1) out << "num_angles must be >= 1, got " << num_angles;
-  else if (!(intrinsic_weight >= 0.0)) out << "intrinsic_weight must be >= 0, got " << intrinsic_weight;
-  else if (intrinsic_pairs < 1) out << "intrinsic_pairs must be >= 1, got " << intrinsic_pairs;
-  else if (smacof_iterations < 0) out << "smacof_iterations must be >= 0, got " << smacof_iterations;
-  else if (refine_3d_iterations < 0)
-    out << "refine_3d_iterations must be >= 0, got " << refine_3d_iterations;
-  else if (num_directions < 0) out << "num_directions must be >= 0, got " << num_directions;
-  else if (threads < 0) out << "threads must be >= 0, got " << threads;
-  else if (!(min_self_map_displacement >= 0.0))
-    out << "min_self_map_displacement must be >= 0, got " << min_self_map_displacement;
-  else if (!(second_plane_below >= 0.0))
-    out << "second_plane_below must be >= 0, got " << second_plane_below;
-  else if (!(distance_confidence >= 0.0))
-    out << "distance_confidence must be >= 0, got " << distance_confidence;
+  else if (!kNumAngles.Contains(num_angles))
+    out << "num_angles " << kNumAngles.Violation(num_angles);
+  else if (!kIntrinsicWeight.Contains(intrinsic_weight))
+    out << "intrinsic_weight " << kIntrinsicWeight.Violation(intrinsic_weight);
+  else if (!kIntrinsicPairs.Contains(intrinsic_pairs))
+    out << "intrinsic_pairs " << kIntrinsicPairs.Violation(intrinsic_pairs);
+  else if (!kSmacofIterations.Contains(smacof_iterations))
+    out << "smacof_iterations " << kSmacofIterations.Violation(smacof_iterations);
+  else if (!kRefine3dIterations.Contains(refine_3d_iterations))
+    out << "refine_3d_iterations " << kRefine3dIterations.Violation(refine_3d_iterations);
+  else if (!kNumDirections.Contains(num_directions))
+    out << "num_directions " << kNumDirections.Violation(num_directions);
+  else if (!kThreads.Contains(threads))
+    out << "threads " << kThreads.Violation(threads);
+  else if (!kMinSelfMapDisplacement.Contains(min_self_map_displacement))
+    out << "min_self_map_displacement "
+        << kMinSelfMapDisplacement.Violation(min_self_map_displacement);
+  else if (!kSecondPlaneBelow.Contains(second_plane_below))
+    out << "second_plane_below " << kSecondPlaneBelow.Violation(second_plane_below);
+  else if (!kDistanceConfidence.Contains(distance_confidence))
+    out << "distance_confidence " << kDistanceConfidence.Violation(distance_confidence);
   if (error) *error = out.str();
   return out.str().empty();
 }

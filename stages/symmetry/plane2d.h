@@ -46,20 +46,26 @@ struct Plane2dOptions {
   ReflectionSearchOptions search;
   // Line directions of the coarse sweep over [0, pi).
   int num_angles = 36;
+  static constexpr Range kNumAngles = Range::Closed(1, 3600);
   // Weight of the intrinsic distortion in the choice among candidates (0: off).
   double intrinsic_weight = 2.0;
+  static constexpr Range kIntrinsicWeight = Range::AtLeast(0.0);
   // Sample pairs used by the intrinsic check.
   int intrinsic_pairs = 4000;
+  static constexpr Range kIntrinsicPairs = Range::AtLeast(1);
   // Seed of the pair sampling.
   int seed = 1;
   // SMACOF iterations of the 2D embedding (0: classical MDS only).
   int smacof_iterations = 200;
+  static constexpr Range kSmacofIterations = Range::AtLeast(0);
   // Reflect / NN / refit iterations on the 3D embedding after the lift (0: no such candidates).
   int refine_3d_iterations = 10;
+  static constexpr Range kRefine3dIterations = Range::AtLeast(0);
   // Also consider the plane3d candidates (principal axes and a sphere of normals in 3D).
   bool candidates_3d = true;
   // Starting normals of those candidates besides the principal axes.
   int num_directions = 32;
+  static constexpr Range kNumDirections = Range::Closed(0, 10000);
   // Spectral candidates and check (step 5).
   SpectralSymmetryOptions spectral;
   // Candidates whose self map moves the samples less than this (the mean distance in the 3D
@@ -68,18 +74,22 @@ struct Plane2dOptions {
   // A self map near the identity pairs samples on one side of the body, and the symmetrization
   // then presses the body into the plane.
   double min_self_map_displacement = 0.0;
+  static constexpr Range kMinSelfMapDisplacement = Range::Closed(0.0, 10.0);
   // When the chosen self map moves the samples less than this, the stage also proposes the best
   // candidate that moves them at least this much as a second plane hypothesis (SymmetryStage::
   // RunAlternative), and each pair chooses between the shape's two planes by its flip score;
   // 0: off. Unlike min_self_map_displacement it decides nothing for the shape alone.
   double second_plane_below = 0.4;
+  static constexpr Range kSecondPlaneBelow = Range::Closed(0.0, 10.0);
   // > 0: each sample's confidence (the weight of its symmetry term in the symmetrize stage) is
   // multiplied by how well its self map keeps geodesic distances (DistanceConsistencyWeights
   // with this scale) and rescaled to the mean it had; 0: off.
   double distance_confidence = 0.0;
+  static constexpr Range kDistanceConfidence = Range::AtLeast(0.0);
   // Threads of the 2D embedding's SMACOF and of the refinement of the line directions and of the
   // 3D candidates (0: all cores). The result does not depend on it.
   int threads = 0;
+  static constexpr Range kThreads = Range::Closed(0, 256);
 
   bool IsValid(std::string* error) const;
 };

@@ -14,10 +14,14 @@ bool Plane3dOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string sub;
   if (!search.IsValid(&sub)) out << sub;
-  else if (num_directions < 0) out << "num_directions must be >= 0, got " << num_directions;
-  else if (!(intrinsic_weight >= 0.0)) out << "intrinsic_weight must be >= 0, got " << intrinsic_weight;
-  else if (intrinsic_pairs < 1) out << "intrinsic_pairs must be >= 1, got " << intrinsic_pairs;
-  else if (threads < 0) out << "threads must be >= 0, got " << threads;
+  else if (!kNumDirections.Contains(num_directions))
+    out << "num_directions " << kNumDirections.Violation(num_directions);
+  else if (!kIntrinsicWeight.Contains(intrinsic_weight))
+    out << "intrinsic_weight " << kIntrinsicWeight.Violation(intrinsic_weight);
+  else if (!kIntrinsicPairs.Contains(intrinsic_pairs))
+    out << "intrinsic_pairs " << kIntrinsicPairs.Violation(intrinsic_pairs);
+  else if (!kThreads.Contains(threads))
+    out << "threads " << kThreads.Violation(threads);
   if (error) *error = out.str();
   return out.str().empty();
 }

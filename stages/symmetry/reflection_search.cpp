@@ -14,13 +14,16 @@ namespace symembed {
 
 bool ReflectionSearchOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (max_iterations < 1) out << "max_iterations must be >= 1, got " << max_iterations;
-  else if (!(trim_fraction > 0.0 && trim_fraction <= 1.0))
-    out << "trim_fraction must be in (0, 1], got " << trim_fraction;
-  else if (!(outlier_distance > 0.0)) out << "outlier_distance must be > 0, got " << outlier_distance;
-  else if (!(max_fixed_fraction >= 0.0 && max_fixed_fraction <= 1.0))
-    out << "max_fixed_fraction must be in [0, 1], got " << max_fixed_fraction;
-  else if (!(tolerance > 0.0)) out << "tolerance must be > 0, got " << tolerance;
+  if (!kMaxIterations.Contains(max_iterations))
+    out << "max_iterations " << kMaxIterations.Violation(max_iterations);
+  else if (!kTrimFraction.Contains(trim_fraction))
+    out << "trim_fraction " << kTrimFraction.Violation(trim_fraction);
+  else if (!kOutlierDistance.Contains(outlier_distance))
+    out << "outlier_distance " << kOutlierDistance.Violation(outlier_distance);
+  else if (!kMaxFixedFraction.Contains(max_fixed_fraction))
+    out << "max_fixed_fraction " << kMaxFixedFraction.Violation(max_fixed_fraction);
+  else if (!kTolerance.Contains(tolerance))
+    out << "tolerance " << kTolerance.Violation(tolerance);
   if (error) *error = out.str();
   return out.str().empty();
 }

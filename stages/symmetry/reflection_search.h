@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/knn.h"
+#include "core/range.h"
 #include "registry/types.h"
 
 namespace symembed {
@@ -19,19 +20,24 @@ namespace symembed {
 struct ReflectionSearchOptions {
   // Maximum reflect / NN / refit iterations per starting reflection.
   int max_iterations = 30;
+  static constexpr Range kMaxIterations = Range::AtLeast(1);
   // Fraction of points (smallest residuals) kept in the refit; the rest is treated as
   // unmatched (missing parts, imperfect symmetry).
   double trim_fraction = 0.8;
+  static constexpr Range kTrimFraction = Range::Closed(0.05, 1.0);
   // Residuals are truncated at outlier_distance * size in the score, so an unmatched point
   // costs a fixed amount whatever its distance (and a plane that leaves more points unmatched
   // scores worse).
   double outlier_distance = 0.1;
+  static constexpr Range kOutlierDistance = Range::Closed(1e-6, 10.0);
   // Reflections mapping more than this fraction of points to themselves are rejected (a flat
   // point set is "symmetric" about its own plane with the identity as self map).
   double max_fixed_fraction = 0.5;
+  static constexpr Range kMaxFixedFraction = Range::Closed(0.0, 1.0);
   // Converged when the normal turns by less than this (radians) and the offset moves by less
   // than this times the size.
   double tolerance = 1e-6;
+  static constexpr Range kTolerance = Range::Above(0.0);
 
   bool IsValid(std::string* error) const;
 };

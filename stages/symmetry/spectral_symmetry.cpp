@@ -15,14 +15,16 @@ namespace symembed {
 
 bool SpectralSymmetryOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (num_eigenfunctions < 0 || num_eigenfunctions > 12)
-    out << "spectral_eigenfunctions must be in [0, 12], got " << num_eigenfunctions;
-  else if (num_candidates < 0) out << "spectral_candidates must be >= 0, got " << num_candidates;
-  else if (!(min_consistency >= 0.0 && min_consistency <= 1.0))
-    out << "spectral_min_consistency must be in [0, 1], got " << min_consistency;
-  else if (!(weight >= 0.0)) out << "spectral_weight must be >= 0, got " << weight;
-  else if (!(eigenvalue_tolerance >= 0.0 && eigenvalue_tolerance <= 1.0))
-    out << "spectral_eigenvalue_tolerance must be in [0, 1], got " << eigenvalue_tolerance;
+  if (!kNumEigenfunctions.Contains(num_eigenfunctions))
+    out << "spectral_eigenfunctions " << kNumEigenfunctions.Violation(num_eigenfunctions);
+  else if (!kNumCandidates.Contains(num_candidates))
+    out << "spectral_candidates " << kNumCandidates.Violation(num_candidates);
+  else if (!kMinConsistency.Contains(min_consistency))
+    out << "spectral_min_consistency " << kMinConsistency.Violation(min_consistency);
+  else if (!kWeight.Contains(weight))
+    out << "spectral_weight " << kWeight.Violation(weight);
+  else if (!kEigenvalueTolerance.Contains(eigenvalue_tolerance))
+    out << "spectral_eigenvalue_tolerance " << kEigenvalueTolerance.Violation(eigenvalue_tolerance);
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -23,23 +23,29 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/range.h"
 
 namespace symembed {
 
 struct SpectralSymmetryOptions {
   // Eigenfunctions used, after the constant one (0: the spectral check and candidates are off).
   int num_eigenfunctions = 8;
+  static constexpr Range kNumEigenfunctions = Range::Closed(0, 12);
   // Sign patterns kept as candidates, those of lowest SignFlipCandidate::score.
   int num_candidates = 4;
+  static constexpr Range kNumCandidates = Range::AtLeast(0);
   // The candidates chosen by distances alone stand when their self map's SpectralConsistency is
   // at least this; below it the sign-flip candidates join and the criterion adds the weighted
   // inconsistency. 1: always (a consistency of exactly 1 is a symmetry of the eigenfunctions).
   double min_consistency = 1.0;
+  static constexpr Range kMinConsistency = Range::Closed(0.0, 1.0);
   // Weight of the spectral inconsistency (1 - SpectralConsistency) in the choice of candidate.
   double weight = 0.25;
+  static constexpr Range kWeight = Range::AtLeast(0.0);
   // Eigenvalues within this relative distance of lambda_j count as one eigenspace with it in
   // SpectralConsistency (0: every eigenfunction on its own).
   double eigenvalue_tolerance = 0.05;
+  static constexpr Range kEigenvalueTolerance = Range::Closed(0.0, 1.0);
 
   bool IsValid(std::string* error) const;
 };

@@ -435,7 +435,9 @@ TEST(SyntheticDataset, OnePoseCannotFormAPair) {
     Create("{type: synthetic, poses: 1}");
     ADD_FAILURE() << "no error";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("poses: value 1 is out of range [2,"), std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("poses: pairs are formed between poses: needs >= 2, got 1"),
+        std::string::npos)
         << e.what();
   }
 }
@@ -490,7 +492,7 @@ TEST(SyntheticDataset, DefaultCacheIsKeyedByTheGeneratorOptions) {
   ExpectError<ConfigError>([&] { Create("{type: synthetic, kinds: [horse]}"); },
                            {"dataset.kinds", "invalid kind 'horse'"});
   ExpectError<ConfigError>([&] { Create("{type: synthetic, noise: 2}"); },
-                           {"dataset.noise", "out of range"});
+                           {"dataset.noise", "must be in [0, 1], got 2"});
   ExpectError<ConfigError>([&] { Create("{type: synthetic, pose: 3}"); }, {"unknown key 'pose'"});
 }
 

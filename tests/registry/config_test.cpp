@@ -62,31 +62,31 @@ Registry FakeRegistry() {
   Registry r;
   r.Add("dataset", "pairs_vts", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
     o.GetRequiredString("root");
-    o.GetInt("max_pairs", 0, 0);
+    o.GetInt("max_pairs", 0, Range::AtLeast(0));
     return std::make_unique<FakeDataset>();
   });
   r.Add("preprocess", "standard", "d", Factory<FakePreprocess>());
   r.Add("sampling", "farthest_point", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
-    o.GetInt("count", 1000, 1, 1000000);
+    o.GetInt("count", 1000, Range::Closed(1, 1000000));
     o.GetInt("seed", 1);
     return std::make_unique<FakeSampling>();
   });
   r.Add("geodesics", "dijkstra", "d", Factory<FakeGeodesics>());
   r.Add("geodesics", "fast_marching", "d", Factory<FakeGeodesics>());
   r.Add("embedding", "lsmds", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
-    o.GetInt("dims", 3, 2, 3);
+    o.GetInt("dims", 3, Range::Closed(2, 3));
     o.GetChoice("init", "original", {"original", "isomap", "random"});
-    o.GetDouble("tolerance", 1e-6, 0.0, 1.0);
+    o.GetDouble("tolerance", 1e-6, Range::Closed(0.0, 1.0));
     return std::make_unique<FakeEmbedding>();
   });
   r.Add("embedding", "isomap", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
-    o.GetInt("dims", 3, 2, 3);
+    o.GetInt("dims", 3, Range::Closed(2, 3));
     o.GetBool("fix_orientation", false);
     return std::make_unique<FakeEmbedding>();
   });
   r.Add("symmetry", "plane2d", "d", Factory<FakeSymmetry>());
   r.Add("symmetrize", "ceres", "d", [](OptionReader& o) -> std::unique_ptr<Stage> {
-    o.GetDouble("symmetry_weight", 10.0, 0.0);
+    o.GetDouble("symmetry_weight", 10.0, Range::AtLeast(0.0));
     return std::make_unique<FakeSymmetrize>();
   });
   r.Add("symmetrize", "none", "d", Factory<FakeSymmetrize>());
@@ -258,11 +258,11 @@ TEST(Config, BadEnumListsValidValues) {
 
 TEST(Config, OutOfRangeNamesTheRange) {
   const std::string msg = ErrorOf(Replace(kConfig, "count: 500", "count: 0"));
-  EXPECT_NE(msg.find("pipeline.sampling.count: value 0 is out of range [1, 1000000]"),
-            std::string::npos)
+  EXPECT_NE(msg.find("pipeline.sampling.count: must be in [1, 1000000], got 0"), std::string::npos)
       << msg;
   const std::string eval = ErrorOf(Replace(kConfig, "step: 0.0025", "step: 0.5"));
-  EXPECT_NE(eval.find("evaluation.step: value 0.5 is out of range"), std::string::npos) << eval;
+  EXPECT_NE(eval.find("evaluation.step: must be in [1e-06, 0.25], got 0.5"), std::string::npos)
+      << eval;
 }
 
 TEST(Config, IntListsAcceptAListOrOneIntegerAndCheckEachItem) {
@@ -274,7 +274,7 @@ TEST(Config, IntListsAcceptAListOrOneIntegerAndCheckEachItem) {
   EXPECT_EQ(o.resolved()["missing"][1].as<int>(), 8);
   auto error_of = [&](const std::string& key, int min) -> std::string {
     try {
-      o.GetIntList(key, {}, min);
+      o.GetIntList(key, {}, Range::AtLeast(min));
     } catch (const ConfigError& e) {
       return e.what();
     }
@@ -282,7 +282,7 @@ TEST(Config, IntListsAcceptAListOrOneIntegerAndCheckEachItem) {
   };
   EXPECT_NE(error_of("c", 0).find("p.c: expected a list of integers, got 'x'"), std::string::npos)
       << error_of("c", 0);
-  EXPECT_NE(error_of("d", 1).find("p.d: value 0 is out of range [1, "), std::string::npos)
+  EXPECT_NE(error_of("d", 1).find("p.d: must be in [1, inf), got 0"), std::string::npos)
       << error_of("d", 1);
   EXPECT_NE(error_of("e", 0).find("expected a list of integers"), std::string::npos);
 }
@@ -302,12 +302,12 @@ TEST(Config, VariantErrorsPointAtTheVariant) {
   std::string msg =
       ErrorOf(Replace(kConfig, "pipeline.sampling.count: 2000", "pipeline.sampling.count: -3"));
   EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("pipeline.sampling.count: value -3 is out of range"), std::string::npos)
+  EXPECT_NE(msg.find("pipeline.sampling.count: must be in [1, 1000000], got -3"), std::string::npos)
       << msg;
   EXPECT_NE(msg.find("(in variant 'more_samples')"), std::string::npos) << msg;
   // An error of the base pipeline is every variant's: no variant is named.
   msg = ErrorOf(Replace(kConfig, "count: 500", "count: -5"));
-  EXPECT_NE(msg.find("out of range"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("must be in [1, 1000000], got -5"), std::string::npos) << msg;
   EXPECT_EQ(msg.find("in variant"), std::string::npos) << msg;
   msg = ErrorOf(Replace(kConfig, "pipeline.sampling.count", "pipeline.smpling.count"));
   EXPECT_NE(msg.find("exp.yaml:9:"), std::string::npos) << msg;

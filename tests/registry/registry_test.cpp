@@ -21,8 +21,9 @@ class DummySampling : public SamplingStage {
 };
 
 Registry::Factory DummyFactory() {
-  return
-      [](OptionReader& o) { return std::make_unique<DummySampling>(o.GetInt("count", 3, 1, 100)); };
+  return [](OptionReader& o) {
+    return std::make_unique<DummySampling>(o.GetInt("count", 3, Range::Closed(1, 100)));
+  };
 }
 
 TEST(Registry, BuiltinSetIsExactlyTheExpectedOne) {

@@ -306,7 +306,7 @@ inline Registry TestRegistry() {
   });
   r.Add("preprocess", "test", "identity", Simple<TestPreprocess>());
   r.Add("sampling", "test", "first N", [](OptionReader& o) {
-    return std::make_unique<TestSampling>(o.GetInt("count", 10, 1));
+    return std::make_unique<TestSampling>(o.GetInt("count", 10, Range::AtLeast(1)));
   });
   r.Add("geodesics", "test", "euclidean", Simple<TestGeodesics>());
   r.Add("embedding", "test", "scaled input", [](OptionReader& o) {
@@ -318,7 +318,7 @@ inline Registry TestRegistry() {
   });
   r.Add("symmetrize", "test", "identity", Simple<TestSymmetrize>());
   r.Add("flip", "test", "fixed", [](OptionReader& o) {
-    return std::make_unique<TestFlip>(o.GetInt("choose", 0, 0, 3));
+    return std::make_unique<TestFlip>(o.GetInt("choose", 0, Range::Closed(0, 3)));
   });
   r.Add("matching", "test", "brute-force NN", Simple<TestMatching>());
   r.Add("refine", "test", "identity or mirror", [](OptionReader& o) {

@@ -95,7 +95,7 @@ TEST(FlipTermOptions, ErrorsNameFileLineAndPath) {
            Case{"{type: extrinsic, decide: {type: argmin, margin: 0.1}}",
                 "pipeline.flip.decide.margin: unknown key 'margin'; known keys: type"},
            Case{"{type: extrinsic, terms: {orientation: {weight: -1}}}",
-                "pipeline.flip.terms.orientation.weight: value -1 is out of range"},
+                "pipeline.flip.terms.orientation.weight: must be in [0, inf), got -1"},
            Case{"{type: extrinsic, terms: {orientation: {zoomout: {samples: 50}}}}",
                 "pipeline.flip.terms.orientation.zoomout: samples must be >= k_end (60), got 50"},
            Case{"{type: extrinsic, decide: {type: refined_front_back, zoomout: {k_start: 70}}}",

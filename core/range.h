@@ -1,0 +1,65 @@
+// The allowed values of a numeric option, declared once next to the option.
+//
+// A Range is an interval whose ends are each closed or open; an end at infinity is always open,
+// so every Range holds finite numbers only. An options struct declares the range of each bounded
+// field (`static constexpr Range kRelaxation = Range::ClosedOpen(1.0, 2.0);`), and both its
+// IsValid and the YAML reader (OptionReader::GetDouble / GetInt with a Range) check values
+// against that one declaration, with the same text in their messages. Integer options use the
+// same type: every int is exactly a double.
+#pragma once
+
+#include <limits>
+#include <string>
+
+namespace symembed {
+
+// Shortest decimal text that reads back to exactly x ("0.1", not "0.10000000000000001").
+std::string FormatNumber(double x);
+
+class Range {
+ public:
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+  // [min, max]
+  static constexpr Range Closed(double min, double max) { return Range(min, false, max, false); }
+  // [min, max)
+  static constexpr Range ClosedOpen(double min, double max) { return Range(min, false, max, true); }
+  // (min, max]
+  static constexpr Range OpenClosed(double min, double max) { return Range(min, true, max, false); }
+  // [min, inf)
+  static constexpr Range AtLeast(double min) { return Range(min, false, kInfinity, true); }
+  // (min, inf)
+  static constexpr Range Above(double min) { return Range(min, true, kInfinity, true); }
+  // (-inf, inf): every finite number.
+  static constexpr Range Any() { return Range(-kInfinity, true, kInfinity, true); }
+
+  // Whether x lies in the range (never for NaN or an infinity).
+  constexpr bool Contains(double x) const {
+    return (min_open_ ? x > min_ : x >= min_) && (max_open_ ? x < max_ : x <= max_);
+  }
+
+  // The interval in the usual notation: "[1, 2)", "(0, 1]", "[0, inf)". Integral ends are
+  // written as integers ("1000000", not "1e+06").
+  std::string Text() const;
+  // "must be in [1, 2), got 2.5": what an error message says of a value outside the range.
+  std::string Violation(double x) const;
+
+  constexpr double min() const { return min_; }
+  constexpr double max() const { return max_; }
+  constexpr bool min_open() const { return min_open_; }
+  constexpr bool max_open() const { return max_open_; }
+
+ private:
+  constexpr Range(double min, bool min_open, double max, bool max_open)
+      : min_(min),
+        max_(max),
+        min_open_(min_open || min == -kInfinity),
+        max_open_(max_open || max == kInfinity) {}
+
+  double min_;
+  double max_;
+  bool min_open_;
+  bool max_open_;
+};
+
+}  // namespace symembed
