@@ -31,6 +31,13 @@ const VariantConfig* ExperimentConfig::Find(const std::string& variant) const {
   return nullptr;
 }
 
+const VariantConfig& ExperimentConfig::Get(const std::string& variant) const {
+  if (const VariantConfig* v = Find(variant)) return *v;
+  std::string names;
+  for (const auto& v : variants) names += (names.empty() ? "" : ", ") + v.name;
+  throw ConfigError(file + ": no variant '" + variant + "'; variants: " + names);
+}
+
 namespace {
 
 std::string MarkLocation(const std::string& file, const YAML::Mark& mark) {

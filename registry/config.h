@@ -100,6 +100,8 @@ struct ExperimentConfig {
   // them.
   std::vector<std::pair<std::string, std::string>> shadowed_overrides;
   const VariantConfig* Find(const std::string& variant) const;
+  // The variant of that name; throws ConfigError naming the file and every variant otherwise.
+  const VariantConfig& Get(const std::string& variant) const;
 };
 
 // Reads, substitutes, resolves and validates (instantiating every stage of every variant).

@@ -489,13 +489,10 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
     throw ConfigError("a shapes-only run needs a cache folder: the cache is all it writes");
   }
   std::vector<const VariantConfig*> variants;
-  for (const auto& v : config.variants) {
-    if (options.variant.empty() || v.name == options.variant) variants.push_back(&v);
-  }
-  if (variants.empty()) {
-    std::string names;
-    for (const auto& v : config.variants) names += (names.empty() ? "" : ", ") + v.name;
-    throw ConfigError(config.file + ": no variant '" + options.variant + "'; variants: " + names);
+  if (options.variant.empty()) {
+    for (const auto& v : config.variants) variants.push_back(&v);
+  } else {
+    variants.push_back(&config.Get(options.variant));
   }
   if (!options.cache_dir.empty()) {
     std::error_code ec;

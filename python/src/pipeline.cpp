@@ -63,13 +63,9 @@ const Registry& BuiltinRegistry() {
 
 std::string YamlText(const py::handle& value, const std::string& key) {
   const YAML::Node node = YamlNode(value, key);
-  if (node.IsScalar() && py::isinstance<py::str>(value)) {
-    // Quoted when plain text would read as something else ("true", "1", "a: b", "").
-    YAML::Emitter emitter;
-    emitter << YAML::Flow << node;
-    return emitter.c_str();
-  }
-  if (node.IsScalar()) return node.Scalar();
+  // A string is emitted, so that it is quoted where plain text would read as something else
+  // ("true", "1", "a: b", ""); other scalars as they are.
+  if (node.IsScalar() && !py::isinstance<py::str>(value)) return node.Scalar();
   if (node.IsNull()) return "null";
   YAML::Emitter emitter;
   emitter << YAML::Flow << node;
@@ -117,14 +113,9 @@ std::shared_ptr<const LoadedPipeline> LoadPipeline(const py::object& config, con
     throw py::type_error("config: expected None, a dict of options or a config file's path, got " +
                          py::str(config.get_type().attr("__name__")).cast<std::string>());
   }
-  const VariantConfig* chosen = loaded->config.Find(variant);
-  if (chosen == nullptr) {
-    std::string names;
-    for (const auto& v : loaded->config.variants) names += (names.empty() ? "" : ", ") + v.name;
-    throw ConfigError(loaded->config.file + ": no variant '" + variant + "'; variants: " + names);
-  }
-  loaded->pipeline = BuildPipeline(loaded->config, *chosen, registry);
-  loaded->resolved = ResolvedConfigYaml(loaded->config, *chosen, loaded->pipeline);
+  const VariantConfig& chosen = loaded->config.Get(variant);
+  loaded->pipeline = BuildPipeline(loaded->config, chosen, registry);
+  loaded->resolved = ResolvedConfigYaml(loaded->config, chosen, loaded->pipeline);
   Pipeline::ForEachStage(loaded->pipeline, [&](const char* kind, const auto& stage) {
     loaded->stages += std::string(kind) + ": " + OptionsText(*stage) + "\n";
   });
