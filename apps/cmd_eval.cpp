@@ -111,13 +111,14 @@ ScoreMapsOptions ScoreMapsOptionsOf(const ArgParser& parser) {
   options.threads = parser.GetInt("jobs");
   std::string error;
   if (!options.IsValid(&error)) throw UsageError{error};
-  if (!std::filesystem::is_directory(options.maps_dir)) {
-    throw IoError(options.maps_dir + ": maps folder not found");
-  }
-  // The maps of a run that has not finished are not all there.
+  // The maps of a run that has not finished are not all there (the folder may not exist yet):
+  // that is said first.
   std::filesystem::path maps_path = std::filesystem::path(options.maps_dir).lexically_normal();
   if (maps_path.filename().empty()) maps_path = maps_path.parent_path();
   if (maps_path.has_parent_path()) RequireNotInProgress(maps_path.parent_path().string());
+  if (!std::filesystem::is_directory(options.maps_dir)) {
+    throw IoError(options.maps_dir + ": maps folder not found");
+  }
   return options;
 }
 
