@@ -3,7 +3,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "registry/shards.h"
+#include "harness/shards.h"
 
 namespace symembed {
 

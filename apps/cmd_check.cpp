@@ -6,11 +6,11 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "core/errors.h"
+#include "core/files.h"
 #include "eval/baseline.h"
 #include "eval/json.h"
 #include "eval/report.h"
-#include "registry/files.h"
-#include "registry/run_outputs.h"
+#include "harness/run_outputs.h"
 
 namespace symembed {
 

@@ -5,12 +5,12 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "core/errors.h"
-#include "eval/eval_setup.h"
 #include "eval/evaluator.h"
 #include "eval/report.h"
 #include "eval/score_maps.h"
-#include "registry/config.h"
-#include "registry/run_outputs.h"
+#include "harness/config.h"
+#include "harness/eval_setup.h"
+#include "harness/run_outputs.h"
 
 namespace symembed {
 

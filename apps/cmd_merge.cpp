@@ -2,11 +2,11 @@
 
 #include "apps/args.h"
 #include "apps/commands.h"
-#include "eval/run_evaluation.h"
-#include "registry/files.h"
-#include "registry/merge.h"
-#include "registry/runner.h"
-#include "registry/shards.h"
+#include "core/files.h"
+#include "harness/merge.h"
+#include "harness/run_evaluation.h"
+#include "harness/runner.h"
+#include "harness/shards.h"
 
 namespace symembed {
 namespace {

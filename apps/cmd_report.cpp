@@ -4,7 +4,7 @@
 
 #include "apps/args.h"
 #include "apps/commands.h"
-#include "eval/html/html_report.h"
+#include "harness/html/html_report.h"
 #include "registry/registry.h"
 
 namespace symembed {

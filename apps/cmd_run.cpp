@@ -5,13 +5,13 @@
 
 #include "apps/args.h"
 #include "apps/commands.h"
+#include "core/files.h"
 #include "core/mesh_io.h"
-#include "eval/run_evaluation.h"
-#include "registry/config.h"
-#include "registry/files.h"
+#include "harness/config.h"
+#include "harness/run_evaluation.h"
+#include "harness/runner.h"
+#include "harness/shards.h"
 #include "registry/registry.h"
-#include "registry/runner.h"
-#include "registry/shards.h"
 
 namespace symembed {
 namespace {

@@ -11,10 +11,10 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "core/errors.h"
-#include "registry/config.h"
-#include "registry/files.h"
+#include "core/files.h"
+#include "harness/config.h"
+#include "harness/slurm_scripts.h"
 #include "registry/registry.h"
-#include "registry/slurm_scripts.h"
 
 namespace fs = std::filesystem;
 

@@ -1,4 +1,4 @@
-// Map files (`A_B.map`, named as registry/pair_names.h says): one target vertex id per source
+// Map files (`A_B.map`, named as eval/pair_names.h says): one target vertex id per source
 // vertex, one per line, in the vertex ids of the input meshes. symembed writes 1-based ids (the
 // format peers publish); other methods' maps may be 0- or 1-based, integers or integral floats
 // ("123", "1.23e+02").

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "eval/metrics.h"
-#include "registry/config.h"
+#include "harness/config.h"
 #include "registry/stages.h"
 
 namespace symembed {

@@ -9,7 +9,7 @@
 #include <tuple>
 
 #include "core/errors.h"
-#include "registry/config.h"
+#include "harness/config.h"
 #include "registry/types.h"
 
 namespace symembed {

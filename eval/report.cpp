@@ -17,8 +17,8 @@
 #include <type_traits>
 
 #include "core/errors.h"
-#include "registry/files.h"
-#include "registry/pair_names.h"
+#include "core/files.h"
+#include "eval/pair_names.h"
 
 namespace fs = std::filesystem;
 

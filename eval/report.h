@@ -5,7 +5,7 @@
 //   pairs.csv     one row per pair, sorted by (source, target); no timing columns
 //   curve.csv     threshold, direct, flip_tolerant (fractions of points with error <= t)
 //   timings.csv   kind (shape|pair|variant), name, stage, seconds; a pair's name is its file
-//                 stem among the pairs of pairs.csv (registry/pair_names.h: "A_B" unless
+//                 stem among the pairs of pairs.csv (eval/pair_names.h: "A_B" unless
 //                 ambiguous)
 // Per experiment directory:
 //   comparison.csv  one row per variant, the summary's numbers

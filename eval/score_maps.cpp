@@ -11,7 +11,7 @@
 #include "core/map_io.h"
 #include "core/mesh_io.h"
 #include "core/parallel.h"
-#include "registry/pair_names.h"
+#include "eval/pair_names.h"
 
 namespace symembed {
 

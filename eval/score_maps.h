@@ -1,6 +1,6 @@
 // Scoring a folder of map files `A_B.map` (symembed's own or other methods') against a
 // dataset's ground truth, with the same Evaluator a run uses (`symembed eval`). The files are
-// named as a run names its maps (registry/pair_names.h, among the dataset's pairs): `A_B.map`,
+// named as a run names its maps (eval/pair_names.h, among the dataset's pairs): `A_B.map`,
 // unless that name is ambiguous in the dataset (p_q1 -> r1 and p -> q1_r1 are both
 // p_q1_r1.map) or holds '%'; then the escaped name (p%5Fq1_r1.map, p_q1_r1.map) is read, and
 // never the plain one.

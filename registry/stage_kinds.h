@@ -2,7 +2,7 @@
 // shape or per pair and its default type. The registry (which kinds may be registered), the
 // config parser (which `pipeline` keys exist, the defaults of kinds a config leaves out), the
 // resolved config and the pipeline builder all read it; the interface of each kind is in
-// registry/stages.h and its member in Pipeline (registry/config.h), bound to the table by
+// registry/stages.h and its member in Pipeline (harness/config.h), bound to the table by
 // Pipeline::ForEachStage.
 #pragma once
 

@@ -8,9 +8,9 @@
 
 #include "core/errors.h"
 #include "core/parallel.h"
+#include "harness/cache.h"
 #include "python/src/arrays.h"
 #include "python/src/bindings.h"
-#include "registry/cache.h"
 
 namespace symembed::python {
 namespace {

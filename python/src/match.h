@@ -1,6 +1,6 @@
 // symembed.Shape and symembed.match: the per-shape stages of one mesh given as arrays, held for
 // every pair it is matched in, and the per-pair stages of two shapes, as `symembed run` computes
-// them (registry/shape_pipeline.h ComputeMeshOutcome, registry/pair_pipeline.h ComputePair).
+// them (harness/shape_pipeline.h ComputeMeshOutcome, harness/pair_pipeline.h ComputePair).
 #pragma once
 
 #include <pybind11/pybind11.h>
@@ -9,9 +9,9 @@
 #include <memory>
 #include <string>
 
+#include "harness/pair_pipeline.h"
+#include "harness/shape_pipeline.h"
 #include "python/src/pipeline.h"
-#include "registry/pair_pipeline.h"
-#include "registry/shape_pipeline.h"
 
 namespace symembed::python {
 

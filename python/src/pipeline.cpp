@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/errors.h"
-#include "registry/shape_pipeline.h"
+#include "harness/shape_pipeline.h"
 #include "registry/stage_kinds.h"
 
 namespace symembed::python {

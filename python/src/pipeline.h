@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "registry/config.h"
+#include "harness/config.h"
 #include "registry/registry.h"
 
 namespace symembed::python {

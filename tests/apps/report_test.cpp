@@ -8,9 +8,9 @@
 
 #include "core/errors.h"
 #include "core/map_io.h"
-#include "eval/html/html_report.h"
-#include "eval/html/report_data.h"
 #include "eval/json.h"
+#include "harness/html/html_report.h"
+#include "harness/html/report_data.h"
 #include "registry/registry.h"
 #include "tests/test_util.h"
 

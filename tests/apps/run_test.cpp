@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "core/mesh_io.h"
-#include "tests/eval/run_outputs_fixture.h"
+#include "tests/harness/run_outputs_fixture.h"
 #include "tests/test_util.h"
 
 namespace symembed {

@@ -12,7 +12,7 @@
 
 #include "core/mesh_io.h"
 #include "eval/evaluator.h"
-#include "registry/config.h"
+#include "harness/config.h"
 #include "registry/registry.h"
 #include "tests/test_util.h"
 

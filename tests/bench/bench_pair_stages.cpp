@@ -25,7 +25,7 @@
 #include "core/canonical_frame.h"
 #include "core/fmap/functional_map.h"
 #include "core/nearest_kd.h"
-#include "registry/pair_pipeline.h"
+#include "harness/pair_pipeline.h"
 #include "registry/registry.h"
 #include "tests/test_util.h"
 

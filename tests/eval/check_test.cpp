@@ -4,7 +4,7 @@
 
 #include "core/errors.h"
 #include "eval/report.h"
-#include "registry/config.h"
+#include "harness/config.h"
 #include "tests/test_util.h"
 
 namespace symembed {

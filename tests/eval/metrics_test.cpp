@@ -7,8 +7,8 @@
 
 #include "eval/json.h"
 #include "eval/report.h"
-#include "registry/config.h"
-#include "registry/run_outputs.h"
+#include "harness/config.h"
+#include "harness/run_outputs.h"
 #include "tests/test_util.h"
 
 namespace symembed {

@@ -14,8 +14,8 @@
 #include <sstream>
 #include <thread>
 
-#include "registry/shards.h"
-#include "tests/eval/run_outputs_fixture.h"
+#include "harness/shards.h"
+#include "tests/harness/run_outputs_fixture.h"
 #include "tests/test_util.h"
 
 namespace symembed {

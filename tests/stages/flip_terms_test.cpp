@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/errors.h"
-#include "registry/config.h"
+#include "harness/config.h"
 #include "registry/registry.h"
 #include "stages/flip/decide_refined.h"
 #include "stages/flip/extrinsic.h"

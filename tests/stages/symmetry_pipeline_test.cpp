@@ -9,8 +9,8 @@
 
 #include "core/canonical_frame.h"
 #include "eval/synthetic/synthetic.h"
-#include "registry/config.h"
-#include "registry/pair_pipeline.h"
+#include "harness/config.h"
+#include "harness/pair_pipeline.h"
 #include "registry/registry.h"
 #include "tests/stages/chain_test_util.h"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "eval/synthetic/synthetic.h"
-#include "registry/shape_pipeline.h"
+#include "harness/shape_pipeline.h"
 #include "tests/stages/chain_test_util.h"
 
 namespace symembed {

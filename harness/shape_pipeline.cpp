@@ -1,0 +1,562 @@
+#include "harness/shape_pipeline.h"
+
+#include <algorithm>
+#include <any>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <type_traits>
+
+#include "core/canonical_frame.h"
+#include "core/errors.h"
+#include "core/mesh_graph.h"
+#include "core/procrustes.h"
+#include "core/spectral.h"
+#include "harness/pair_pipeline.h"
+#include "registry/hash.h"
+
+namespace symembed {
+namespace {
+
+// The overloads of registry/serialize.h, visible beside the local ones below.
+using ::symembed::Read;
+using ::symembed::Write;
+
+// Part of every key: bump when a stage's cached layout or the key scheme changes.
+constexpr char kCacheScheme[] = "symembed-shape-cache-1";
+
+// A cached stage output together with the seconds it took to compute.
+template <typename T>
+struct Timed {
+  T value;
+  double seconds = 0.0;
+};
+
+struct Distances {
+  Eigen::MatrixXd D;  // #S x #V, float precision
+};
+
+// Runs step; returns why it failed when it threw what bad data can cause (InvalidInputError,
+// SolverError), else "". For optional work whose failure must not fail the shape.
+template <typename Step>
+std::string FailureOf(Step&& step) {
+  try {
+    step();
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  } catch (const SolverError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void Write(ArchiveWriter& out, const Distances& d) { out.FloatMatrix(d.D); }
+void Read(ArchiveReader& in, Distances* d) { d->D = in.FloatMatrix(); }
+
+// A product in the cache, read and written with its need's functions.
+struct StoredProduct {
+  const ProductNeed* need = nullptr;
+  std::any value;
+};
+
+void Write(ArchiveWriter& out, const StoredProduct& p) { p.need->write(out, p.value); }
+void Read(ArchiveReader& in, StoredProduct* p) { p->value = p->need->read(in); }
+
+template <typename T>
+void Write(ArchiveWriter& out, const Timed<T>& t) {
+  Write(out, t.value);
+  out.F64(t.seconds);
+}
+
+template <typename T>
+void Read(ArchiveReader& in, Timed<T>* t) {
+  Read(in, &t->value);
+  t->seconds = in.F64();
+}
+
+double Since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+uint64_t StageKey(uint64_t previous, const std::string& kind, const Stage& stage) {
+  return Hasher(previous).AddString(kind).AddString(OptionsText(stage)).Digest();
+}
+
+// Loads entry `key` of `kind` into `initial`, or computes it with `compute` and stores it.
+template <typename T, typename Compute>
+T Cached(const ShapeContext& context, const std::string& kind, uint64_t key, Compute compute,
+         std::vector<StageTime>* times, T initial = T()) {
+  Timed<T> entry{std::move(initial)};
+  if (context.cache->Load(kind, key, &entry)) {
+    context.counters->Hit(kind);
+    times->push_back({kind, entry.seconds, true});
+    return std::move(entry.value);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  entry.value = compute();
+  entry.seconds = Since(start);
+  context.counters->Executed(kind);
+  context.cache->Store(kind, key, entry);
+  times->push_back({kind, entry.seconds, false});
+  return std::move(entry.value);
+}
+
+}  // namespace
+
+void StageCounters::Executed(const std::string& stage) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++executed_[stage];
+}
+
+void StageCounters::Hit(const std::string& stage) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++hits_[stage];
+}
+
+void StageCounters::Add(const StageCounters& other) {
+  const std::map<std::string, int> executed = other.executed(), hits = other.hits();
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& [stage, n] : executed) executed_[stage] += n;
+  for (const auto& [stage, n] : hits) hits_[stage] += n;
+}
+
+std::map<std::string, int> StageCounters::executed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return executed_;
+}
+
+std::map<std::string, int> StageCounters::hits() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return hits_;
+}
+
+namespace {
+
+// A copy of node without the map keys in kOutcomeNeutralKeys, at any depth.
+YAML::Node WithoutNeutralKeys(const YAML::Node& node) {
+  static const char* const kOutcomeNeutralKeys[] = {"threads"};
+  if (!node.IsMap()) return YAML::Clone(node);
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    bool neutral = false;
+    for (const char* k : kOutcomeNeutralKeys) neutral = neutral || key == k;
+    if (!neutral) out[key] = WithoutNeutralKeys(kv.second);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string OptionsText(const Stage& stage) {
+  YAML::Emitter emitter;
+  emitter.SetDoublePrecision(17);
+  emitter << WithoutNeutralKeys(stage.resolved_options());
+  return emitter.c_str();
+}
+
+void InputToKept(const Eigen::MatrixX3d& input_V, const std::vector<int>& input_ids,
+                 std::vector<int>* kept_of_input, std::vector<int>* nearest_kept) {
+  const int n = static_cast<int>(input_V.rows());
+  kept_of_input->assign(n, -1);
+  for (int k = 0; k < static_cast<int>(input_ids.size()); ++k) {
+    const int v = input_ids[k];
+    if (v < 0 || v >= n) {
+      throw InvalidInputError("preprocessing returned input id " + std::to_string(v) +
+                              " outside [0, " + std::to_string(n) + ")");
+    }
+    (*kept_of_input)[v] = k;
+  }
+  *nearest_kept = *kept_of_input;
+  if (input_ids.empty()) return;
+  // Removed vertices are few (small components, degenerate faces): brute force is enough.
+  for (int v = 0; v < n; ++v) {
+    if ((*kept_of_input)[v] >= 0) continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < static_cast<int>(input_ids.size()); ++k) {
+      const double d = (input_V.row(input_ids[k]) - input_V.row(v)).squaredNorm();
+      if (d < best) {
+        best = d;
+        (*nearest_kept)[v] = k;
+      }
+    }
+  }
+}
+
+double SymmetryGroundTruthError(const Eigen::MatrixX3d& Y, const std::vector<int>& ids,
+                                const std::vector<int>& sym_ids) {
+  SYMEMBED_CHECK(ids.size() == sym_ids.size(), "ground truth lines differ in length");
+  const double size = RmsRadius(Y);
+  double sum = 0.0;
+  int lines = 0;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const int a = ids[i], b = sym_ids[i];
+    if (a < 0 || b < 0) continue;
+    SYMEMBED_CHECK(a < Y.rows() && b < Y.rows(), "ground truth id out of range");
+    Eigen::RowVector3d mirrored = Y.row(a);
+    mirrored(0) = -mirrored(0);
+    sum += (mirrored - Y.row(b)).norm();
+    ++lines;
+  }
+  if (lines == 0 || !(size > 0.0)) return -1.0;
+  return sum / lines / size;
+}
+
+double GroundTruthGeodesicAsymmetry(const Surface& surface, const std::vector<int>& ids,
+                                    const std::vector<int>& sym_ids, int max_lines) {
+  SYMEMBED_CHECK(ids.size() == sym_ids.size(), "ground truth lines differ in length");
+  const int n = surface.NumVertices();
+  std::vector<int> valid;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    if (ids[i] < 0 || sym_ids[i] < 0) continue;
+    SYMEMBED_CHECK(ids[i] < n && sym_ids[i] < n, "ground truth id out of range");
+    valid.push_back(static_cast<int>(i));
+  }
+  if (max_lines < 2 || valid.size() < 2) return -1.0;
+  // Evenly spaced lines: the ground truth's own order, whatever it is, decides nothing else.
+  const size_t count = std::min(valid.size(), static_cast<size_t>(max_lines));
+  std::vector<int> a(count), b(count);
+  for (size_t k = 0; k < count; ++k) {
+    const int line = valid[k * valid.size() / count];
+    a[k] = ids[line];
+    b[k] = sym_ids[line];
+  }
+  const MeshGraph graph = BuildMeshGraph(surface);
+  DijkstraWorkspace<double> workspace;
+  std::vector<double> from_a(n), from_b(n);
+  double sum = 0.0, largest = 0.0;
+  long pairs = 0;
+  for (size_t i = 0; i < count; ++i) {
+    Dijkstra(graph, a[i], from_a.data(), &workspace);
+    Dijkstra(graph, b[i], from_b.data(), &workspace);
+    for (size_t j = i + 1; j < count; ++j) {
+      const double da = from_a[a[j]], db = from_b[b[j]];
+      if (!std::isfinite(da) || !std::isfinite(db)) continue;
+      sum += std::abs(da - db);
+      largest = std::max(largest, da);
+      ++pairs;
+    }
+  }
+  if (pairs == 0 || !(largest > 0.0)) return -1.0;
+  return sum / pairs / largest;
+}
+
+double SelfMapDisplacement(const ShapeData& data) {
+  const Eigen::MatrixXd& Y = data.embedding.Y;
+  if (data.symmetry.sigma.size() != data.samples.size()) return -1.0;
+  Eigen::MatrixXd P(data.samples.size(), Y.cols());
+  for (size_t i = 0; i < data.samples.size(); ++i) P.row(i) = Y.row(data.samples[i]);
+  return SelfMapDisplacement(P, data.symmetry.sigma);
+}
+
+double CanonicalXSpread(const Eigen::MatrixX3d& Y) {
+  if (Y.rows() < 2) return -1.0;
+  const Eigen::RowVector3d sd =
+      ((Y.rowwise() - Y.colwise().mean()).colwise().squaredNorm() / (Y.rows() - 1)).cwiseSqrt();
+  const double other = std::min(sd(1), sd(2));
+  return other > 0.0 ? sd(0) / other : -1.0;
+}
+
+namespace {
+
+// The per-shape measures of shapes.csv that depend only on the mesh content: what the sampling,
+// embedding, symmetry, symmetrize and canonical-frame stages report.
+void AddShapeMeasures(const SamplingResult& sampling, const SymmetrizeResult& symmetrized,
+                      double axis_ratio, const ShapeData& data, ShapeOutcome* out) {
+  out->report.push_back({"samples", static_cast<double>(data.samples.size())});
+  out->report.push_back({"coverage_radius", sampling.coverage_radius});
+  out->report.push_back({"normalized_stress", data.embedding.normalized_stress});
+  out->report.push_back({"reflection", static_cast<double>(data.embedding.reflection)});
+  out->report.push_back({"symmetry_score", data.symmetry.score});
+  out->report.push_back({"asymmetry_before", symmetrized.asymmetry_before});
+  out->report.push_back({"asymmetry_after", symmetrized.asymmetry_after});
+  out->report.push_back(
+      {"symmetrize_iterations", static_cast<double>(symmetrized.status.iterations)});
+  out->report.push_back({"frame_axis_ratio", axis_ratio});
+  out->report.push_back({"self_map_displacement", SelfMapDisplacement(data)});
+  out->report.push_back({"canonical_x_spread", CanonicalXSpread(data.Y)});
+}
+
+// The per-shape measures of shapes.csv against a shape's symmetric ground truth (none without
+// one): the error of the symmetric embedding, and the asymmetry of the surface's own geodesics.
+Report GroundTruthMeasures(const ShapeOutcome& out) {
+  Report report;
+  if (out.ground_truth.sym_ids.empty()) return report;
+  // The shape's lines against themselves: target_sym_ids are the symmetric partners, in
+  // preprocessed ids like the pairs' ground truth (lines of removed vertices dropped).
+  const PreprocessedGroundTruth self =
+      ToPreprocessedIds(PairLines(out.ground_truth, out.ground_truth), out, out);
+  const ShapeData& data = *out.data;
+  const double error = SymmetryGroundTruthError(data.Y, self.source_ids, self.target_sym_ids);
+  if (error >= 0.0) report.push_back({"symmetry_gt_error", error});
+  const double asymmetry =
+      GroundTruthGeodesicAsymmetry(data.surface, self.source_ids, self.target_sym_ids);
+  if (asymmetry >= 0.0) report.push_back({"gt_geodesic_asymmetry", asymmetry});
+  return report;
+}
+
+// The cache keys of what a product can be computed from (ProductInput).
+struct InputKeys {
+  uint64_t surface = 0;    // preprocess
+  uint64_t samples = 0;    // sampling
+  uint64_t embedding = 0;  // symmetrize
+};
+
+uint64_t BasisKey(uint64_t surface_key, const LaplaceBasisOptions& options) {
+  return Hasher(surface_key)
+      .AddString("laplace_basis")
+      .AddU64(static_cast<uint64_t>(options.k))
+      .AddU64(static_cast<uint64_t>(options.mass))
+      .AddBytes(&options.tolerance, sizeof(options.tolerance))
+      .AddU64(static_cast<uint64_t>(options.max_iterations))
+      .Digest();
+}
+
+// Computes (or loads) what the per-pair stages declare they need (PairStage::Needs) into
+// data->basis and data->products: the basis of the most eigenpairs any stage reads, each
+// product keyed by its input's key and its id, and a smaller basis only when a product missing
+// from the cache is computed from it. Returns the shape's key for the pair cache: the embedding's
+// key and the key of everything the stages read.
+uint64_t PrepareNeeds(const Pipeline& pipeline, const ShapeContext& context, const InputKeys& keys,
+                      ShapeData* data, ShapeOutcome* out) {
+  ShapeNeeds needs;
+  Pipeline::ForEachStage(pipeline, [&](const char*, const auto& member) {
+    using T = typename std::decay_t<decltype(member)>::element_type;
+    if constexpr (std::is_base_of_v<PairStage, T>) needs.Add(member->Needs());
+  });
+  auto options_of = [](int k) {
+    LaplaceBasisOptions options;
+    options.k = k;
+    return options;
+  };
+  std::map<int, LaplaceBasis> bases;  // by eigenpairs
+  auto basis = [&](int k) -> const LaplaceBasis& {
+    auto it = bases.find(k);
+    if (it == bases.end()) {
+      LaplaceBasis b = Cached<LaplaceBasis>(
+          context, "laplace_basis", BasisKey(keys.surface, options_of(k)),
+          [&] { return ComputeLaplaceBasis(data->surface, options_of(k)); }, &out->times);
+      it = bases.emplace(k, std::move(b)).first;
+    }
+    return it->second;
+  };
+  Hasher pair_key(keys.embedding);
+  if (needs.basis > 0) {
+    data->basis = basis(needs.basis);
+    pair_key.AddU64(BasisKey(keys.surface, options_of(needs.basis)));
+  }
+  static const LaplaceBasis kNoBasis;
+  for (const ProductNeed& need : needs.products) {
+    uint64_t input_key = keys.surface;
+    if (need.input == ProductInput::kSamples) input_key = keys.samples;
+    if (need.input == ProductInput::kEmbedding) input_key = keys.embedding;
+    if (need.input == ProductInput::kBasis) {
+      input_key = BasisKey(keys.surface, options_of(need.basis_size));
+    }
+    const uint64_t key = Hasher(input_key).AddString(need.id).Digest();
+    pair_key.AddU64(key);
+    StoredProduct stored = Cached<StoredProduct>(
+        context, need.name, key,
+        [&] {
+          const LaplaceBasis& b =
+              need.input == ProductInput::kBasis ? basis(need.basis_size) : kNoBasis;
+          return StoredProduct{&need, need.compute(*data, b)};
+        },
+        &out->times, StoredProduct{&need, {}});
+    data->products.PutAny(need.id, std::make_shared<const std::any>(std::move(stored.value)));
+  }
+  return pair_key.Digest();
+}
+
+// The cache keys of the per-shape stages' outputs: the MeshKey, then for each stage
+// H(previous key, kind, resolved options).
+struct ShapeStageKeys {
+  uint64_t preprocess, sampling, geodesics, embedding, symmetry, symmetrize;
+};
+
+ShapeStageKeys ShapeStageKeysOf(uint64_t mesh_key, const Pipeline& pipeline) {
+  ShapeStageKeys keys;
+  keys.preprocess = StageKey(mesh_key, "preprocess", *pipeline.preprocess);
+  keys.sampling = StageKey(keys.preprocess, "sampling", *pipeline.sampling);
+  keys.geodesics = StageKey(keys.sampling, "geodesics", *pipeline.geodesics);
+  keys.embedding = StageKey(keys.geodesics, "embedding", *pipeline.embedding);
+  keys.symmetry = StageKey(keys.embedding, "symmetry", *pipeline.symmetry);
+  keys.symmetrize = StageKey(keys.symmetry, "symmetrize", *pipeline.symmetrize);
+  return keys;
+}
+
+}  // namespace
+
+uint64_t MeshKey(const std::string& mesh_path) {
+  const std::string extension = std::filesystem::path(mesh_path).extension().string();
+  return Hasher().AddString(kCacheScheme).AddString(extension).AddU64(HashFile(mesh_path)).Digest();
+}
+
+uint64_t SurfaceMeshKey(const Surface& surface) {
+  Hasher hasher;
+  hasher.AddString(kCacheScheme).AddString("arrays");
+  hasher.AddU64(static_cast<uint64_t>(surface.V.rows()))
+      .AddU64(static_cast<uint64_t>(surface.F.rows()));
+  for (Eigen::Index i = 0; i < surface.V.rows(); ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const double x = surface.V(i, j);
+      uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      hasher.AddU64(bits);
+    }
+  }
+  for (Eigen::Index i = 0; i < surface.F.rows(); ++i) {
+    for (int j = 0; j < 3; ++j) {
+      hasher.AddU64(static_cast<uint64_t>(static_cast<int64_t>(surface.F(i, j))));
+    }
+  }
+  return hasher.Digest();
+}
+
+ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mesh_key,
+                                const Pipeline& pipeline, const ShapeContext& context) {
+  ShapeOutcome out;
+  out.input = std::move(input);
+  out.times.push_back({"load", load_seconds, false});
+
+  const ShapeStageKeys keys = ShapeStageKeysOf(mesh_key, pipeline);
+  out.surface_key = keys.preprocess;
+  const uint64_t pre_key = keys.preprocess, samp_key = keys.sampling, geo_key = keys.geodesics,
+                 emb_key = keys.embedding, sym_key = keys.symmetry, symz_key = keys.symmetrize;
+
+  auto data = std::make_shared<ShapeData>();
+  const PreprocessResult pre = Cached<PreprocessResult>(
+      context, "preprocess", pre_key, [&] { return pipeline.preprocess->Run(out.input); },
+      &out.times);
+  data->surface = pre.surface;
+  data->input_ids = pre.input_ids;
+  data->scale = pre.scale;
+  out.report = pre.report;
+  InputToKept(out.input.V, data->input_ids, &out.kept_of_input, &out.nearest_kept);
+
+  const SamplingResult sampling = Cached<SamplingResult>(
+      context, "sampling", samp_key, [&] { return pipeline.sampling->Run(data->surface); },
+      &out.times);
+  data->samples = sampling.samples;
+
+  // D is loaded or computed only when a stage that reads it has to run.
+  std::unique_ptr<Distances> distances;
+  auto D = [&]() -> const Eigen::MatrixXd& {
+    if (!distances) {
+      distances = std::make_unique<Distances>(Cached<Distances>(
+          context, "geodesics", geo_key,
+          [&] {
+            auto solver = pipeline.geodesics->Prepare(data->surface);
+            Distances d{solver->Distances(data->samples)};
+            d.D = d.D.cast<float>().cast<double>();
+            return d;
+          },
+          &out.times));
+    }
+    return distances->D;
+  };
+
+  data->embedding = Cached<EmbeddingResult>(
+      context, "embedding", emb_key,
+      [&] {
+        return pipeline.embedding->Run(EmbeddingInput{data->surface, data->samples, D()});
+      },
+      &out.times);
+  data->symmetry = Cached<SymmetryResult>(
+      context, "symmetry", sym_key,
+      [&] {
+        return pipeline.symmetry->Run(
+            SymmetryInput{data->surface, data->samples, D(), data->embedding});
+      },
+      &out.times);
+  // The embedding symmetrized about a plane; the second plane's keyed like the first.
+  auto symmetrize = [&](const char* name, uint64_t key, const SymmetryResult& symmetry) {
+    return Cached<SymmetrizeResult>(
+        context, name, key,
+        [&] {
+          return pipeline.symmetrize->Run(
+              SymmetryInput{data->surface, data->samples, D(), data->embedding}, symmetry);
+        },
+        &out.times);
+  };
+  const SymmetrizeResult symmetrized = symmetrize("symmetrize", symz_key, data->symmetry);
+  const uint64_t alt_sym_key = Hasher(sym_key).AddString("second plane").Digest();
+  const uint64_t alt_symz_key = Hasher(symz_key).AddString("second plane").Digest();
+  // The second plane is a hypothesis beside a plane that worked: when its search or its
+  // symmetrization fails on this shape, the shape goes on with the first plane alone.
+  SymmetryResult second;
+  std::optional<SymmetrizeResult> second_symmetrized;
+  std::string second_failure = FailureOf([&] {
+    second = Cached<SymmetryResult>(
+        context, "symmetry_second", alt_sym_key,
+        [&] {
+          return pipeline.symmetry->RunAlternative(
+              SymmetryInput{data->surface, data->samples, D(), data->embedding}, data->symmetry);
+        },
+        &out.times);
+    if (!second.sigma.empty()) {
+      second_symmetrized = symmetrize("symmetrize_second", alt_symz_key, second);
+    }
+  });
+  distances.reset();
+
+  const auto start = std::chrono::steady_clock::now();
+  double axis_ratio = 0.0;
+  data->Y = CanonicalFrame(symmetrized.Y, nullptr, nullptr, &axis_ratio);
+  out.times.push_back({"canonical_frame", Since(start), false});
+
+  AddShapeMeasures(sampling, symmetrized, axis_ratio, *data, &out);
+
+  out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, symz_key}, data.get(), &out);
+  if (second_symmetrized && second_failure.empty()) {
+    second_failure = FailureOf([&] {
+      auto alternative = std::make_shared<ShapeData>(*data);
+      alternative->symmetry = second;
+      alternative->Y = CanonicalFrame(second_symmetrized->Y, nullptr, nullptr, nullptr);
+      const uint64_t alt_key = PrepareNeeds(pipeline, context, {pre_key, samp_key, alt_symz_key},
+                                            alternative.get(), &out);
+      out.key = Hasher(out.key).AddU64(alt_key).Digest();
+      out.alternative = std::move(alternative);
+    });
+  }
+  if (!second_failure.empty()) {
+    out.warnings.push_back(
+        "second plane hypothesis dropped (the shape goes on with its first plane): " +
+        second_failure);
+  }
+  // Last: OutcomeOfShape puts the ground-truth measures before it.
+  out.report.push_back(
+      {"second_plane", !second_failure.empty() ? -1.0 : (out.alternative ? 1.0 : 0.0)});
+  out.data = std::move(data);
+  return out;
+}
+
+ShapeOutcome OutcomeOfShape(ShapeOutcome content, const DatasetShape& shape, ShapeGroundTruth truth,
+                            bool reused) {
+  SYMEMBED_CHECK(
+      content.data && !content.report.empty() && content.report.back().first == "second_plane",
+      "not an outcome of ComputeMeshOutcome");
+  ShapeOutcome out = std::move(content);
+  out.name = shape.name;
+  out.ground_truth = std::move(truth);
+  // The per-pair stages name the shape through its data: an outcome of another name keeps its
+  // own copy.
+  for (std::shared_ptr<ShapeData>* data : {&out.data, &out.alternative}) {
+    if (!*data) continue;
+    if (data->use_count() > 1) *data = std::make_shared<ShapeData>(**data);
+    (*data)->name = shape.name;
+  }
+  // Where a single computation of the shape put them, so that shapes.csv's columns keep their
+  // order.
+  const Report measures = GroundTruthMeasures(out);
+  out.report.insert(out.report.end() - 1, measures.begin(), measures.end());
+  if (reused) {
+    for (StageTime& time : out.times) time.cached = true;
+  }
+  return out;
+}
+
+}  // namespace symembed
