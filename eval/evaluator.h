@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "eval/evaluation_options.h"
 #include "eval/metrics.h"
-#include "harness/config.h"
 #include "registry/stages.h"
 
 namespace symembed {

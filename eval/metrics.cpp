@@ -9,7 +9,7 @@
 #include <tuple>
 
 #include "core/errors.h"
-#include "harness/config.h"
+#include "eval/evaluation_options.h"
 #include "registry/types.h"
 
 namespace symembed {

@@ -17,7 +17,7 @@
 
 namespace symembed {
 
-struct EvaluationOptions;  // harness/config.h
+struct EvaluationOptions;  // eval/evaluation_options.h
 
 // The thresholds of the "% <= t" measures, and their keys in summary.json and CSV headers.
 constexpr std::array<double, 3> kErrorThresholds = {0.05, 0.10, 0.25};
