@@ -11,7 +11,9 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,8 +31,24 @@ const char* FlipClassName(FlipClass flip);  // "none", "left_right", "front_back
 // Throws InvalidInputError for an unknown name.
 FlipClass ParseFlipClass(const std::string& name);
 
-// The evaluation of one map A -> B.
+// What a run computed a pair's outputs from: the cache keys of both shapes' per-shape data (mesh
+// bytes and every per-shape stage's resolved options) and the pair's key (both shape keys, the
+// per-pair stages' and the evaluation's options, the ground truth). --resume keeps a pair only
+// when its record carries the inputs of the current run.
+struct PairInputs {
+  uint64_t source = 0;
+  uint64_t target = 0;
+  uint64_t pair = 0;
+  bool operator==(const PairInputs& other) const {
+    return source == other.source && target == other.target && pair == other.pair;
+  }
+};
+
+// The evaluation of one map A -> B; also the pair's record in a run (pairs/STEM.rec).
 struct PairEvaluation {
+  // What a run computed the pair from (the first member of its record); none for the pairs
+  // of `symembed eval` and for a record without an `inputs` member.
+  std::optional<PairInputs> inputs;
   std::string source, target;
   bool ok = false;              // false: failed, see message; no errors recorded
   std::string message;          // why it failed (empty when ok)

@@ -19,6 +19,7 @@
 #include "core/errors.h"
 #include "core/files.h"
 #include "eval/pair_names.h"
+#include "registry/hash.h"
 
 namespace fs = std::filesystem;
 
@@ -540,13 +541,42 @@ std::string SerializePairRecord(const PairEvaluation& p) {
     j.Set("initial_mean_direct", JsonValue::Number(p.initial_mean_direct));
     j.Set("initial_mean_sym", JsonValue::Number(p.initial_mean_sym));
   }
-  return WriteJson(j, 0);
+  const std::string members = WriteJson(j, 0);
+  if (!p.inputs) return members;
+  return "{\"inputs\":{\"source\":\"" + HexDigest(p.inputs->source) + "\",\"target\":\"" +
+         HexDigest(p.inputs->target) + "\",\"pair\":\"" + HexDigest(p.inputs->pair) + "\"}," +
+         members.substr(1);
 }
+
+namespace {
+
+// The `inputs` member of a record: {"source", "target", "pair"}, each 16 lowercase hex digits.
+PairInputs ReadPairInputs(const JsonValue& json, const std::string& where) {
+  const auto hex = [&](const char* key) {
+    const JsonValue& value = json.Get(key);
+    const std::optional<uint64_t> digest =
+        value.IsString() ? ParseHexDigest(value.AsString()) : std::nullopt;
+    if (!digest) {
+      throw InvalidInputError(where + ": inputs: expected source, target and pair of 16 hex "
+                                      "digits each");
+    }
+    return *digest;
+  };
+  if (!json.IsObject()) throw InvalidInputError(where + ": inputs: expected an object");
+  PairInputs inputs;
+  inputs.source = hex("source");
+  inputs.target = hex("target");
+  inputs.pair = hex("pair");
+  return inputs;
+}
+
+}  // namespace
 
 PairEvaluation ParsePairRecord(const std::string& text, const std::string& where) {
   const JsonValue j = ParseJson(text, where);
   if (!j.IsObject()) throw InvalidInputError(where + ": expected a JSON object");
   PairEvaluation p;
+  if (j.Has("inputs")) p.inputs = ReadPairInputs(j.Get("inputs"), where);
   p.source = Require(j, "source", where).AsString();
   p.target = Require(j, "target", where).AsString();
   p.ok = Require(j, "ok", where).AsBool();

@@ -10,6 +10,7 @@
 #include "core/files.h"
 #include "core/map_io.h"
 #include "eval/pair_names.h"
+#include "eval/report.h"
 
 namespace fs = std::filesystem;
 
@@ -44,15 +45,14 @@ size_t Column(const std::vector<std::string>& header, const std::string& name,
 // it succeeded; the records and maps of the folder are proved against this list, as --resume
 // proves them, so that a record or map lost or cut short after the run is found, not merged.
 // A folder whose evaluation wrote no pairs.csv lists the pairs of its records.
-std::vector<std::pair<DatasetPair, bool>> ListedPairs(const std::string& dir,
-                                                      RunEvaluation& evaluation) {
+std::vector<std::pair<DatasetPair, bool>> ListedPairs(const std::string& dir) {
   const std::string path = dir + "/pairs.csv";
   const std::optional<std::string> text = ReadFileBytes(path);
   if (!text) {
     std::vector<std::pair<DatasetPair, bool>> pairs;
     for (const fs::path& file : FilesWithExtension(dir + "/pairs", ".rec")) {
-      const std::string text = ReadFileOrThrow(file.string());
-      pairs.push_back({evaluation.PairOfRecord(text, file.string()), true});
+      const PairEvaluation record = ParsePairRecord(ReadFileOrThrow(file.string()), file.string());
+      pairs.push_back({{record.source, record.target}, true});
     }
     return pairs;
   }
@@ -134,7 +134,7 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
                                 "/config.yaml");
       }
       results.merged_from.push_back(dir);
-      listed.push_back(ListedPairs(dir, evaluation));
+      listed.push_back(ListedPairs(dir));
       if (auto text = ReadFileBytes(dir + "/failures.csv")) {
         for (Failure& f : ParseFailuresCsv(*text, dir + "/failures.csv")) {
           failures.insert(std::move(f));
@@ -155,7 +155,7 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
     const auto stem = [&](const DatasetPair& pair) -> const std::string& {
       return pair_names.Stem(pair.source, pair.target);
     };
-    std::map<std::pair<std::string, std::string>, std::string> records;
+    std::map<std::pair<std::string, std::string>, PairEvaluation> records;
     for (size_t s = 0; s < results.merged_from.size(); ++s) {
       const std::string& dir = results.merged_from[s];
       const std::map<std::string, int> vertices = InputVertices(dir);
@@ -170,7 +170,8 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
                                   listed_pair.target + " as ok, but its record " + file +
                                   " is missing" + rerun);
         }
-        const DatasetPair pair = evaluation.PairOfRecord(*text, file);
+        PairEvaluation record = ParsePairRecord(*text, file);
+        const DatasetPair pair{record.source, record.target};
         if (pair.source != listed_pair.source || pair.target != listed_pair.target) {
           throw InvalidInputError(file + ": holds the record of " + pair.source + " -> " +
                                   pair.target);
@@ -188,7 +189,7 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
         } catch (const Error& e) {
           throw InvalidInputError(std::string("the map of ") + file + ": " + e.what() + rerun);
         }
-        records[{pair.source, pair.target}] = *text;
+        records[{pair.source, pair.target}] = std::move(record);
         WriteFileAtomically(PairRecordPath(results.dir, stem(pair)), *text);
         WriteFileAtomically(PairMapPath(results.dir, stem(pair)), *map_text);
       }
@@ -204,7 +205,7 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
     WriteFileAtomically(VariantConfigPath(results.dir), config_text);
     // Failed pairs keep their map (written before the evaluation failed), when there is one.
     std::set<std::pair<std::string, std::string>> pair_set;
-    for (const auto& [key, text] : records) pair_set.insert(key);
+    for (const auto& [key, record] : records) pair_set.insert(key);
     for (const Failure& f : failures) {
       if (f.kind != "pair" || records.count({f.source, f.target})) continue;
       pair_set.insert({f.source, f.target});
@@ -220,7 +221,9 @@ std::vector<Failure> MergeRuns(const std::vector<std::string>& shard_dirs,
     for (const auto& [source, target] : pair_set) {
       results.pairs.push_back({source, target});
       auto it = records.find({source, target});
-      results.records.push_back(it == records.end() ? "" : it->second);
+      results.records.push_back(it == records.end()
+                                    ? std::nullopt
+                                    : std::optional<PairEvaluation>(std::move(it->second)));
     }
     all_failures.insert(all_failures.end(), results.failures.begin(), results.failures.end());
     const std::string variant_dir = results.dir;

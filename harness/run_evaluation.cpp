@@ -86,8 +86,8 @@ class GroundTruthVariantEvaluation : public VariantEvaluation {
     return shared_->evaluator->MeanError(id, *target, map, pair.ground_truth);
   }
 
-  std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
-                       std::string* failure) const override {
+  PairEvaluation Evaluate(const PairContext& pair, const PairOutcome& outcome,
+                          std::string* failure) const override {
     const auto [id, target] = shared_->Target(pair.target);
     PairEvaluation evaluation =
         shared_->evaluator->Evaluate(pair.source.name, id, *target, outcome.map, pair.ground_truth,
@@ -95,7 +95,7 @@ class GroundTruthVariantEvaluation : public VariantEvaluation {
     evaluation.target = pair.target.name;
     if (!evaluation.ok) {
       *failure = "evaluation: " + evaluation.message;
-      return "";
+      return evaluation;
     }
     if (!outcome.initial_map.empty()) {
       const PairEvaluation initial =
@@ -119,7 +119,7 @@ class GroundTruthVariantEvaluation : public VariantEvaluation {
       evaluation.candidate_errors.assign(outcome.oracle_errors.begin(),
                                          outcome.oracle_errors.end());
     }
-    return SerializePairRecord(evaluation);
+    return evaluation;
   }
 
  private:
@@ -151,12 +151,6 @@ std::unique_ptr<VariantEvaluation> GroundTruthRunEvaluation::ForVariant(const Pi
   return std::make_unique<GroundTruthVariantEvaluation>(shared);
 }
 
-DatasetPair GroundTruthRunEvaluation::PairOfRecord(const std::string& record,
-                                                   const std::string& where) const {
-  const PairEvaluation evaluation = ParsePairRecord(record, where);
-  return {evaluation.source, evaluation.target};
-}
-
 void GroundTruthRunEvaluation::WriteVariant(const VariantResults& results) {
   std::map<std::pair<std::string, std::string>, std::string> messages;
   for (const Failure& f : results.failures) {
@@ -165,8 +159,8 @@ void GroundTruthRunEvaluation::WriteVariant(const VariantResults& results) {
   std::vector<PairEvaluation> pairs;
   for (size_t i = 0; i < results.pairs.size(); ++i) {
     const DatasetPair& p = results.pairs[i];
-    if (!results.records[i].empty()) {
-      pairs.push_back(ParsePairRecord(results.records[i], results.dir + "/pairs"));
+    if (results.records[i]) {
+      pairs.push_back(*results.records[i]);
       continue;
     }
     PairEvaluation failed;

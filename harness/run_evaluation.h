@@ -23,7 +23,6 @@ class GroundTruthRunEvaluation : public RunEvaluation {
   ~GroundTruthRunEvaluation() override;
 
   std::unique_ptr<VariantEvaluation> ForVariant(const Pipeline& pipeline) override;
-  DatasetPair PairOfRecord(const std::string& record, const std::string& where) const override;
   // summary.json, pairs.csv, curve.csv, timings.csv from the records; a pair without a record
   // is reported failed with its message from failures.csv.
   void WriteVariant(const VariantResults& results) override;

@@ -2,14 +2,12 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <tuple>
 
 #include "core/errors.h"
 #include "core/files.h"
-#include "registry/hash.h"
 
 namespace symembed {
 namespace {
@@ -213,57 +211,6 @@ std::vector<std::string> ParseVariantsList(const std::string& text) {
     start = end + 1;
   }
   return lines;
-}
-
-bool PairInputs::operator==(const PairInputs& other) const {
-  return source == other.source && target == other.target && pair == other.pair;
-}
-
-namespace {
-
-constexpr char kInputsPrefix[] = "{\"inputs\":{";
-
-// Reads `"name":"<16 hex>"` at *pos and moves past it.
-bool ReadHexMember(const std::string& text, const std::string& name, size_t* pos, uint64_t* out) {
-  const std::string head = "\"" + name + "\":\"";
-  if (text.compare(*pos, head.size(), head) != 0) return false;
-  *pos += head.size();
-  const std::string digits = text.substr(*pos, 16);
-  if (digits.size() != 16 || digits.find_first_not_of("0123456789abcdef") != std::string::npos ||
-      *pos + 16 >= text.size() || text[*pos + 16] != '"') {
-    return false;
-  }
-  *out = std::strtoull(digits.c_str(), nullptr, 16);
-  *pos += 17;
-  return true;
-}
-
-}  // namespace
-
-std::string StampPairInputs(const std::string& record, const PairInputs& inputs) {
-  if (record.empty() || record[0] != '{') {
-    throw InvalidInputError("pair record: expected a JSON object, got '" + record.substr(0, 20) +
-                            "'");
-  }
-  const bool empty_object = record.find_first_not_of(" \t\r\n", 1) == record.find('}');
-  return std::string(kInputsPrefix) + "\"source\":\"" + HexDigest(inputs.source) +
-         "\",\"target\":\"" + HexDigest(inputs.target) + "\",\"pair\":\"" +
-         HexDigest(inputs.pair) + "\"}" +
-         (empty_object ? "" : ",") + record.substr(1);
-}
-
-std::optional<PairInputs> PairInputsOfRecord(const std::string& record) {
-  const std::string prefix = kInputsPrefix;
-  if (record.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
-  size_t pos = prefix.size();
-  PairInputs inputs;
-  if (!ReadHexMember(record, "source", &pos, &inputs.source) || record[pos++] != ',' ||
-      !ReadHexMember(record, "target", &pos, &inputs.target) || record[pos++] != ',' ||
-      !ReadHexMember(record, "pair", &pos, &inputs.pair) || pos >= record.size() ||
-      record[pos] != '}') {
-    return std::nullopt;
-  }
-  return inputs;
 }
 
 std::string InProgressPath(const std::string& dir) { return dir + "/IN_PROGRESS"; }

@@ -9,8 +9,6 @@
 //   variants.txt       in the experiment folder: the config's variant names, in order
 #pragma once
 
-#include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,24 +60,6 @@ std::string ShapeRecordPath(const std::string& variant_dir, const std::string& s
 
 // The variant names of a variants.txt, in order (empty lines skipped).
 std::vector<std::string> ParseVariantsList(const std::string& text);
-
-// What a pair's outputs were computed from: the cache keys of both shapes' per-shape data (mesh
-// bytes and every per-shape stage's resolved options) and the pair's key (both shape keys, the
-// per-pair stages' and the evaluation's options, the ground truth). --resume keeps a pair only
-// when its record carries the inputs of the current run.
-struct PairInputs {
-  uint64_t source = 0;
-  uint64_t target = 0;
-  uint64_t pair = 0;
-  bool operator==(const PairInputs& other) const;
-};
-
-// A record is a one-line JSON object; the inputs become its first member:
-// {"inputs":{"source":"<16 hex>","target":"<16 hex>","pair":"<16 hex>"},...}. Throws
-// InvalidInputError when the record is not a JSON object.
-std::string StampPairInputs(const std::string& record, const PairInputs& inputs);
-// The inputs of a stamped record; std::nullopt when it carries none.
-std::optional<PairInputs> PairInputsOfRecord(const std::string& record);
 
 // A folder being written (a variant of `symembed run`, a merge, an eval) holds IN_PROGRESS until
 // its summary is complete; readers of results refuse such a folder.

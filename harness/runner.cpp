@@ -13,6 +13,7 @@
 #include "core/mesh_io.h"
 #include "core/parallel.h"
 #include "eval/pair_names.h"
+#include "eval/report.h"
 #include "harness/content_groups.h"
 #include "harness/progress.h"
 #include "registry/options.h"
@@ -39,7 +40,8 @@ double Since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// A pair's cached result (the runner only caches pairs that succeeded).
+// A pair's cached result (the runner only caches pairs that succeeded): its map and its record
+// without inputs (SerializePairRecord).
 struct PairEntry {
   std::vector<int> map;
   std::string record;
@@ -157,7 +159,7 @@ class VariantRun {
     for (size_t i = 0; i < all.size(); ++i) {
       if (shard[i] == options_.shard_index) pairs_.push_back(all[i]);
     }
-    records_.assign(pairs_.size(), "");
+    records_.assign(pairs_.size(), std::nullopt);
     for (size_t i = 0; i < pairs_.size(); ++i) {
       const std::string record = PairRecordPath(dir_, Stem(pairs_[i]));
       if (options_.resume) {
@@ -270,14 +272,15 @@ class VariantRun {
         continue;
       }
       std::string problem;
-      const std::optional<std::string> text = ReadFileBytes(path);
+      std::optional<PairEvaluation> record;
       try {
+        const std::optional<std::string> text = ReadFileBytes(path);
         if (!text) throw InvalidInputError("cannot read it");
-        const DatasetPair recorded = evaluation_.PairOfRecord(*text, path);
-        if (recorded.source != pair.source || recorded.target != pair.target) {
-          problem = "it holds the record of " + recorded.source + " -> " + recorded.target;
+        record = ParsePairRecord(*text, path);
+        if (record->source != pair.source || record->target != pair.target) {
+          problem = "it holds the record of " + record->source + " -> " + record->target;
         } else {
-          problem = InputsProblem(PairInputsOfRecord(*text), setup->inputs);
+          problem = InputsProblem(record->inputs, setup->inputs);
         }
       } catch (const std::exception& e) {
         problem = std::string("unreadable record (") + e.what() + ")";
@@ -293,7 +296,7 @@ class VariantRun {
         }
       }
       if (problem.empty()) {
-        records_[i] = *text;
+        records_[i] = std::move(record);
         ++stats_->pairs_skipped;
         continue;
       }
@@ -378,23 +381,27 @@ class VariantRun {
     progress.Finish();
   }
 
-  // Returns the record text (empty when the pair failed; the failure is recorded).
-  std::string RunPair(const DatasetPair& pair, const VariantEvaluation& evaluation) {
+  // Returns the pair's record (none when the pair failed; the failure is recorded).
+  std::optional<PairEvaluation> RunPair(const DatasetPair& pair,
+                                        const VariantEvaluation& evaluation) {
     const std::optional<PairSetup> setup = Setup(pair);
     if (!setup) {
       const std::string name = shapes_.count(pair.source) ? pair.target : pair.source;
       Fail("pair", pair.source, pair.target, "shape '" + name + "' failed");
-      return "";
+      return std::nullopt;
     }
     const ShapeOutcome& source = *setup->source;
     const ShapeOutcome& target = *setup->target;
     const InputGroundTruth& truth = setup->truth;
+    const std::string record_path = PairRecordPath(dir_, Stem(pair));
     PairEntry cached;
     if (cache_.Load("pair", setup->inputs.pair, &cached)) {
       counters_->Hit("pair");
-      const std::string record = StampPairInputs(cached.record, setup->inputs);
+      PairEvaluation record =
+          ParsePairRecord(cached.record, cache_.Path("pair", setup->inputs.pair));
+      record.inputs = setup->inputs;
       WriteFileAtomically(PairMapPath(dir_, Stem(pair)), FormatMap(cached.map));
-      WriteFileAtomically(PairRecordPath(dir_, Stem(pair)), record);
+      WriteFileAtomically(record_path, SerializePairRecord(record));
       std::lock_guard<std::mutex> lock(mutex_);
       ++stats_->pairs_done;
       return record;
@@ -407,19 +414,23 @@ class VariantRun {
         counters_);
     WriteFileAtomically(PairMapPath(dir_, Stem(pair)), FormatMap(outcome.map));
     std::string failure;
-    const std::string evaluated = evaluation.Evaluate(context, outcome, &failure);
+    PairEvaluation evaluated = evaluation.Evaluate(context, outcome, &failure);
     if (!failure.empty()) {
       Fail("pair", pair.source, pair.target, failure);
-      return "";
+      return std::nullopt;
     }
-    SYMEMBED_CHECK(!evaluated.empty(), "the evaluation returned an empty record");
-    const std::string record = StampPairInputs(evaluated, setup->inputs);
-    WriteFileAtomically(PairRecordPath(dir_, Stem(pair)), record);
+    evaluated.inputs.reset();
+    const PairEntry entry{outcome.map, SerializePairRecord(evaluated)};
+    evaluated.inputs = setup->inputs;
+    const std::string text = SerializePairRecord(evaluated);
+    WriteFileAtomically(record_path, text);
     counters_->Executed("pair");
-    cache_.Store("pair", setup->inputs.pair, PairEntry{outcome.map, evaluated});
+    cache_.Store("pair", setup->inputs.pair, entry);
     std::lock_guard<std::mutex> lock(mutex_);
     ++stats_->pairs_done;
-    return record;
+    // As the file reads back (non-finite numbers are written as null and read back as NaN), as
+    // a resumed run and shards merged see it.
+    return ParsePairRecord(text, record_path);
   }
 
   const ExperimentConfig& config_;
@@ -434,7 +445,7 @@ class VariantRun {
   const DatasetIndex& index_;
   PairNames names_;  // the file stems of all the variant's pairs
   std::vector<DatasetPair> pairs_;
-  std::vector<std::string> records_;
+  std::vector<std::optional<PairEvaluation>> records_;
   std::vector<int> pending_;
   std::vector<int> kept_;  // --resume: pairs with a record, until VerifyKeptPairs
   std::map<std::string, std::unique_ptr<ShapeOutcome>> shapes_;
@@ -447,12 +458,12 @@ class VariantRun {
 namespace {
 
 // Reads the shape records of the shapes used by the pairs that have a record.
-std::vector<ShapeRecord> ReadShapeRecords(const std::string& dir,
-                                          const std::vector<DatasetPair>& pairs,
-                                          const std::vector<std::string>& records) {
+std::vector<ShapeRecord> ReadShapeRecords(
+    const std::string& dir, const std::vector<DatasetPair>& pairs,
+    const std::vector<std::optional<PairEvaluation>>& records) {
   std::set<std::string> names;
   for (size_t i = 0; i < pairs.size(); ++i) {
-    if (records[i].empty()) continue;
+    if (!records[i]) continue;
     names.insert(pairs[i].source);
     names.insert(pairs[i].target);
   }

@@ -9,8 +9,8 @@
 //   <variant>/config.yaml           ResolvedConfigYaml
 //   <variant>/maps/STEM.map         1-based target input id per source input vertex (atomic)
 //   <variant>/IN_PROGRESS           while the variant runs (harness/run_outputs.h)
-//   <variant>/pairs/STEM.rec        the evaluation's record of the pair (atomic, after the map),
-//                                   stamped with the pair's PairInputs
+//   <variant>/pairs/STEM.rec        the pair's record (SerializePairRecord, eval/report.h: the
+//                                   evaluation with the pair's PairInputs; atomic, after the map)
 //   (STEM: "A_B", escaped where that is ambiguous among all the variant's pairs, shards
 //   included: eval/pair_names.h)
 //   <variant>/shapes/NAME.rec       per-shape stage times and report (harness/run_outputs.h)
@@ -25,7 +25,10 @@
 // shards merged (MergeRuns) and resumed runs equal a single run.
 // --resume keeps a pair only when its record parses, is the record of that pair, carries this
 // run's PairInputs and its map holds one id per source vertex; every other pair is computed
-// again, with a warning.
+// again, with a warning. Each record is parsed once: a kept pair's from its file, a cached
+// pair's from the cache, a computed pair's from the text written (JSON writes non-finite
+// numbers as null, read back as NaN: a fresh, a resumed and a merged run see the same values);
+// the variant's summary files are written from the parsed records.
 //
 // A shapes-only run computes the per-shape stages (and what the per-pair stages need of each
 // shape) of the shapes of shard i of N (ShapesOfShard over the shapes of all the variant's
@@ -33,14 +36,17 @@
 // into the cache, and writes nothing else: run with N shards before the pair shards, no shape
 // is computed by two processes and the pair shards find every shape cached.
 //
-// The evaluation lives above this library (eval/), so it is reached through RunEvaluation.
+// The runner reaches the evaluation through RunEvaluation (harness/run_evaluation.h
+// GroundTruthRunEvaluation; the tests give it a fake evaluation).
 #pragma once
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "eval/metrics.h"
 #include "harness/config.h"
 #include "harness/pair_pipeline.h"
 #include "harness/run_outputs.h"
@@ -65,17 +71,19 @@ class VariantEvaluation {
   // Mean direct error of predicted target input ids, one per line of pair.ground_truth
   // (chooses the oracle candidate). May throw; the pair then fails.
   virtual double MeanError(const PairContext& pair, const std::vector<int>& predicted) const = 0;
-  // The record text of a finished pair (written to pairs/STEM.rec). When the evaluation failed,
-  // sets *failure to the message; the pair is then a failure and no record is written.
-  virtual std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
-                               std::string* failure) const = 0;
+  // The record of a finished pair, without its inputs (the runner adds them and writes it to
+  // pairs/STEM.rec). When the evaluation failed, sets *failure to the message; the pair is then
+  // a failure and no record is written.
+  virtual PairEvaluation Evaluate(const PairContext& pair, const PairOutcome& outcome,
+                                  std::string* failure) const = 0;
 };
 
 struct VariantResults {
   std::string variant;
   std::string dir;                   // the variant folder (holds config.yaml)
   std::vector<DatasetPair> pairs;    // the run's pairs, in (source, target) order
-  std::vector<std::string> records;  // per pair: record text, empty when it failed
+  // Per pair: its record, as its file reads back (inputs included); none when it failed.
+  std::vector<std::optional<PairEvaluation>> records;
   std::vector<Failure> failures;     // sorted
   std::vector<ShapeRecord> shapes;   // shapes of the pairs that have a record, by name
   double wall_seconds = 0.0;
@@ -86,8 +94,6 @@ class RunEvaluation {
  public:
   virtual ~RunEvaluation() = default;
   virtual std::unique_ptr<VariantEvaluation> ForVariant(const Pipeline& pipeline) = 0;
-  // The pair a record text describes (MergeRuns reads records back). Throws InvalidInputError.
-  virtual DatasetPair PairOfRecord(const std::string& record, const std::string& where) const = 0;
   // Writes the variant's summary files from its records (also used by MergeRuns).
   virtual void WriteVariant(const VariantResults& results) = 0;
   // Writes the cross-variant files of the experiment folder (variants in config order; the

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace symembed {
@@ -33,5 +34,7 @@ uint64_t HashBytes(const void* data, size_t size);
 uint64_t HashFile(const std::string& path);
 // 16 lowercase hex digits.
 std::string HexDigest(uint64_t digest);
+// The digest HexDigest wrote; std::nullopt for any other text.
+std::optional<uint64_t> ParseHexDigest(const std::string& text);
 
 }  // namespace symembed

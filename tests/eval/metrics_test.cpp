@@ -186,6 +186,42 @@ TEST(Metrics, PairRecordRoundTripIsExact) {
   EXPECT_TRUE(rf.candidate_errors.empty());
 }
 
+// A run's record carries the pair's inputs as its first member, without spaces, the other
+// members following as WriteJson writes them (the form --resume reads); they read back equal,
+// and a record without them has none.
+TEST(Metrics, PairRecordCarriesItsInputsFirst) {
+  PairEvaluation p = MakePair("cat0", "cat1", {0.25, 0.5}, {});
+  const std::string without = SerializePairRecord(p);
+  EXPECT_FALSE(ParsePairRecord(without).inputs);
+  p.inputs = PairInputs{0x1, 0xfedcba9876543210ULL, 0x0123456789abcdefULL};
+  const std::string with = SerializePairRecord(p);
+  EXPECT_EQ(with,
+            "{\"inputs\":{\"source\":\"0000000000000001\",\"target\":\"fedcba9876543210\","
+            "\"pair\":\"0123456789abcdef\"}," +
+                without.substr(1));
+  const PairEvaluation r = ParsePairRecord(with);
+  ASSERT_TRUE(r.inputs);
+  EXPECT_EQ(*r.inputs, *p.inputs);
+  EXPECT_EQ(SerializePairRecord(r), with);
+  // Anywhere in the object and with spaces it is the same member; any other form fails.
+  EXPECT_EQ(
+      ParsePairRecord("{\"source\": \"a\", \"target\": \"b\", \"ok\": false, \"message\": \"\", "
+                      "\"chosen\": -1, \"oracle\": -1, \"stage_seconds\": {}, \"inputs\": "
+                      "{\"pair\": \"0000000000000003\", \"source\": \"0000000000000001\", "
+                      "\"target\": \"0000000000000002\"}}")
+          .inputs,
+      (PairInputs{1, 2, 3}));
+  for (const char* bad : {"[]", "{}", "{\"source\":\"1\",\"target\":\"2\",\"pair\":\"3\"}",
+                          "{\"source\":\"000000000000000G\",\"target\":\"0000000000000002\","
+                          "\"pair\":\"0000000000000003\"}",
+                          "{\"source\":\"000000000000000A\",\"target\":\"0000000000000002\","
+                          "\"pair\":\"0000000000000003\"}"}) {
+    EXPECT_THROW(ParsePairRecord("{\"inputs\":" + std::string(bad) + "," + without.substr(1), "r"),
+                 InvalidInputError)
+        << bad;
+  }
+}
+
 TEST(Report, ComparisonAndCurvePlots) {
   EvaluationOptions options;
   testing::TempDir dir;

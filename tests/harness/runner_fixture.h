@@ -13,6 +13,7 @@
 
 #include "core/errors.h"
 #include "core/primitives.h"
+#include "eval/report.h"
 #include "harness/runner.h"
 #include "registry/registry.h"
 #include "tests/test_util.h"
@@ -352,9 +353,10 @@ inline std::string WriteTestDataset(const std::string& root, int count,
          "evaluation: {geodesics: test}\n" + variants;
 }
 
-// Record: {"r":"source target chosen oracle mean | flip message"} (a JSON object, as the runner
-// requires) with mean the Euclidean error on the target input mesh; WriteVariant writes
-// summary.txt, WriteExperiment comparison.txt.
+// Record: source, target, chosen, oracle, the Euclidean mean error on the target input mesh (the
+// one value of errors_direct) and the flip stage's message (stage_messages "flip");
+// WriteVariant writes summary.txt (each pair's record as SerializePairRecord writes it),
+// WriteExperiment comparison.txt.
 class TestEvaluation : public RunEvaluation {
  public:
   class Variant : public VariantEvaluation {
@@ -367,17 +369,20 @@ class TestEvaluation : public RunEvaluation {
       }
       return predicted.empty() ? 0.0 : sum / predicted.size();
     }
-    std::string Evaluate(const PairContext& pair, const PairOutcome& outcome,
-                         std::string* failure) const override {
+    PairEvaluation Evaluate(const PairContext& pair, const PairOutcome& outcome,
+                            std::string* failure) const override {
       std::vector<int> predicted;
       for (int s : pair.ground_truth.source_ids) predicted.push_back(outcome.map[s]);
-      std::ostringstream out;
-      out.precision(17);
-      out << "{\"r\":\"" << pair.source_info.name << " " << pair.target_info.name << " "
-          << outcome.flip.chosen << " " << outcome.oracle << " " << MeanError(pair, predicted)
-          << " | " << outcome.flip.status.message << "\"}\n";
+      PairEvaluation record;
+      record.source = pair.source_info.name;
+      record.target = pair.target_info.name;
+      record.ok = true;
+      record.chosen = outcome.flip.chosen;
+      record.oracle = outcome.oracle;
+      record.errors_direct = {MeanError(pair, predicted)};
+      record.stage_messages["flip"] = outcome.flip.status.message;
       if (pair.source_info.name == fail_source) *failure = "evaluation refused " + fail_source;
-      return out.str();
+      return record;
     }
     std::string fail_source;
   };
@@ -387,25 +392,23 @@ class TestEvaluation : public RunEvaluation {
     v->fail_source = fail_source;
     return v;
   }
-  DatasetPair PairOfRecord(const std::string& record, const std::string& where) const override {
-    std::istringstream in(RecordBody(record));
-    DatasetPair p;
-    if (!(in >> p.source >> p.target)) throw InvalidInputError(where + ": not a test record");
-    return p;
-  }
-  // "source target chosen oracle mean | flip message" of a record.
-  static std::string RecordBody(const std::string& record) {
-    const size_t start = record.find("\"r\":\"");
-    const size_t end = start == std::string::npos ? start : record.find('"', start + 5);
-    if (end == std::string::npos) return "";
-    return record.substr(start + 5, end - start - 5);
+  // "source target chosen oracle mean | flip message" of a record file's text.
+  static std::string RecordBody(const std::string& text) {
+    const PairEvaluation record = ParsePairRecord(text);
+    const auto flip = record.stage_messages.find("flip");
+    std::ostringstream out;
+    out.precision(17);
+    out << record.source << " " << record.target << " " << record.chosen << " " << record.oracle
+        << " " << record.errors_direct.at(0) << " | "
+        << (flip == record.stage_messages.end() ? "" : flip->second);
+    return out.str();
   }
   void WriteVariant(const VariantResults& results) override {
     if (throw_in_write) throw IoError(results.dir + "/summary.txt: disk full");
     std::string text;
     for (size_t i = 0; i < results.pairs.size(); ++i) {
       text += results.pairs[i].source + "->" + results.pairs[i].target + ": " +
-              (results.records[i].empty() ? "failed\n" : results.records[i]);
+              (results.records[i] ? SerializePairRecord(*results.records[i]) : "failed") + "\n";
     }
     text += "failures " + std::to_string(results.failures.size()) + "\n";
     text += "shapes " + std::to_string(results.shapes.size()) + "\n";

@@ -415,9 +415,12 @@ TEST(Runner, ResumeComputesAgainWhatDoesNotProveItself) {
   const std::string truncated = ReadText(out + "/maps/s0_s1.map");
   WriteText(out + "/maps/s0_s1.map", truncated.substr(0, truncated.size() / 2));
   fs::remove(out + "/maps/s0_s2.map");
-  WriteText(out + "/pairs/s1_s0.rec", "{\"r\":\"s1 s0 0 0");
-  const std::string record = ReadText(out + "/pairs/s1_s2.rec");
-  WriteText(out + "/pairs/s1_s2.rec", "{" + record.substr(record.find("},") + 2));
+  const std::string cut = ReadText(out + "/pairs/s1_s0.rec");
+  WriteText(out + "/pairs/s1_s0.rec", cut.substr(0, cut.size() / 2));
+  PairEvaluation record = ParsePairRecord(ReadText(out + "/pairs/s1_s2.rec"));
+  ASSERT_TRUE(record.inputs);
+  record.inputs.reset();
+  WriteText(out + "/pairs/s1_s2.rec", SerializePairRecord(record));
   RunOptions resume;
   resume.resume = true;
   RunResult run = RunConfig(config, tmp.File("out"), tmp.File("cache"), resume);
