@@ -38,16 +38,6 @@ std::string Num(double x) {
   return buffer;
 }
 
-std::string CsvField(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
 const JsonValue& Require(const JsonValue& json, const std::string& key, const std::string& where) {
   if (!json.Has(key)) throw InvalidInputError(where + ": missing key '" + key + "'");
   return json.Get(key);
@@ -80,6 +70,16 @@ std::vector<double> ReadNumberArray(const JsonValue& a, const std::string& where
 }
 
 }  // namespace
+
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
 
 namespace {
 

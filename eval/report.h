@@ -74,6 +74,10 @@ struct PairsCsvColumn {
 // flip_message, refine_message, message.
 const std::vector<PairsCsvColumn>& PairsCsvColumns();
 
+// A CSV field as every CSV file of a run writes it (RFC 4180): quoted, with its quotes doubled,
+// when it holds a comma, a quote or a line break; else as it is.
+std::string CsvField(const std::string& text);
+
 // File contents (deterministic; pairs are sorted by (source, target)).
 std::string PairsCsv(std::vector<PairEvaluation> pairs);
 std::string CurveCsv(const VariantSummary& summary);

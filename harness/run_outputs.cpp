@@ -8,21 +8,9 @@
 
 #include "core/errors.h"
 #include "core/files.h"
+#include "eval/report.h"
 
 namespace symembed {
-namespace {
-
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
-}  // namespace
 
 std::vector<std::vector<std::string>> ParseCsv(const std::string& text, const std::string& where) {
   std::vector<std::vector<std::string>> rows;
