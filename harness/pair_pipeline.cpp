@@ -7,16 +7,13 @@
 #include <limits>
 #include <sstream>
 
+#include "core/clock.h"
 #include "core/laplacian.h"
 #include "core/mesh_graph.h"
 #include "registry/hash.h"
 
 namespace symembed {
 namespace {
-
-double Since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 void CheckMap(const MatchResult& result, int source_vertices, int target_vertices,
               const char* stage) {
@@ -156,7 +153,7 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     out.flip.status.message +=
         "; planes (source/target): " + planes.str() + "; chosen " + chosen_planes;
   }
-  out.times.push_back({"flip", Since(start), false});
+  out.times.push_back({"flip", SecondsSince(start), false});
   const ShapeData& a = *a_ptr;
   const ShapeData& b = *b_ptr;
   const int nb = b.surface.NumVertices();
@@ -180,7 +177,7 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   const EmbeddedPoints chosen_target = Rotated(target_points, rotations[out.flip.chosen]);
   MatchResult matched =
       pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
-  out.times.push_back({"matching", Since(start), false});
+  out.times.push_back({"matching", SecondsSince(start), false});
   counters->Executed("matching");
   CheckMap(matched, a.surface.NumVertices(), nb, "matching");
   out.matching_status = matched.status;
@@ -196,7 +193,7 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   start = std::chrono::steady_clock::now();
   MatchResult refined = pipeline.refine->Run(
       RefineInput{input, matched.map, &aligned(out.flip.chosen, chosen_target), &chosen_target});
-  out.times.push_back({"refine", Since(start), false});
+  out.times.push_back({"refine", SecondsSince(start), false});
   counters->Executed("refine");
   CheckMap(refined, a.surface.NumVertices(), nb, "refine");
   out.refine_status = refined.status;
@@ -240,7 +237,7 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
         out.oracle = c;
       }
     }
-    out.times.push_back({"oracle", Since(start), false});
+    out.times.push_back({"oracle", SecondsSince(start), false});
     counters->Executed("oracle");
   }
   return out;

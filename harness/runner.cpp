@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "core/clock.h"
 #include "core/files.h"
 #include "core/map_io.h"
 #include "core/mesh_io.h"
@@ -34,10 +35,6 @@ std::string WithoutComments(const std::string& text) {
     start = end + 1;
   }
   return out;
-}
-
-double Since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // A pair's cached result (the runner only caches pairs that succeeded): its map and its record
@@ -116,7 +113,7 @@ class VariantRun {
     results.pairs = pairs_;
     results.records = records_;
     results.failures = failures_;
-    results.wall_seconds = Since(start);
+    results.wall_seconds = SecondsSince(start);
     FinishVariant(std::move(results), evaluation_);
     ClearInProgress(dir_);
     stats_->failures.insert(stats_->failures.end(), failures_.begin(), failures_.end());

@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "core/canonical_frame.h"
+#include "core/clock.h"
 #include "core/errors.h"
 #include "core/mesh_graph.h"
 #include "core/procrustes.h"
@@ -77,10 +78,6 @@ void Read(ArchiveReader& in, Timed<T>* t) {
   t->seconds = in.F64();
 }
 
-double Since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 uint64_t StageKey(uint64_t previous, const std::string& kind, const Stage& stage) {
   return Hasher(previous).AddString(kind).AddString(OptionsText(stage)).Digest();
 }
@@ -97,7 +94,7 @@ T Cached(const ShapeContext& context, const std::string& kind, uint64_t key, Com
   }
   const auto start = std::chrono::steady_clock::now();
   entry.value = compute();
-  entry.seconds = Since(start);
+  entry.seconds = SecondsSince(start);
   context.counters->Executed(kind);
   context.cache->Store(kind, key, entry);
   times->push_back({kind, entry.seconds, false});
@@ -506,7 +503,7 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
   const auto start = std::chrono::steady_clock::now();
   double axis_ratio = 0.0;
   data->Y = CanonicalFrame(symmetrized.Y, nullptr, nullptr, &axis_ratio);
-  out.times.push_back({"canonical_frame", Since(start), false});
+  out.times.push_back({"canonical_frame", SecondsSince(start), false});
 
   AddShapeMeasures(sampling, symmetrized, axis_ratio, *data, &out);
 

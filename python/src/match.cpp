@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 
+#include "core/clock.h"
 #include "core/errors.h"
 #include "core/parallel.h"
 #include "harness/cache.h"
@@ -16,10 +17,6 @@ namespace symembed::python {
 namespace {
 
 using namespace pybind11::literals;
-
-double Since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 py::dict StatusDict(const StageStatus& status) {
   return py::dict("converged"_a = status.converged, "iterations"_a = status.iterations,
@@ -80,7 +77,7 @@ std::shared_ptr<Shape> ShapeFromArrays(const py::array& V, const py::array& F,
                                        const std::string& v_name, const std::string& f_name) {
   const auto start = std::chrono::steady_clock::now();
   Surface input = SurfaceFromArrays(V, F, v_name, f_name);
-  const double load_seconds = Since(start);
+  const double load_seconds = SecondsSince(start);
   py::gil_scoped_release release;
   return ComputeShape(std::move(input), load_seconds, std::move(pipeline), cache_dir, name);
 }
@@ -270,9 +267,9 @@ SolverError.)doc")
         std::array<double, 2> seconds{};
         const auto start = std::chrono::steady_clock::now();
         inputs[0] = SurfaceFromArrays(VA, FA, "VA", "FA");
-        seconds[0] = Since(start);
+        seconds[0] = SecondsSince(start);
         inputs[1] = SurfaceFromArrays(VB, FB, "VB", "FB");
-        seconds[1] = Since(start) - seconds[0];
+        seconds[1] = SecondsSince(start) - seconds[0];
         std::array<std::shared_ptr<Shape>, 2> shapes;
         PairOutcome outcome;
         {
