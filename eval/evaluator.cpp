@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "core/clock.h"
 #include "core/errors.h"
 
 namespace symembed {
@@ -159,8 +160,8 @@ void Evaluator::Account(const std::string& target_name, TargetCache& entry, int6
 
 std::vector<double> Evaluator::Errors(const std::string& target_name, const EvalShape& target,
                                       const std::vector<int>& map_input_ids,
-                                      const InputGroundTruth& all_gt,
-                                      std::vector<double>* sym) const {
+                                      const InputGroundTruth& all_gt, std::vector<double>* sym,
+                                      double* distance_seconds) const {
   const InputGroundTruth gt = SelectPoints(all_gt, target, options_.points);
   const int lines = static_cast<int>(gt.target_ids.size());
   const bool has_sym = sym != nullptr && !gt.target_sym_ids.empty();
@@ -200,6 +201,9 @@ std::vector<double> Evaluator::Errors(const std::string& target_name, const Eval
   const bool from_truth = 2 * map_sources.size() >= gt_sources.size();
   const std::vector<int>& sources = from_truth ? gt_sources : map_sources;
 
+  // When rows are missing, their time includes waiting for another pair computing this
+  // target's rows.
+  const auto rows_start = std::chrono::steady_clock::now();
   std::shared_ptr<TargetCache> entry = Acquire(target_name);
   std::lock_guard<std::mutex> lock(entry->mutex);
   if (!entry->solver) entry->solver = geodesics_.Prepare(target.surface);
@@ -231,6 +235,7 @@ std::vector<double> Evaluator::Errors(const std::string& target_name, const Eval
     const auto rows = static_cast<int64_t>(missing.size());
     Account(target_name, *entry, rows, rows * num_vertices * static_cast<int64_t>(sizeof(float)));
   }
+  if (distance_seconds) *distance_seconds = missing.empty() ? 0.0 : SecondsSince(rows_start);
   const double norm = 1.0 / std::sqrt(target.area);
   auto distance = [&](int x, int b) {
     return from_truth ? entry->rows.at(b)[x] : entry->rows.at(x)[b];
@@ -274,8 +279,8 @@ PairEvaluation Evaluator::Evaluate(const std::string& source_name, const std::st
 
 double Evaluator::MeanError(const std::string& target_name, const EvalShape& target,
                             const std::vector<int>& map_input_ids,
-                            const InputGroundTruth& gt) const {
-  return Mean(Errors(target_name, target, map_input_ids, gt, nullptr));
+                            const InputGroundTruth& gt, double* distance_seconds) const {
+  return Mean(Errors(target_name, target, map_input_ids, gt, nullptr, distance_seconds));
 }
 
 }  // namespace symembed

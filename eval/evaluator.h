@@ -71,9 +71,12 @@ class Evaluator {
                           const InputGroundTruth& gt, int chosen = -1, int oracle = -1) const;
 
   // Mean direct error of a map over the (selected) ground-truth lines, for choosing the
-  // oracle's candidate. Throws InvalidInputError when the map does not fit. Thread-safe.
+  // oracle's candidate. distance_seconds (optional): gets the seconds this call spent computing
+  // distance rows the target's cache lacked (exactly 0 when it had them all). Throws InvalidInputError
+  // when the map does not fit. Thread-safe.
   double MeanError(const std::string& target_name, const EvalShape& target,
-                   const std::vector<int>& map_input_ids, const InputGroundTruth& gt) const;
+                   const std::vector<int>& map_input_ids, const InputGroundTruth& gt,
+                   double* distance_seconds = nullptr) const;
 
   const EvaluationOptions& options() const { return options_; }
   // Distance rows computed so far (single-source solves), for tests and reports.
@@ -82,9 +85,10 @@ class Evaluator {
  private:
   struct TargetCache;
   // Errors of each line against gt.target_ids (and target_sym_ids into *sym when given).
+  // distance_seconds (optional): the seconds spent computing missing distance rows.
   std::vector<double> Errors(const std::string& target_name, const EvalShape& target,
                              const std::vector<int>& map_input_ids, const InputGroundTruth& gt,
-                             std::vector<double>* sym) const;
+                             std::vector<double>* sym, double* distance_seconds = nullptr) const;
   std::shared_ptr<TargetCache> Acquire(const std::string& target_name) const;
   void Account(const std::string& target_name, TargetCache& entry, int64_t rows,
                int64_t bytes) const;

@@ -216,6 +216,9 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
       }
     }
     double best = std::numeric_limits<double>::infinity();
+    // The target's ground-truth distance rows are computed by the first call that lacks them;
+    // they are the evaluation's, timed apart from the oracle's own work.
+    double distance_seconds = 0.0;
     for (int c = 0; c < 4; ++c) {
       const EmbeddedPoints rotated_target = Rotated(target_points, rotations[c]);
       const EmbeddedPoints& from = aligned(c, rotated_target);
@@ -231,13 +234,16 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
       CheckMap(m, static_cast<int>(points.Y.rows()), nb, "matching");
       std::vector<int> predicted(m.map.size());
       for (size_t i = 0; i < m.map.size(); ++i) predicted[i] = b.input_ids[m.map[i]];
-      out.oracle_errors[c] = mean_error(predicted);
+      double seconds = 0.0;
+      out.oracle_errors[c] = mean_error(predicted, &seconds);
+      distance_seconds += seconds;
       if (out.oracle_errors[c] < best) {
         best = out.oracle_errors[c];
         out.oracle = c;
       }
     }
-    out.times.push_back({"oracle", SecondsSince(start), false});
+    out.times.push_back({"oracle", SecondsSince(start) - distance_seconds, false});
+    out.times.push_back({"ground_truth_distances", distance_seconds, false});
     counters->Executed("oracle");
   }
   return out;

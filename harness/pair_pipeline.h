@@ -30,11 +30,14 @@ struct PairOutcome {
   std::array<double, 4> oracle_errors{};  // mean error of each candidate (when oracle >= 0)
   StageStatus matching_status;
   StageStatus refine_status;
-  std::vector<StageTime> times;  // flip, matching, refine, oracle
+  // flip, matching, refine, oracle, ground_truth_distances (the last two with ground truth)
+  std::vector<StageTime> times;
 };
 
-// Mean error of predicted target input ids, one per ground-truth line of `ground_truth`.
-using MeanErrorFunction = std::function<double(const std::vector<int>& predicted)>;
+// Mean error of predicted target input ids, one per ground-truth line of `ground_truth`;
+// *distance_seconds: the part of the call spent computing the ground truth's distances.
+using MeanErrorFunction =
+    std::function<double(const std::vector<int>& predicted, double* distance_seconds)>;
 
 // ground_truth: in input ids (PairLines of the shapes' ground truth), or null. mean_error is
 // used for the oracle candidate when ground_truth is given and has lines. Throws what a stage

@@ -77,13 +77,14 @@ class GroundTruthVariantEvaluation : public VariantEvaluation {
   explicit GroundTruthVariantEvaluation(std::shared_ptr<Shared> shared)
       : shared_(std::move(shared)) {}
 
-  double MeanError(const PairContext& pair, const std::vector<int>& predicted) const override {
+  double MeanError(const PairContext& pair, const std::vector<int>& predicted,
+                   double* distance_seconds) const override {
     // A full-length map holding the predictions at the ground-truth source vertices.
     std::vector<int> map(pair.source.input.NumVertices(), 0);
     for (size_t i = 0; i < predicted.size(); ++i)
       map[pair.ground_truth.source_ids[i]] = predicted[i];
     const auto [id, target] = shared_->Target(pair.target);
-    return shared_->evaluator->MeanError(id, *target, map, pair.ground_truth);
+    return shared_->evaluator->MeanError(id, *target, map, pair.ground_truth, distance_seconds);
   }
 
   PairEvaluation Evaluate(const PairContext& pair, const PairOutcome& outcome,

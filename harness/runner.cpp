@@ -407,7 +407,9 @@ class VariantRun {
                               truth};
     const PairOutcome outcome = ComputePair(
         source, target, pipeline_, truth.source_ids.empty() ? nullptr : &truth,
-        [&](const std::vector<int>& predicted) { return evaluation.MeanError(context, predicted); },
+        [&](const std::vector<int>& predicted, double* distance_seconds) {
+          return evaluation.MeanError(context, predicted, distance_seconds);
+        },
         counters_);
     WriteFileAtomically(PairMapPath(dir_, Stem(pair)), FormatMap(outcome.map));
     std::string failure;

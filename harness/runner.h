@@ -69,8 +69,10 @@ class VariantEvaluation {
  public:
   virtual ~VariantEvaluation() = default;
   // Mean direct error of predicted target input ids, one per line of pair.ground_truth
-  // (chooses the oracle candidate). May throw; the pair then fails.
-  virtual double MeanError(const PairContext& pair, const std::vector<int>& predicted) const = 0;
+  // (chooses the oracle candidate); *distance_seconds: the part of the call spent computing the
+  // target's ground-truth distances. May throw; the pair then fails.
+  virtual double MeanError(const PairContext& pair, const std::vector<int>& predicted,
+                           double* distance_seconds) const = 0;
   // The record of a finished pair, without its inputs (the runner adds them and writes it to
   // pairs/STEM.rec). When the evaluation failed, sets *failure to the message; the pair is then
   // a failure and no record is written.

@@ -361,7 +361,9 @@ class TestEvaluation : public RunEvaluation {
  public:
   class Variant : public VariantEvaluation {
    public:
-    double MeanError(const PairContext& pair, const std::vector<int>& predicted) const override {
+    double MeanError(const PairContext& pair, const std::vector<int>& predicted,
+                     double* distance_seconds) const override {
+      if (distance_seconds) *distance_seconds = 0.0;
       double sum = 0;
       for (size_t i = 0; i < predicted.size(); ++i) {
         sum += (pair.target.input.V.row(predicted[i]) -
@@ -379,7 +381,7 @@ class TestEvaluation : public RunEvaluation {
       record.ok = true;
       record.chosen = outcome.flip.chosen;
       record.oracle = outcome.oracle;
-      record.errors_direct = {MeanError(pair, predicted)};
+      record.errors_direct = {MeanError(pair, predicted, nullptr)};
       record.stage_messages["flip"] = outcome.flip.status.message;
       if (pair.source_info.name == fail_source) *failure = "evaluation refused " + fail_source;
       return record;
