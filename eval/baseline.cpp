@@ -8,26 +8,15 @@
 #include <sstream>
 
 #include "core/errors.h"
-#include "eval/metrics.h"
+#include "eval/report.h"
 
 namespace symembed {
 
 const std::vector<CheckedMetric>& CheckedMetrics() {
   static const std::vector<CheckedMetric> metrics = [] {
-    std::vector<CheckedMetric> m = {
-        {"failed_pairs", false, 0.0},
-        {"mean_direct", false, 0.002},
-        {"median_direct", false, 0.002},
-        {"mean_flip_tolerant", false, 0.002},
-    };
-    for (const char* group : {"pct_direct", "pct_flip_tolerant"}) {
-      for (const auto& key : ErrorThresholdKeys()) {
-        m.push_back({std::string(group) + "." + key, true, 1.0});
-      }
-    }
-    m.push_back({"auc_direct", true, 0.005});
-    for (const char* flip : {"left_right", "front_back", "up_down", "total"}) {
-      m.push_back({std::string("flipped_pairs.") + flip, false, 0.0});
+    std::vector<CheckedMetric> m;
+    for (const SummaryEntry& e : SummaryEntries()) {
+      if (e.check) m.push_back({e.key, e.check->higher_is_better, e.check->tolerance});
     }
     return m;
   }();

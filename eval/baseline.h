@@ -19,7 +19,8 @@ struct CheckedMetric {
   double tolerance = 0.0;   // default absolute tolerance
 };
 
-// The checked metrics with their default tolerances:
+// The checked metrics with their default tolerances: the entries of the summary's table that
+// carry a check (eval/report.h SummaryEntries), in the summary's order:
 //   failed_pairs 0; mean_direct, median_direct, mean_flip_tolerant 0.002 (of sqrt(area));
 //   pct_direct.*, pct_flip_tolerant.* 1.0 (percentage points); auc_direct 0.005;
 //   flipped_pairs.{left_right, front_back, up_down, total} 0 (pairs).

@@ -135,9 +135,16 @@ Entry ThresholdEntry(const std::string& group, std::array<double, 3> VariantSumm
   return e;
 }
 
+// The entry with the regression check of `symembed check`.
+Entry Checked(Entry e, bool higher_is_better, double tolerance) {
+  e.check = Entry::Check{higher_is_better, tolerance};
+  return e;
+}
+
 std::vector<Entry> MakeSummaryEntries() {
   using Read = Entry::Read;
   using S = VariantSummary;
+  constexpr bool kHigher = true, kLower = false;  // which way a checked value is better
   std::vector<Entry> t;
   {
     Entry e;  // the variant's name: optional when read (an eval of one variant may lack it)
@@ -152,30 +159,44 @@ std::vector<Entry> MakeSummaryEntries() {
     t.push_back(e);
   }
   t.push_back(NumberEntry("pairs", &S::pairs, "pairs", Read::kRequired));
-  t.push_back(NumberEntry("failed_pairs", &S::failed_pairs, "failed_pairs", Read::kRequired));
+  t.push_back(Checked(NumberEntry("failed_pairs", &S::failed_pairs, "failed_pairs", Read::kRequired),
+                      kLower, 0.0));
   t.push_back(NumberEntry("points", &S::total_points, "", Read::kOptional, 0.0));
-  t.push_back(NumberEntry("mean_direct", &S::mean_direct, "mean_direct", Read::kRequired));
-  t.push_back(NumberEntry("median_direct", &S::median_direct, "median_direct", Read::kRequired));
-  t.push_back(NumberEntry("mean_flip_tolerant", &S::mean_flip_tolerant, "mean_flip_tolerant",
-                          Read::kRequired));
+  // Errors: of sqrt(area).
+  t.push_back(Checked(NumberEntry("mean_direct", &S::mean_direct, "mean_direct", Read::kRequired),
+                      kLower, 0.002));
+  t.push_back(
+      Checked(NumberEntry("median_direct", &S::median_direct, "median_direct", Read::kRequired),
+              kLower, 0.002));
+  t.push_back(Checked(NumberEntry("mean_flip_tolerant", &S::mean_flip_tolerant,
+                                  "mean_flip_tolerant", Read::kRequired),
+                      kLower, 0.002));
   t.push_back(NumberEntry("median_flip_tolerant", &S::median_flip_tolerant, "", Read::kOptional));
   t.push_back(NumberEntry("mean_of_pair_means_direct", &S::mean_of_pair_means_direct, "",
                           Read::kOptional));
   t.push_back(NumberEntry("mean_of_pair_means_flip_tolerant",
                           &S::mean_of_pair_means_flip_tolerant, "", Read::kOptional));
-  for (size_t k = 0; k < 3; ++k) t.push_back(ThresholdEntry("pct_direct", &S::pct_direct, k));
+  // Percentages: percentage points.
   for (size_t k = 0; k < 3; ++k) {
-    t.push_back(ThresholdEntry("pct_flip_tolerant", &S::pct_flip_tolerant, k));
+    t.push_back(Checked(ThresholdEntry("pct_direct", &S::pct_direct, k), kHigher, 1.0));
   }
-  t.push_back(NumberEntry("auc_direct", &S::auc_direct, "auc_direct", Read::kRequired));
+  for (size_t k = 0; k < 3; ++k) {
+    t.push_back(Checked(ThresholdEntry("pct_flip_tolerant", &S::pct_flip_tolerant, k), kHigher, 1.0));
+  }
+  t.push_back(Checked(NumberEntry("auc_direct", &S::auc_direct, "auc_direct", Read::kRequired),
+                      kHigher, 0.005));
   t.push_back(NumberEntry("auc_flip_tolerant", &S::auc_flip_tolerant, "auc_flip_tolerant",
                           Read::kOptional));
-  t.push_back(NumberEntry("flipped_pairs.left_right", &S::flipped_left_right,
-                          "flipped_left_right", Read::kRequired));
-  t.push_back(NumberEntry("flipped_pairs.front_back", &S::flipped_front_back,
-                          "flipped_front_back", Read::kRequired));
-  t.push_back(NumberEntry("flipped_pairs.up_down", &S::flipped_up_down, "flipped_up_down",
-                          Read::kRequired));
+  // Flipped pairs: pairs.
+  t.push_back(Checked(NumberEntry("flipped_pairs.left_right", &S::flipped_left_right,
+                                  "flipped_left_right", Read::kRequired),
+                      kLower, 0.0));
+  t.push_back(Checked(NumberEntry("flipped_pairs.front_back", &S::flipped_front_back,
+                                  "flipped_front_back", Read::kRequired),
+                      kLower, 0.0));
+  t.push_back(Checked(NumberEntry("flipped_pairs.up_down", &S::flipped_up_down,
+                                  "flipped_up_down", Read::kRequired),
+                      kLower, 0.0));
   {
     Entry e;  // derived from the three above
     e.key = "flipped_pairs.total";
@@ -183,7 +204,7 @@ std::vector<Entry> MakeSummaryEntries() {
     e.read = Read::kWritten;
     e.to_json = [](const S& s) { return JsonValue::Number(s.FlippedTotal()); };
     e.csv_cell = [](const S& s) { return std::to_string(s.FlippedTotal()); };
-    t.push_back(e);
+    t.push_back(Checked(e, kLower, 0.0));
   }
   t.push_back(NumberEntry("refine_changed_side.to_symmetric", &S::refine_to_symmetric, "",
                           Read::kOptional, 0.0));

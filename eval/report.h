@@ -15,6 +15,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,12 +29,19 @@ namespace symembed {
 // column (empty: not in comparison.csv), and how it is written, read back and printed. Read:
 // kRequired (missing or of the wrong type fails), kOptional (a default when absent), kWritten
 // (derived, never read). to_json returns null for a value not written (shapes_lost_area of an
-// eval). Adding a value to the summary is one entry of SummaryEntries().
+// eval). check: whether `symembed check` compares the value with a baseline's
+// (eval/baseline.h), which way is better and the default absolute tolerance. Adding a value to
+// the summary, to comparison.csv or to the check is one entry of SummaryEntries().
 struct SummaryEntry {
   enum class Read { kRequired, kOptional, kWritten };
+  struct Check {
+    bool higher_is_better = false;
+    double tolerance = 0.0;
+  };
   std::string key;
   std::string csv_column;
   Read read = Read::kOptional;
+  std::optional<Check> check;
   std::function<JsonValue(const VariantSummary&)> to_json;
   // value: the key's value (null when absent); present: whether the key was there; key, where:
   // for messages.

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <tuple>
+#include <vector>
+
 #include "core/errors.h"
 #include "eval/report.h"
 #include "harness/config.h"
@@ -26,6 +30,28 @@ VariantSummary BaseSummary() {
 }
 
 JsonValue Json(const VariantSummary& s) { return SummaryToJson(s); }
+
+// The checked metrics are the summary entries that carry a check, in the summary's order, with
+// these directions and default tolerances.
+TEST(Check, CheckedMetricsAreTheSummaryEntriesWithACheck) {
+  const std::vector<std::tuple<std::string, bool, double>> expected = {
+      {"failed_pairs", false, 0.0},          {"mean_direct", false, 0.002},
+      {"median_direct", false, 0.002},       {"mean_flip_tolerant", false, 0.002},
+      {"pct_direct.0.05", true, 1.0},        {"pct_direct.0.10", true, 1.0},
+      {"pct_direct.0.25", true, 1.0},        {"pct_flip_tolerant.0.05", true, 1.0},
+      {"pct_flip_tolerant.0.10", true, 1.0}, {"pct_flip_tolerant.0.25", true, 1.0},
+      {"auc_direct", true, 0.005},           {"flipped_pairs.left_right", false, 0.0},
+      {"flipped_pairs.front_back", false, 0.0}, {"flipped_pairs.up_down", false, 0.0},
+      {"flipped_pairs.total", false, 0.0}};
+  std::vector<std::tuple<std::string, bool, double>> actual;
+  for (const CheckedMetric& m : CheckedMetrics()) {
+    actual.emplace_back(m.key, m.higher_is_better, m.tolerance);
+  }
+  EXPECT_EQ(actual, expected);
+  size_t checked = 0;
+  for (const SummaryEntry& e : SummaryEntries()) checked += e.check ? 1 : 0;
+  EXPECT_EQ(checked, CheckedMetrics().size());
+}
 
 TEST(Check, EqualAndBetterPassWorseFails) {
   const VariantSummary base = BaseSummary();
