@@ -159,8 +159,9 @@ std::vector<Entry> MakeSummaryEntries() {
     t.push_back(e);
   }
   t.push_back(NumberEntry("pairs", &S::pairs, "pairs", Read::kRequired));
-  t.push_back(Checked(NumberEntry("failed_pairs", &S::failed_pairs, "failed_pairs", Read::kRequired),
-                      kLower, 0.0));
+  t.push_back(
+      Checked(NumberEntry("failed_pairs", &S::failed_pairs, "failed_pairs", Read::kRequired),
+              kLower, 0.0));
   t.push_back(NumberEntry("points", &S::total_points, "", Read::kOptional, 0.0));
   // Errors: of sqrt(area).
   t.push_back(Checked(NumberEntry("mean_direct", &S::mean_direct, "mean_direct", Read::kRequired),
@@ -181,7 +182,8 @@ std::vector<Entry> MakeSummaryEntries() {
     t.push_back(Checked(ThresholdEntry("pct_direct", &S::pct_direct, k), kHigher, 1.0));
   }
   for (size_t k = 0; k < 3; ++k) {
-    t.push_back(Checked(ThresholdEntry("pct_flip_tolerant", &S::pct_flip_tolerant, k), kHigher, 1.0));
+    t.push_back(
+        Checked(ThresholdEntry("pct_flip_tolerant", &S::pct_flip_tolerant, k), kHigher, 1.0));
   }
   t.push_back(Checked(NumberEntry("auc_direct", &S::auc_direct, "auc_direct", Read::kRequired),
                       kHigher, 0.005));
@@ -534,34 +536,120 @@ bool PlotCurves(const std::string& dir, std::string* warning) {
   return true;
 }
 
+namespace {
+
+// One member of the pair record (pairs/STEM.rec), in the record's order: how it is written (or
+// not, when the pair has no value for it) and read back. Members are read in this order, so a
+// member may depend on one above it (the errors and the flip class are read only for a pair
+// that was scored, `ok`). Adding a member to the record is one row.
+struct RecordMember {
+  const char* key;
+  std::function<void(const PairEvaluation&, JsonValue*)> write;
+  std::function<void(const JsonValue& record, const std::string& where, PairEvaluation*)> read;
+};
+
+const std::vector<RecordMember>& RecordMembers() {
+  using P = PairEvaluation;
+  using J = JsonValue;
+  using W = const std::string&;
+  static const std::vector<RecordMember> members = {
+      {"source", [](const P& p, J* j) { j->Set("source", J::String(p.source)); },
+       [](const J& j, W where, P* p) { p->source = Require(j, "source", where).AsString(); }},
+      {"target", [](const P& p, J* j) { j->Set("target", J::String(p.target)); },
+       [](const J& j, W where, P* p) { p->target = Require(j, "target", where).AsString(); }},
+      {"ok", [](const P& p, J* j) { j->Set("ok", J::Bool(p.ok)); },
+       [](const J& j, W where, P* p) { p->ok = Require(j, "ok", where).AsBool(); }},
+      {"message", [](const P& p, J* j) { j->Set("message", J::String(p.message)); },
+       [](const J& j, W where, P* p) { p->message = Require(j, "message", where).AsString(); }},
+      // Read once the errors are (a scored pair only).
+      {"flip", [](const P& p, J* j) { j->Set("flip", J::String(FlipClassName(p.flip))); },
+       nullptr},
+      {"chosen", [](const P& p, J* j) { j->Set("chosen", J::Number(p.chosen)); },
+       [](const J& j, W where, P* p) {
+         p->chosen = static_cast<int>(RequireNumber(j, "chosen", where));
+       }},
+      {"oracle", [](const P& p, J* j) { j->Set("oracle", J::Number(p.oracle)); },
+       [](const J& j, W where, P* p) {
+         p->oracle = static_cast<int>(RequireNumber(j, "oracle", where));
+       }},
+      {"stage_seconds",
+       [](const P& p, J* j) {
+         J stages = J::Object();
+         for (const auto& [stage, seconds] : p.stage_seconds) stages.Set(stage, J::Number(seconds));
+         j->Set("stage_seconds", stages);
+       },
+       [](const J& j, W where, P* p) {
+         for (const auto& [stage, seconds] : Require(j, "stage_seconds", where).members()) {
+           p->stage_seconds[stage] = seconds.NumberOr(kNaN);
+         }
+       }},
+      // Optional (records written before it existed have none).
+      {"stage_messages",
+       [](const P& p, J* j) {
+         if (p.stage_messages.empty()) return;
+         J messages = J::Object();
+         for (const auto& [stage, message] : p.stage_messages) {
+           messages.Set(stage, J::String(message));
+         }
+         j->Set("stage_messages", messages);
+       },
+       [](const J& j, W, P* p) {
+         if (!j.Get("stage_messages").IsObject()) return;
+         for (const auto& [stage, message] : j.Get("stage_messages").members()) {
+           p->stage_messages[stage] = message.AsString();
+         }
+       }},
+      // Optional, as stage_messages.
+      {"candidate_errors",
+       [](const P& p, J* j) {
+         if (!p.candidate_errors.empty()) {
+           j->Set("candidate_errors", NumberArray(p.candidate_errors));
+         }
+       },
+       [](const J& j, W where, P* p) {
+         if (j.Get("candidate_errors").IsArray()) {
+           p->candidate_errors = ReadNumberArray(j.Get("candidate_errors"), where);
+         }
+       }},
+      // The errors, then what follows from them, then the flip class: a scored pair only.
+      {"errors_direct",
+       [](const P& p, J* j) { j->Set("errors_direct", NumberArray(p.errors_direct)); },
+       [](const J& j, W where, P* p) {
+         if (!p->ok) return;
+         p->errors_direct = ReadNumberArray(Require(j, "errors_direct", where), where);
+       }},
+      {"errors_sym", [](const P& p, J* j) { j->Set("errors_sym", NumberArray(p.errors_sym)); },
+       [](const J& j, W where, P* p) {
+         if (!p->ok) return;
+         p->errors_sym = ReadNumberArray(Require(j, "errors_sym", where), where);
+         if (!p->errors_sym.empty() && p->errors_sym.size() != p->errors_direct.size()) {
+           throw InvalidInputError(where + ": errors_sym and errors_direct differ in length");
+         }
+         ComputePairStatistics(*p);
+         p->flip = ParseFlipClass(Require(j, "flip", where).AsString());
+       }},
+      // A refined pair's error before refinement (both written, or neither).
+      {"initial_mean_direct",
+       [](const P& p, J* j) {
+         if (!p.refined) return;
+         j->Set("initial_mean_direct", J::Number(p.initial_mean_direct));
+         j->Set("initial_mean_sym", J::Number(p.initial_mean_sym));
+       },
+       [](const J& j, W where, P* p) {
+         if (!p->ok || !j.Get("initial_mean_direct").IsNumber()) return;
+         p->refined = true;
+         p->initial_mean_direct = RequireNumber(j, "initial_mean_direct", where);
+         p->initial_mean_sym = RequireNumber(j, "initial_mean_sym", where);
+       }},
+  };
+  return members;
+}
+
+}  // namespace
+
 std::string SerializePairRecord(const PairEvaluation& p) {
   JsonValue j = JsonValue::Object();
-  j.Set("source", JsonValue::String(p.source));
-  j.Set("target", JsonValue::String(p.target));
-  j.Set("ok", JsonValue::Bool(p.ok));
-  j.Set("message", JsonValue::String(p.message));
-  j.Set("flip", JsonValue::String(FlipClassName(p.flip)));
-  j.Set("chosen", JsonValue::Number(p.chosen));
-  j.Set("oracle", JsonValue::Number(p.oracle));
-  JsonValue stages = JsonValue::Object();
-  for (const auto& [stage, seconds] : p.stage_seconds) {
-    stages.Set(stage, JsonValue::Number(seconds));
-  }
-  j.Set("stage_seconds", stages);
-  if (!p.stage_messages.empty()) {
-    JsonValue messages = JsonValue::Object();
-    for (const auto& [stage, message] : p.stage_messages) {
-      messages.Set(stage, JsonValue::String(message));
-    }
-    j.Set("stage_messages", messages);
-  }
-  if (!p.candidate_errors.empty()) j.Set("candidate_errors", NumberArray(p.candidate_errors));
-  j.Set("errors_direct", NumberArray(p.errors_direct));
-  j.Set("errors_sym", NumberArray(p.errors_sym));
-  if (p.refined) {
-    j.Set("initial_mean_direct", JsonValue::Number(p.initial_mean_direct));
-    j.Set("initial_mean_sym", JsonValue::Number(p.initial_mean_sym));
-  }
+  for (const RecordMember& m : RecordMembers()) m.write(p, &j);
   const std::string members = WriteJson(j, 0);
   if (!p.inputs) return members;
   return "{\"inputs\":{\"source\":\"" + HexDigest(p.inputs->source) + "\",\"target\":\"" +
@@ -598,37 +686,8 @@ PairEvaluation ParsePairRecord(const std::string& text, const std::string& where
   if (!j.IsObject()) throw InvalidInputError(where + ": expected a JSON object");
   PairEvaluation p;
   if (j.Has("inputs")) p.inputs = ReadPairInputs(j.Get("inputs"), where);
-  p.source = Require(j, "source", where).AsString();
-  p.target = Require(j, "target", where).AsString();
-  p.ok = Require(j, "ok", where).AsBool();
-  p.message = Require(j, "message", where).AsString();
-  p.chosen = static_cast<int>(RequireNumber(j, "chosen", where));
-  p.oracle = static_cast<int>(RequireNumber(j, "oracle", where));
-  for (const auto& [stage, seconds] : Require(j, "stage_seconds", where).members()) {
-    p.stage_seconds[stage] = seconds.NumberOr(kNaN);
-  }
-  // Optional (records written before they existed have neither).
-  if (j.Get("stage_messages").IsObject()) {
-    for (const auto& [stage, message] : j.Get("stage_messages").members()) {
-      p.stage_messages[stage] = message.AsString();
-    }
-  }
-  if (j.Get("candidate_errors").IsArray()) {
-    p.candidate_errors = ReadNumberArray(j.Get("candidate_errors"), where);
-  }
-  if (p.ok) {
-    p.errors_direct = ReadNumberArray(Require(j, "errors_direct", where), where);
-    p.errors_sym = ReadNumberArray(Require(j, "errors_sym", where), where);
-    if (!p.errors_sym.empty() && p.errors_sym.size() != p.errors_direct.size()) {
-      throw InvalidInputError(where + ": errors_sym and errors_direct differ in length");
-    }
-    ComputePairStatistics(p);
-    p.flip = ParseFlipClass(Require(j, "flip", where).AsString());
-    if (j.Get("initial_mean_direct").IsNumber()) {
-      p.refined = true;
-      p.initial_mean_direct = RequireNumber(j, "initial_mean_direct", where);
-      p.initial_mean_sym = RequireNumber(j, "initial_mean_sym", where);
-    }
+  for (const RecordMember& m : RecordMembers()) {
+    if (m.read) m.read(j, where, &p);
   }
   return p;
 }

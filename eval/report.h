@@ -110,9 +110,10 @@ bool WriteComparison(const std::string& experiment_dir, const std::vector<Varian
 // when the script, python3 or matplotlib is missing, or the script fails.
 bool PlotCurves(const std::string& dir, std::string* warning);
 
-// One pair as a one-line JSON record with its error vectors, stage times and flip; parsing
-// it gives back an equal PairEvaluation (every double exact). The inputs, when the pair has
-// them, are the first member, written without spaces:
+// One pair as a one-line JSON record with its error vectors, stage times and flip (one row of
+// RecordMembers() in report.cpp per member); parsing it gives back an equal PairEvaluation
+// (every double exact). The inputs, when the pair has them, are the first member, written
+// without spaces:
 // {"inputs":{"source":"<16 hex>","target":"<16 hex>","pair":"<16 hex>"},"source": ...
 // Parsing throws InvalidInputError naming `where`, also for an `inputs` member of another form.
 std::string SerializePairRecord(const PairEvaluation& pair);
