@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 
@@ -538,45 +539,45 @@ bool PlotCurves(const std::string& dir, std::string* warning) {
 
 namespace {
 
-// One member of the pair record (pairs/STEM.rec), in the record's order: how it is written (or
-// not, when the pair has no value for it) and read back. Members are read in this order, so a
-// member may depend on one above it (the errors and the flip class are read only for a pair
-// that was scored, `ok`). Adding a member to the record is one row.
+// One member of the pair record (pairs/STEM.rec), in the record's order: its value (none: the
+// pair has none, the member is left out) and how it is read back. Members are read in this
+// order, so a member may depend on one above it (the errors and the flip class are read only for
+// a pair that was scored, `ok`). Adding a member to the record is one row.
 struct RecordMember {
   const char* key;
-  std::function<void(const PairEvaluation&, JsonValue*)> write;
+  std::function<std::optional<JsonValue>(const PairEvaluation&)> write;
   std::function<void(const JsonValue& record, const std::string& where, PairEvaluation*)> read;
 };
 
 const std::vector<RecordMember>& RecordMembers() {
   using P = PairEvaluation;
   using J = JsonValue;
+  using V = std::optional<JsonValue>;
   using W = const std::string&;
   static const std::vector<RecordMember> members = {
-      {"source", [](const P& p, J* j) { j->Set("source", J::String(p.source)); },
+      {"source", [](const P& p) -> V { return J::String(p.source); },
        [](const J& j, W where, P* p) { p->source = Require(j, "source", where).AsString(); }},
-      {"target", [](const P& p, J* j) { j->Set("target", J::String(p.target)); },
+      {"target", [](const P& p) -> V { return J::String(p.target); },
        [](const J& j, W where, P* p) { p->target = Require(j, "target", where).AsString(); }},
-      {"ok", [](const P& p, J* j) { j->Set("ok", J::Bool(p.ok)); },
+      {"ok", [](const P& p) -> V { return J::Bool(p.ok); },
        [](const J& j, W where, P* p) { p->ok = Require(j, "ok", where).AsBool(); }},
-      {"message", [](const P& p, J* j) { j->Set("message", J::String(p.message)); },
+      {"message", [](const P& p) -> V { return J::String(p.message); },
        [](const J& j, W where, P* p) { p->message = Require(j, "message", where).AsString(); }},
-      // Read once the errors are (a scored pair only).
-      {"flip", [](const P& p, J* j) { j->Set("flip", J::String(FlipClassName(p.flip))); },
-       nullptr},
-      {"chosen", [](const P& p, J* j) { j->Set("chosen", J::Number(p.chosen)); },
+      // Read with the errors, after the statistics (errors_sym's row).
+      {"flip", [](const P& p) -> V { return J::String(FlipClassName(p.flip)); }, nullptr},
+      {"chosen", [](const P& p) -> V { return J::Number(p.chosen); },
        [](const J& j, W where, P* p) {
          p->chosen = static_cast<int>(RequireNumber(j, "chosen", where));
        }},
-      {"oracle", [](const P& p, J* j) { j->Set("oracle", J::Number(p.oracle)); },
+      {"oracle", [](const P& p) -> V { return J::Number(p.oracle); },
        [](const J& j, W where, P* p) {
          p->oracle = static_cast<int>(RequireNumber(j, "oracle", where));
        }},
       {"stage_seconds",
-       [](const P& p, J* j) {
+       [](const P& p) -> V {
          J stages = J::Object();
          for (const auto& [stage, seconds] : p.stage_seconds) stages.Set(stage, J::Number(seconds));
-         j->Set("stage_seconds", stages);
+         return stages;
        },
        [](const J& j, W where, P* p) {
          for (const auto& [stage, seconds] : Require(j, "stage_seconds", where).members()) {
@@ -585,13 +586,13 @@ const std::vector<RecordMember>& RecordMembers() {
        }},
       // Optional (records written before it existed have none).
       {"stage_messages",
-       [](const P& p, J* j) {
-         if (p.stage_messages.empty()) return;
+       [](const P& p) -> V {
+         if (p.stage_messages.empty()) return std::nullopt;
          J messages = J::Object();
          for (const auto& [stage, message] : p.stage_messages) {
            messages.Set(stage, J::String(message));
          }
-         j->Set("stage_messages", messages);
+         return messages;
        },
        [](const J& j, W, P* p) {
          if (!j.Get("stage_messages").IsObject()) return;
@@ -601,10 +602,9 @@ const std::vector<RecordMember>& RecordMembers() {
        }},
       // Optional, as stage_messages.
       {"candidate_errors",
-       [](const P& p, J* j) {
-         if (!p.candidate_errors.empty()) {
-           j->Set("candidate_errors", NumberArray(p.candidate_errors));
-         }
+       [](const P& p) -> V {
+         if (p.candidate_errors.empty()) return std::nullopt;
+         return NumberArray(p.candidate_errors);
        },
        [](const J& j, W where, P* p) {
          if (j.Get("candidate_errors").IsArray()) {
@@ -612,13 +612,12 @@ const std::vector<RecordMember>& RecordMembers() {
          }
        }},
       // The errors, then what follows from them, then the flip class: a scored pair only.
-      {"errors_direct",
-       [](const P& p, J* j) { j->Set("errors_direct", NumberArray(p.errors_direct)); },
+      {"errors_direct", [](const P& p) -> V { return NumberArray(p.errors_direct); },
        [](const J& j, W where, P* p) {
          if (!p->ok) return;
          p->errors_direct = ReadNumberArray(Require(j, "errors_direct", where), where);
        }},
-      {"errors_sym", [](const P& p, J* j) { j->Set("errors_sym", NumberArray(p.errors_sym)); },
+      {"errors_sym", [](const P& p) -> V { return NumberArray(p.errors_sym); },
        [](const J& j, W where, P* p) {
          if (!p->ok) return;
          p->errors_sym = ReadNumberArray(Require(j, "errors_sym", where), where);
@@ -628,18 +627,24 @@ const std::vector<RecordMember>& RecordMembers() {
          ComputePairStatistics(*p);
          p->flip = ParseFlipClass(Require(j, "flip", where).AsString());
        }},
-      // A refined pair's error before refinement (both written, or neither).
+      // A refined pair's errors before refinement: both members, or neither.
       {"initial_mean_direct",
-       [](const P& p, J* j) {
-         if (!p.refined) return;
-         j->Set("initial_mean_direct", J::Number(p.initial_mean_direct));
-         j->Set("initial_mean_sym", J::Number(p.initial_mean_sym));
+       [](const P& p) -> V {
+         if (!p.refined) return std::nullopt;
+         return J::Number(p.initial_mean_direct);
        },
        [](const J& j, W where, P* p) {
          if (!p->ok || !j.Get("initial_mean_direct").IsNumber()) return;
          p->refined = true;
          p->initial_mean_direct = RequireNumber(j, "initial_mean_direct", where);
-         p->initial_mean_sym = RequireNumber(j, "initial_mean_sym", where);
+       }},
+      {"initial_mean_sym",
+       [](const P& p) -> V {
+         if (!p.refined) return std::nullopt;
+         return J::Number(p.initial_mean_sym);
+       },
+       [](const J& j, W where, P* p) {
+         if (p->refined) p->initial_mean_sym = RequireNumber(j, "initial_mean_sym", where);
        }},
   };
   return members;
@@ -649,7 +654,9 @@ const std::vector<RecordMember>& RecordMembers() {
 
 std::string SerializePairRecord(const PairEvaluation& p) {
   JsonValue j = JsonValue::Object();
-  for (const RecordMember& m : RecordMembers()) m.write(p, &j);
+  for (const RecordMember& m : RecordMembers()) {
+    if (std::optional<JsonValue> value = m.write(p)) j.Set(m.key, std::move(*value));
+  }
   const std::string members = WriteJson(j, 0);
   if (!p.inputs) return members;
   return "{\"inputs\":{\"source\":\"" + HexDigest(p.inputs->source) + "\",\"target\":\"" +

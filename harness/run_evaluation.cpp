@@ -17,6 +17,15 @@
 #include "registry/hash.h"
 
 namespace symembed {
+
+EvalShape EvalShapeOf(const ShapeOutcome& shape) {
+  PreprocessResult pre;
+  pre.surface = shape.data->surface;
+  pre.input_ids = shape.data->input_ids;
+  pre.scale = shape.data->scale;
+  return MakeEvalShape(pre, shape.input);
+}
+
 namespace {
 
 // The evaluator's distance cache budget: $SYMEMBED_EVAL_CACHE_MB, default
@@ -58,13 +67,7 @@ struct GroundTruthRunEvaluation::Shared {
     std::string id = TargetId(shape);
     std::lock_guard<std::mutex> lock(mutex);
     auto& slot = targets[id];
-    if (!slot) {
-      PreprocessResult pre;
-      pre.surface = shape.data->surface;
-      pre.input_ids = shape.data->input_ids;
-      pre.scale = shape.data->scale;
-      slot = std::make_unique<EvalShape>(MakeEvalShape(pre, shape.input));
-    }
+    if (!slot) slot = std::make_unique<EvalShape>(EvalShapeOf(shape));
     return {std::move(id), slot.get()};
   }
 };

@@ -8,10 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "eval/evaluator.h"
 #include "harness/runner.h"
 #include "registry/registry.h"
 
 namespace symembed {
+
+// The evaluator's view of a computed shape: its preprocessed surface, with the input vertices
+// removed by the preprocess looked up as in MakeEvalShape.
+EvalShape EvalShapeOf(const ShapeOutcome& shape);
 
 // Variants whose evaluation options and preprocess stage resolve alike share one Evaluator, so
 // the distances it caches per target (the bulk of the evaluation's time) are computed once for

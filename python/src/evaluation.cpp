@@ -4,6 +4,7 @@
 #include "core/errors.h"
 #include "eval/evaluator.h"
 #include "eval/metrics.h"
+#include "harness/run_evaluation.h"
 #include "python/src/arrays.h"
 #include "python/src/bindings.h"
 #include "python/src/match.h"
@@ -57,11 +58,7 @@ void BindEvaluation(py::module_& m) {
         std::vector<double> errors;
         {
           py::gil_scoped_release release;
-          PreprocessResult pre;
-          pre.surface = target->outcome->data->surface;
-          pre.input_ids = target->outcome->data->input_ids;
-          pre.scale = target->outcome->data->scale;
-          errors = Errors(*target->pipeline, MakeEvalShape(pre, target->outcome->input), ids, a, b);
+          errors = Errors(*target->pipeline, EvalShapeOf(*target->outcome), ids, a, b);
         }
         return ToNumpy(std::move(errors));
       },
