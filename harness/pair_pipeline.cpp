@@ -73,12 +73,11 @@ uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const P
   Hasher h;
   h.AddString("symembed-pair-cache-5").AddString(source.name).AddU64(source.key);
   h.AddString(target.name).AddU64(target.key);
-  for (const Stage* stage : {static_cast<const Stage*>(pipeline.flip.get()),
-                             static_cast<const Stage*>(pipeline.matching.get()),
-                             static_cast<const Stage*>(pipeline.refine.get()),
-                             static_cast<const Stage*>(pipeline.evaluation_geodesics.get())}) {
-    h.AddString(OptionsText(*stage));
+  // The per-shape kinds' options are in the shapes' keys.
+  for (const StageKind& kind : kPipelineStageKinds) {
+    if (kind.scope == StageScope::kPair) h.AddString(OptionsText(pipeline.StageOf(kind.name)));
   }
+  h.AddString(OptionsText(*pipeline.evaluation_geodesics));
   char numbers[128];
   std::snprintf(numbers, sizeof numbers, "%.17g %.17g %d", pipeline.evaluation.max_error,
                 pipeline.evaluation.step, pipeline.evaluation.points);

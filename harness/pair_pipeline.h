@@ -46,8 +46,9 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
                         const Pipeline& pipeline, const InputGroundTruth* ground_truth,
                         const MeanErrorFunction& mean_error, StageCounters* counters);
 
-// The cache key of a pair's map and evaluation record: both shapes' names and keys, the
-// per-pair stages' options, the evaluation options and the ground truth.
+// The cache key of a pair's map and evaluation record: both shapes' names and keys (which hold
+// the per-shape stages' options), the options of each per-pair kind of kPipelineStageKinds
+// (registry/stage_kinds.h) in its order, the evaluation options and the ground truth.
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
                  const InputGroundTruth& ground_truth);
 

@@ -78,10 +78,6 @@ void Read(ArchiveReader& in, Timed<T>* t) {
   t->seconds = in.F64();
 }
 
-uint64_t StageKey(uint64_t previous, const std::string& kind, const Stage& stage) {
-  return Hasher(previous).AddString(kind).AddString(OptionsText(stage)).Digest();
-}
-
 // Loads entry `key` of `kind` into `initial`, or computes it with `compute` and stores it.
 template <typename T, typename Compute>
 T Cached(const ShapeContext& context, const std::string& kind, uint64_t key, Compute compute,
@@ -299,7 +295,7 @@ Report GroundTruthMeasures(const ShapeOutcome& out) {
 struct InputKeys {
   uint64_t surface = 0;    // preprocess
   uint64_t samples = 0;    // sampling
-  uint64_t embedding = 0;  // symmetrize
+  uint64_t embedding = 0;  // the last per-shape stage: the canonical embedding follows from all
 };
 
 uint64_t BasisKey(uint64_t surface_key, const LaplaceBasisOptions& options) {
@@ -368,24 +364,28 @@ uint64_t PrepareNeeds(const Pipeline& pipeline, const ShapeContext& context, con
   return pair_key.Digest();
 }
 
-// The cache keys of the per-shape stages' outputs: the MeshKey, then for each stage
-// H(previous key, kind, resolved options).
-struct ShapeStageKeys {
-  uint64_t preprocess, sampling, geodesics, embedding, symmetry, symmetrize;
-};
+}  // namespace
 
-ShapeStageKeys ShapeStageKeysOf(uint64_t mesh_key, const Pipeline& pipeline) {
-  ShapeStageKeys keys;
-  keys.preprocess = StageKey(mesh_key, "preprocess", *pipeline.preprocess);
-  keys.sampling = StageKey(keys.preprocess, "sampling", *pipeline.sampling);
-  keys.geodesics = StageKey(keys.sampling, "geodesics", *pipeline.geodesics);
-  keys.embedding = StageKey(keys.geodesics, "embedding", *pipeline.embedding);
-  keys.symmetry = StageKey(keys.embedding, "symmetry", *pipeline.symmetry);
-  keys.symmetrize = StageKey(keys.symmetry, "symmetrize", *pipeline.symmetrize);
-  return keys;
+ShapeStageKeys::ShapeStageKeys(uint64_t mesh_key, const Pipeline& pipeline) {
+  uint64_t previous = mesh_key;
+  for (const StageKind& kind : kPipelineStageKinds) {
+    if (kind.scope != StageScope::kShape) continue;
+    previous = Hasher(previous)
+                   .AddString(kind.name)
+                   .AddString(OptionsText(pipeline.StageOf(kind.name)))
+                   .Digest();
+    keys_.emplace_back(kind.name, previous);
+  }
+  SYMEMBED_CHECK(!keys_.empty(), "the stage-kind table has no per-shape kind");
 }
 
-}  // namespace
+uint64_t ShapeStageKeys::Of(const std::string& kind) const {
+  for (const auto& [name, key] : keys_) {
+    if (name == kind) return key;
+  }
+  SYMEMBED_CHECK(false, "'" << kind << "' is not a per-shape kind");
+  return 0;
+}
 
 uint64_t MeshKey(const std::string& mesh_path) {
   const std::string extension = std::filesystem::path(mesh_path).extension().string();
@@ -419,10 +419,11 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
   out.input = std::move(input);
   out.times.push_back({"load", load_seconds, false});
 
-  const ShapeStageKeys keys = ShapeStageKeysOf(mesh_key, pipeline);
-  out.surface_key = keys.preprocess;
-  const uint64_t pre_key = keys.preprocess, samp_key = keys.sampling, geo_key = keys.geodesics,
-                 emb_key = keys.embedding, sym_key = keys.symmetry, symz_key = keys.symmetrize;
+  const ShapeStageKeys keys(mesh_key, pipeline);
+  out.surface_key = keys.Of("preprocess");
+  const uint64_t pre_key = out.surface_key, samp_key = keys.Of("sampling"),
+                 geo_key = keys.Of("geodesics"), emb_key = keys.Of("embedding"),
+                 sym_key = keys.Of("symmetry"), symz_key = keys.Of("symmetrize");
 
   auto data = std::make_shared<ShapeData>();
   const PreprocessResult pre = Cached<PreprocessResult>(
@@ -480,8 +481,9 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
         &out.times);
   };
   const SymmetrizeResult symmetrized = symmetrize("symmetrize", symz_key, data->symmetry);
-  const uint64_t alt_sym_key = Hasher(sym_key).AddString("second plane").Digest();
-  const uint64_t alt_symz_key = Hasher(symz_key).AddString("second plane").Digest();
+  // The second plane's outputs are keyed like the first plane's, marked.
+  auto second_plane = [](uint64_t key) { return Hasher(key).AddString("second plane").Digest(); };
+  const uint64_t alt_sym_key = second_plane(sym_key), alt_symz_key = second_plane(symz_key);
   // The second plane is a hypothesis beside a plane that worked: when its search or its
   // symmetrization fails on this shape, the shape goes on with the first plane alone.
   SymmetryResult second;
@@ -507,14 +509,16 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
 
   AddShapeMeasures(sampling, symmetrized, axis_ratio, *data, &out);
 
-  out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, symz_key}, data.get(), &out);
+  // The canonical embedding follows from every per-shape stage: the last key of the chain.
+  out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, keys.Last()}, data.get(), &out);
   if (second_symmetrized && second_failure.empty()) {
     second_failure = FailureOf([&] {
       auto alternative = std::make_shared<ShapeData>(*data);
       alternative->symmetry = second;
       alternative->Y = CanonicalFrame(second_symmetrized->Y, nullptr, nullptr, nullptr);
-      const uint64_t alt_key = PrepareNeeds(pipeline, context, {pre_key, samp_key, alt_symz_key},
-                                            alternative.get(), &out);
+      const uint64_t alt_key =
+          PrepareNeeds(pipeline, context, {pre_key, samp_key, second_plane(keys.Last())},
+                       alternative.get(), &out);
       out.key = Hasher(out.key).AddU64(alt_key).Digest();
       out.alternative = std::move(alternative);
     });

@@ -9,7 +9,8 @@
 // (a symlink, a copy) is therefore computed once.
 //
 // Every stage output is cached on disk under a chained key: H(mesh bytes, file extension), then
-// for each stage H(previous key, kind, resolved options as YAML text). A variant that changes
+// for each per-shape kind of the stage-kind table (registry/stage_kinds.h), in its order,
+// H(previous key, kind, resolved options as YAML text) (ShapeStageKeys). A variant that changes
 // only a later stage therefore finds every earlier output in the cache. A basis is keyed by the
 // preprocess key and its options, a product by the key of its declared input (surface, samples,
 // embedding or basis) and its id, so a product is shared by every stage and variant that declares
@@ -92,6 +93,22 @@ struct ShapeContext {
 // extension, the file's bytes). Files with equal keys have equal per-shape outputs whatever the
 // shapes' names. Throws IoError when the file cannot be read.
 uint64_t MeshKey(const std::string& mesh_path);
+
+// The cache keys of the per-shape stages' outputs: from a MeshKey, for each per-shape kind of
+// kPipelineStageKinds (registry/stage_kinds.h) in its order, H(previous key, kind, OptionsText of
+// the pipeline's stage of that kind). A kind enters the chain by being a row of the table.
+class ShapeStageKeys {
+ public:
+  ShapeStageKeys(uint64_t mesh_key, const Pipeline& pipeline);
+  // The key of a per-shape kind's output ("preprocess", ...); a programming error (Check) for
+  // any other name.
+  uint64_t Of(const std::string& kind) const;
+  // The key of the last per-shape kind's output: every per-shape stage's options are in it.
+  uint64_t Last() const { return keys_.back().second; }
+
+ private:
+  std::vector<std::pair<std::string, uint64_t>> keys_;  // per-shape kind, key; table order
+};
 
 // The content key of a mesh given as arrays instead of a file (the Python module): H(key
 // scheme, "arrays", #V, #F, the coordinates and ids row by row). A file's MeshKey hashes its

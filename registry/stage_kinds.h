@@ -1,9 +1,10 @@
 // The stage kinds: one table of their names, in pipeline order, with whether each runs per
 // shape or per pair and its default type. The registry (which kinds may be registered), the
 // config parser (which `pipeline` keys exist, the defaults of kinds a config leaves out), the
-// resolved config and the pipeline builder all read it; the interface of each kind is in
-// registry/stages.h and its member in Pipeline (harness/config.h), bound to the table by
-// Pipeline::ForEachStage.
+// resolved config, the pipeline builder and the cache keys (the per-shape rows in
+// ShapeStageKeys, harness/shape_pipeline.h; the per-pair rows in PairKey,
+// harness/pair_pipeline.h) all read it; the interface of each kind is in registry/stages.h and
+// its member in Pipeline (harness/config.h), bound to the table by Pipeline::ForEachStage.
 #pragma once
 
 #include <string>
