@@ -413,6 +413,94 @@ uint64_t SurfaceMeshKey(const Surface& surface) {
   return hasher.Digest();
 }
 
+namespace {
+
+// What the per-shape chain has computed of one mesh: each kind's step (RunShapeStep) reads what
+// the steps before it wrote and adds its kind's output, cached under the kind's key.
+struct ShapeChain {
+  ShapeChain(const ShapeContext& context, const ShapeStageKeys& keys, ShapeOutcome& out,
+             ShapeData& data)
+      : context(context), keys(keys), out(out), data(data) {}
+
+  const ShapeContext& context;
+  const ShapeStageKeys& keys;
+  ShapeOutcome& out;
+  ShapeData& data;
+  SamplingResult sampling;
+  SymmetrizeResult symmetrized;
+  // The geodesic distances: set by the geodesics step, loaded or computed by the first step that
+  // reads them (D), released when the chain is done.
+  std::function<Distances()> require_distances;
+  std::unique_ptr<Distances> distances;
+
+  const Eigen::MatrixXd& D() {
+    if (!distances) distances = std::make_unique<Distances>(require_distances());
+    return distances->D;
+  }
+  // Loads entry `key` of `name` or computes it with `compute`, timed in out.times.
+  template <typename T, typename Compute>
+  T Cached(const std::string& name, uint64_t key, Compute compute) {
+    return ::symembed::Cached<T>(context, name, key, compute, &out.times);
+  }
+  // The embedding symmetrized about `symmetry`'s plane by `stage`, cached as `name`.
+  SymmetrizeResult Symmetrized(const SymmetrizeStage& stage, const std::string& name, uint64_t key,
+                               const SymmetryResult& symmetry) {
+    return Cached<SymmetrizeResult>(name, key, [&] {
+      return stage.Run(SymmetryInput{data.surface, data.samples, D(), data.embedding}, symmetry);
+    });
+  }
+};
+
+// One overload per per-shape kind's interface: ComputeMeshOutcome calls them in the order of the
+// stage-kind table, so a per-shape kind without its step does not compile.
+void RunShapeStep(const std::string& kind, const PreprocessStage& stage, ShapeChain& chain) {
+  const PreprocessResult pre = chain.Cached<PreprocessResult>(
+      kind, chain.keys.Of(kind), [&] { return stage.Run(chain.out.input); });
+  chain.data.surface = pre.surface;
+  chain.data.input_ids = pre.input_ids;
+  chain.data.scale = pre.scale;
+  chain.out.report = pre.report;
+  InputToKept(chain.out.input.V, chain.data.input_ids, &chain.out.kept_of_input,
+              &chain.out.nearest_kept);
+}
+
+void RunShapeStep(const std::string& kind, const SamplingStage& stage, ShapeChain& chain) {
+  chain.sampling = chain.Cached<SamplingResult>(kind, chain.keys.Of(kind),
+                                                [&] { return stage.Run(chain.data.surface); });
+  chain.data.samples = chain.sampling.samples;
+}
+
+// D is loaded or computed only when a stage that reads it has to run.
+void RunShapeStep(const std::string& kind, const GeodesicsStage& stage, ShapeChain& chain) {
+  chain.require_distances = [kind, &stage, &chain] {
+    return chain.Cached<Distances>(kind, chain.keys.Of(kind), [&] {
+      auto solver = stage.Prepare(chain.data.surface);
+      Distances d{solver->Distances(chain.data.samples)};
+      d.D = d.D.cast<float>().cast<double>();
+      return d;
+    });
+  };
+}
+
+void RunShapeStep(const std::string& kind, const EmbeddingStage& stage, ShapeChain& chain) {
+  chain.data.embedding = chain.Cached<EmbeddingResult>(kind, chain.keys.Of(kind), [&] {
+    return stage.Run(EmbeddingInput{chain.data.surface, chain.data.samples, chain.D()});
+  });
+}
+
+void RunShapeStep(const std::string& kind, const SymmetryStage& stage, ShapeChain& chain) {
+  chain.data.symmetry = chain.Cached<SymmetryResult>(kind, chain.keys.Of(kind), [&] {
+    return stage.Run(
+        SymmetryInput{chain.data.surface, chain.data.samples, chain.D(), chain.data.embedding});
+  });
+}
+
+void RunShapeStep(const std::string& kind, const SymmetrizeStage& stage, ShapeChain& chain) {
+  chain.symmetrized = chain.Symmetrized(stage, kind, chain.keys.Of(kind), chain.data.symmetry);
+}
+
+}  // namespace
+
 ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mesh_key,
                                 const Pipeline& pipeline, const ShapeContext& context) {
   ShapeOutcome out;
@@ -421,86 +509,34 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
 
   const ShapeStageKeys keys(mesh_key, pipeline);
   out.surface_key = keys.Of("preprocess");
-  const uint64_t pre_key = out.surface_key, samp_key = keys.Of("sampling"),
-                 geo_key = keys.Of("geodesics"), emb_key = keys.Of("embedding"),
-                 sym_key = keys.Of("symmetry"), symz_key = keys.Of("symmetrize");
-
   auto data = std::make_shared<ShapeData>();
-  const PreprocessResult pre = Cached<PreprocessResult>(
-      context, "preprocess", pre_key, [&] { return pipeline.preprocess->Run(out.input); },
-      &out.times);
-  data->surface = pre.surface;
-  data->input_ids = pre.input_ids;
-  data->scale = pre.scale;
-  out.report = pre.report;
-  InputToKept(out.input.V, data->input_ids, &out.kept_of_input, &out.nearest_kept);
+  ShapeChain chain(context, keys, out, *data);
+  Pipeline::ForEachStage(pipeline, [&](const char* kind, const auto& stage) {
+    using T = typename std::decay_t<decltype(stage)>::element_type;
+    if constexpr (!std::is_base_of_v<PairStage, T>) RunShapeStep(kind, *stage, chain);
+  });
+  const SamplingResult& sampling = chain.sampling;
+  const SymmetrizeResult& symmetrized = chain.symmetrized;
 
-  const SamplingResult sampling = Cached<SamplingResult>(
-      context, "sampling", samp_key, [&] { return pipeline.sampling->Run(data->surface); },
-      &out.times);
-  data->samples = sampling.samples;
-
-  // D is loaded or computed only when a stage that reads it has to run.
-  std::unique_ptr<Distances> distances;
-  auto D = [&]() -> const Eigen::MatrixXd& {
-    if (!distances) {
-      distances = std::make_unique<Distances>(Cached<Distances>(
-          context, "geodesics", geo_key,
-          [&] {
-            auto solver = pipeline.geodesics->Prepare(data->surface);
-            Distances d{solver->Distances(data->samples)};
-            d.D = d.D.cast<float>().cast<double>();
-            return d;
-          },
-          &out.times));
-    }
-    return distances->D;
-  };
-
-  data->embedding = Cached<EmbeddingResult>(
-      context, "embedding", emb_key,
-      [&] {
-        return pipeline.embedding->Run(EmbeddingInput{data->surface, data->samples, D()});
-      },
-      &out.times);
-  data->symmetry = Cached<SymmetryResult>(
-      context, "symmetry", sym_key,
-      [&] {
-        return pipeline.symmetry->Run(
-            SymmetryInput{data->surface, data->samples, D(), data->embedding});
-      },
-      &out.times);
-  // The embedding symmetrized about a plane; the second plane's keyed like the first.
-  auto symmetrize = [&](const char* name, uint64_t key, const SymmetryResult& symmetry) {
-    return Cached<SymmetrizeResult>(
-        context, name, key,
-        [&] {
-          return pipeline.symmetrize->Run(
-              SymmetryInput{data->surface, data->samples, D(), data->embedding}, symmetry);
-        },
-        &out.times);
-  };
-  const SymmetrizeResult symmetrized = symmetrize("symmetrize", symz_key, data->symmetry);
   // The second plane's outputs are keyed like the first plane's, marked.
   auto second_plane = [](uint64_t key) { return Hasher(key).AddString("second plane").Digest(); };
-  const uint64_t alt_sym_key = second_plane(sym_key), alt_symz_key = second_plane(symz_key);
   // The second plane is a hypothesis beside a plane that worked: when its search or its
   // symmetrization fails on this shape, the shape goes on with the first plane alone.
   SymmetryResult second;
   std::optional<SymmetrizeResult> second_symmetrized;
   std::string second_failure = FailureOf([&] {
-    second = Cached<SymmetryResult>(
-        context, "symmetry_second", alt_sym_key,
-        [&] {
+    second =
+        chain.Cached<SymmetryResult>("symmetry_second", second_plane(keys.Of("symmetry")), [&] {
           return pipeline.symmetry->RunAlternative(
-              SymmetryInput{data->surface, data->samples, D(), data->embedding}, data->symmetry);
-        },
-        &out.times);
+              SymmetryInput{data->surface, data->samples, chain.D(), data->embedding},
+              data->symmetry);
+        });
     if (!second.sigma.empty()) {
-      second_symmetrized = symmetrize("symmetrize_second", alt_symz_key, second);
+      second_symmetrized = chain.Symmetrized(*pipeline.symmetrize, "symmetrize_second",
+                                             second_plane(keys.Of("symmetrize")), second);
     }
   });
-  distances.reset();
+  chain.distances.reset();
 
   const auto start = std::chrono::steady_clock::now();
   double axis_ratio = 0.0;
@@ -509,6 +545,7 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
 
   AddShapeMeasures(sampling, symmetrized, axis_ratio, *data, &out);
 
+  const uint64_t pre_key = keys.Of("preprocess"), samp_key = keys.Of("sampling");
   // The canonical embedding follows from every per-shape stage: the last key of the chain.
   out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, keys.Last()}, data.get(), &out);
   if (second_symmetrized && second_failure.empty()) {

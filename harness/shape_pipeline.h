@@ -1,7 +1,8 @@
-// Per-shape work of one variant (docs/design.md, "Data flow"): load -> preprocess -> sampling ->
-// geodesics -> embedding -> symmetry -> symmetrize -> canonical frame -> ShapeData, then what the
-// per-pair stages (flip, matching, refine) declare they need of the shape (PairStage::Needs:
-// a Laplace-Beltrami basis, products; registry/product_needs.h).
+// Per-shape work of one variant (docs/design.md, "Data flow"): load -> the per-shape kinds of
+// the stage-kind table in its order (preprocess -> sampling -> geodesics -> embedding ->
+// symmetry -> symmetrize) -> the second plane hypothesis -> canonical frame -> ShapeData, then
+// what the per-pair stages (flip, matching, refine) declare they need of the shape
+// (PairStage::Needs: a Laplace-Beltrami basis, products; registry/product_needs.h).
 //
 // The work is done once per mesh content, not per name: ComputeMeshOutcome runs the stages on a
 // loaded mesh, and OutcomeOfShape gives each dataset shape whose file has those bytes its own
