@@ -173,9 +173,19 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     }
     return alignment[c] == 1 ? moved[c] : source_points;
   };
+  MatchResult matched;
+  const bool on_surfaces = pipeline.matching->MatchSurfaces(input, &matched);
+  if (on_surfaces) {
+    CheckMap(matched, a.surface.NumVertices(), nb, "matching");
+    // The map comes from no rotation: the flip stage's choice stays in the record, named as
+    // unused.
+    out.flip.status.message += "; not used: the matching stage mapped the surfaces (" +
+                               matched.status.message + ")";
+  }
   const EmbeddedPoints chosen_target = Rotated(target_points, rotations[out.flip.chosen]);
-  MatchResult matched =
-      pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
+  if (!on_surfaces) {
+    matched = pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
+  }
   out.times.push_back({"matching", SecondsSince(start), false});
   counters->Executed("matching");
   CheckMap(matched, a.surface.NumVertices(), nb, "matching");
@@ -190,10 +200,18 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   }
 
   start = std::chrono::steady_clock::now();
-  MatchResult refined = pipeline.refine->Run(
-      RefineInput{input, matched.map, &aligned(out.flip.chosen, chosen_target), &chosen_target});
+  MatchResult refined;
+  if (on_surfaces) {
+    // The refine stages pull a map towards one that covers the whole target, which a part's
+    // map must not; the surfaces' map is refined by its own rounds.
+    refined.map = matched.map;
+    refined.status.message = "not run: the matching stage mapped the surfaces";
+  } else {
+    refined = pipeline.refine->Run(RefineInput{
+        input, matched.map, &aligned(out.flip.chosen, chosen_target), &chosen_target});
+    counters->Executed("refine");
+  }
   out.times.push_back({"refine", SecondsSince(start), false});
-  counters->Executed("refine");
   CheckMap(refined, a.surface.NumVertices(), nb, "refine");
   out.refine_status = refined.status;
 

@@ -117,6 +117,13 @@ class MatchingStage : public PairStage {
     (void)pair, (void)source, (void)target, (void)moved;
     return false;
   }
+  // The map of a pair this stage matches on the surfaces instead of in the embeddings (a
+  // partial shape, core/matching/partial.h): returns true with *out set, or false, leaving *out
+  // alone, for a pair matched in the embeddings by Align and Run (the default).
+  virtual bool MatchSurfaces(const PairInput& pair, MatchResult* out) const {
+    (void)pair, (void)out;
+    return false;
+  }
 };
 
 // What a refine stage starts from: the two shapes, the matching stage's map, and the embedded

@@ -1,15 +1,44 @@
-// The matching stages: thin adapters around MatchNearest / MatchNearestScaled.
+// The matching stages: thin adapters around MatchNearest / MatchNearestScaled / DeformSource,
+// each matching a pair with a partial shape by MatchPartial instead.
 #include <memory>
 
 #include "core/matching/deformed.h"
 #include "core/matching/nearest.h"
+#include "core/matching/partial.h"
 #include "registry/product_needs.h"
 #include "stages/register.h"
 
 namespace symembed {
 namespace {
 
-class NearestStage : public MatchingStage {
+// A matching stage that matches a pair with a partial shape on the surfaces (MatchPartial,
+// in the shapes' input units).
+class PartialAwareMatchingStage : public MatchingStage {
+ public:
+  void set_partial(const PartialMatchOptions& partial) { partial_ = partial; }
+  bool MatchSurfaces(const PairInput& pair, MatchResult* out) const override {
+    if (!IsPartialPair(pair.source.surface, pair.target.surface, partial_)) return false;
+    *out = MatchPartial(pair.source.surface, pair.source.samples, 1.0 / pair.source.scale,
+                        pair.target.surface, pair.target.samples, 1.0 / pair.target.scale,
+                        partial_);
+    return true;
+  }
+
+ private:
+  PartialMatchOptions partial_;
+};
+
+// Reads the option of the partial route and returns the stage with it.
+std::unique_ptr<Stage> WithPartialRoute(OptionReader& o,
+                                        std::unique_ptr<PartialAwareMatchingStage> stage) {
+  PartialMatchOptions partial;
+  partial.boundary_ratio = o.GetDouble("partial_boundary_ratio", partial.boundary_ratio,
+                                       PartialMatchOptions::kBoundaryRatio);
+  stage->set_partial(partial);
+  return stage;
+}
+
+class NearestStage : public PartialAwareMatchingStage {
  public:
   NearestStage(double normal_weight, int threads)
       : normal_weight_(normal_weight), threads_(threads) {}
@@ -22,7 +51,7 @@ class NearestStage : public MatchingStage {
   int threads_;
 };
 
-class NearestScaledStage : public MatchingStage {
+class NearestScaledStage : public PartialAwareMatchingStage {
  public:
   explicit NearestScaledStage(ScaledIcpOptions options) : options_(options) {}
   MatchResult Run(const EmbeddedPoints& source, const EmbeddedPoints& target) const override {
@@ -33,7 +62,7 @@ class NearestScaledStage : public MatchingStage {
   ScaledIcpOptions options_;
 };
 
-class DeformedStage : public MatchingStage {
+class DeformedStage : public PartialAwareMatchingStage {
  public:
   explicit DeformedStage(DeformOptions options) : options_(options) {}
   ShapeNeeds Needs() const override {
@@ -62,15 +91,18 @@ class DeformedStage : public MatchingStage {
 }  // namespace
 
 void RegisterMatchingStages(Registry& registry) {
-  registry.Add("matching", "nearest", "nearest neighbour in the aligned embeddings (FLANN kd-tree)",
+  registry.Add("matching", "nearest", "nearest neighbour in the aligned embeddings (FLANN kd-tree); a pair with a partial shape "
+               "(partial_boundary_ratio) by geodesic landmarks on the surfaces",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  const double normal_weight =
                      o.GetDouble("normal_weight", kDefaultNormalWeight, Range::AtLeast(0.0));
-                 return std::make_unique<NearestStage>(
-                     normal_weight, o.GetInt("threads", 1, Range::Closed(0, 256)));
+                 return WithPartialRoute(
+                     o, std::make_unique<NearestStage>(
+                            normal_weight, o.GetInt("threads", 1, Range::Closed(0, 256))));
                });
   registry.Add("matching", "nearest_scaled",
-               "ICP up to per-axis scale and translation, then nearest neighbour",
+               "ICP up to per-axis scale and translation, then nearest neighbour; a pair with a partial "
+               "shape (partial_boundary_ratio) by geodesic landmarks on the surfaces",
                [](OptionReader& o) -> std::unique_ptr<Stage> {
                  using S = ScaledIcpOptions;
                  ScaledIcpOptions s;
@@ -82,12 +114,13 @@ void RegisterMatchingStages(Registry& registry) {
                  s.threads = o.GetInt("threads", 1, S::kThreads);
                  std::string error;
                  if (!s.IsValid(&error)) o.Fail("", error);
-                 return std::make_unique<NearestScaledStage>(s);
+                 return WithPartialRoute(o, std::make_unique<NearestScaledStage>(s));
                });
   registry.Add(
       "matching", "deformed",
       "the source embedding bent onto the target's by a deformation smooth along the "
-      "source surface (non-rigid ICP in its Laplace-Beltrami basis), then nearest neighbour",
+      "source surface (non-rigid ICP in its Laplace-Beltrami basis), then nearest neighbour; a "
+      "pair with a partial shape (partial_boundary_ratio) by geodesic landmarks on the surfaces",
       [](OptionReader& o) -> std::unique_ptr<Stage> {
         using D = DeformOptions;
         DeformOptions d;
@@ -101,7 +134,7 @@ void RegisterMatchingStages(Registry& registry) {
         d.threads = o.GetInt("threads", 1, D::kThreads);
         std::string error;
         if (!d.IsValid(&error)) o.Fail("", error);
-        return std::make_unique<DeformedStage>(d);
+        return WithPartialRoute(o, std::make_unique<DeformedStage>(d));
       });
 }
 

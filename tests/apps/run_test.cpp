@@ -540,5 +540,40 @@ TEST(RunCommand, UsageErrorsExit2) {
   EXPECT_NE(out.find("--out"), std::string::npos) << out;
 }
 
+
+// A dataset whose poses are all cut by a plane: every pair has a part, which the default
+// matching stage maps on the surfaces (the flip stage's choice unused, no refinement), and
+// `partial_boundary_ratio: 0` sends back through the embeddings.
+TEST(RunCommand, PairsWithAPartAreMatchedOnTheSurfacesUnlessTheRouteIsOff) {
+  TempDir tmp;
+  std::string out;
+  ASSERT_EQ(Symembed("synth --poses 3 --vertices 1500 --plane-cuts 1 --out " + tmp.File("data"),
+                     &out),
+            0)
+      << out;
+  const std::string config = tmp.File("config.yaml");
+  WriteText(config,
+            "name: cuts\n"
+            "dataset: {format: pairs_vts, root: " + tmp.File("data") + "}\n"
+            "pipeline:\n"
+            "  sampling: {type: farthest_point, count: 200}\n"
+            "  refine: {type: discrete}\n"
+            "evaluation: {geodesics: dijkstra}\n"
+            "variants:\n"
+            "  - {name: embeddings, set: {pipeline.matching.partial_boundary_ratio: 0}}\n");
+  ASSERT_EQ(Symembed("run " + config + " --quiet --jobs 2 --no-report --cache " +
+                         tmp.File("cache") + " --out " + tmp.File("out"),
+                     &out),
+            0)
+      << out;
+  const std::string base = ReadText(tmp.File("out/base/pairs.csv"));
+  const std::string off = ReadText(tmp.File("out/embeddings/pairs.csv"));
+  EXPECT_NE(base.find("not used: the matching stage mapped the surfaces (partial: the "),
+            std::string::npos)
+      << base;
+  EXPECT_NE(base.find("not run: the matching stage mapped the surfaces"), std::string::npos);
+  EXPECT_EQ(off.find("mapped the surfaces"), std::string::npos) << off;
+}
+
 }  // namespace
 }  // namespace symembed

@@ -1,0 +1,492 @@
+#include "core/matching/partial.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+#include "core/errors.h"
+#include "core/laplacian.h"
+#include "core/mesh_graph.h"
+
+namespace symembed {
+namespace {
+
+double SurfaceArea(const Surface& s) {
+  double area = 0.0;
+  for (int f = 0; f < s.NumFaces(); ++f) {
+    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  return area;
+}
+
+// One shape of the pair, in the common unit.
+struct PartialSide {
+  const Surface* surface = nullptr;
+  double unit = 1.0;
+  double area = 0.0;  // in the common unit
+  MeshGraph graph;
+  std::vector<int> samples;
+  Eigen::MatrixXd D;   // #samples x #V distances from each sample, common unit
+  Eigen::MatrixXd DS;  // #samples x #samples
+  Eigen::MatrixX3d normals;
+
+  void Prepare(const Surface& s, const std::vector<int>& all_samples, int count, double u,
+               const char* which) {
+    if (s.NumFaces() == 0) throw InvalidInputError(std::string(which) + " surface has no faces");
+    surface = &s;
+    unit = u;
+    area = SurfaceArea(s) * u * u;
+    graph = BuildMeshGraph(s);
+    samples.assign(all_samples.begin(),
+                   all_samples.begin() + std::min<size_t>(count, all_samples.size()));
+    D = EdgeGraphDistances(graph, samples, 1) * u;
+    DS.resize(samples.size(), samples.size());
+    for (size_t i = 0; i < samples.size(); ++i) {
+      for (size_t j = 0; j < samples.size(); ++j) DS(i, j) = D(i, samples[j]);
+    }
+    normals = VertexNormals(s);
+  }
+  int NumSamples() const { return static_cast<int>(samples.size()); }
+};
+
+
+// Index of the column of `rows` (k x #cols, one row per landmark) nearest in L1 to `x` (k),
+// and that distance.
+std::pair<int, double> NearestColumnL1(const Eigen::MatrixXd& rows, const Eigen::VectorXd& x) {
+  int best = 0;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < rows.cols(); ++j) {
+    double cost = 0.0;
+    for (int i = 0; i < rows.rows() && cost < best_cost; ++i) cost += std::abs(rows(i, j) - x(i));
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = j;
+    }
+  }
+  return {best, best_cost};
+}
+
+// Triple (a, b, c) of part samples and its images (A, B, C) among the whole's samples.
+struct TripleHypothesis {
+  double score = 0.0;
+  int a = 0, b = 0, c = 0, A = 0, B = 0, C = 0;
+};
+
+// The whole's sample nearest in L1 to part sample q's distances to a, b, c under (A, B, C),
+// and that distance.
+std::pair<int, double> MapQuery(const PartialSide& part, const PartialSide& whole,
+                                const TripleHypothesis& h, int q) {
+  const double x = part.DS(h.a, q), y = part.DS(h.b, q), z = part.DS(h.c, q);
+  const double* ra = whole.DS.col(h.A).data();
+  const double* rb = whole.DS.col(h.B).data();
+  const double* rc = whole.DS.col(h.C).data();
+  int best = 0;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < whole.NumSamples(); ++j) {
+    const double cost = std::abs(ra[j] - x) + std::abs(rb[j] - y) + std::abs(rc[j] - z);
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = j;
+    }
+  }
+  return {best, best_cost};
+}
+
+// Mean disagreement of the mutual distances of the query samples and of their images.
+double TripleScore(const PartialSide& part, const PartialSide& whole, const TripleHypothesis& h,
+                   const std::vector<int>& queries) {
+  std::vector<int> image(queries.size());
+  for (size_t i = 0; i < queries.size(); ++i) image[i] = MapQuery(part, whole, h, queries[i]).first;
+  double sum = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    for (size_t j = i + 1; j < queries.size(); ++j) {
+      sum += std::abs(whole.DS(image[i], image[j]) - part.DS(queries[i], queries[j]));
+      ++count;
+    }
+  }
+  return count > 0 ? sum / count : 0.0;
+}
+
+// The t-th of `count` triples spread over the lexicographic order of the triples of [0, pool).
+void SpreadTriple(int t, int count, int pool, int* a, int* b, int* c) {
+  const long total = static_cast<long>(pool) * (pool - 1) * (pool - 2) / 6;
+  long index = total * t / std::max(count, 1);
+  for (int i = 0; i < pool; ++i) {
+    for (int j = i + 1; j < pool; ++j) {
+      for (int k = j + 1; k < pool; ++k) {
+        if (index-- == 0) {
+          *a = i, *b = j, *c = k;
+          return;
+        }
+      }
+    }
+  }
+  *a = 0, *b = 1, *c = 2;
+}
+
+std::vector<TripleHypothesis> TripleHypotheses(const PartialSide& part, const PartialSide& whole,
+                                               const PartialMatchOptions& o) {
+  const double tol = o.tolerance * std::sqrt(whole.area);
+  const int ns = whole.NumSamples();
+  const int pool = std::min(o.pool, part.NumSamples());
+  const int nq = std::min(o.queries, part.NumSamples());
+  std::vector<int> queries(nq), first_queries;
+  std::iota(queries.begin(), queries.end(), 0);
+  // A few queries beyond the pool rank the candidates before the full score.
+  for (int q = pool; q < std::min(pool + 6, part.NumSamples()); ++q) first_queries.push_back(q);
+  if (first_queries.size() < 3) first_queries = queries;
+  constexpr int kFirstKept = 300;
+  constexpr int kKeptPerTriple = 4;
+  std::vector<TripleHypothesis> kept;
+  const int triples = std::min<long>(o.triples, static_cast<long>(pool) * (pool - 1) * (pool - 2) / 6);
+  for (int t = 0; t < triples; ++t) {
+    TripleHypothesis h;
+    SpreadTriple(t, triples, pool, &h.a, &h.b, &h.c);
+    const double dab = part.DS(h.a, h.b), dac = part.DS(h.a, h.c), dbc = part.DS(h.b, h.c);
+    std::vector<TripleHypothesis> candidates;
+    for (int A = 0; A < ns; ++A) {
+      for (int B = 0; B < ns; ++B) {
+        if (std::abs(whole.DS(A, B) - dab) >= tol) continue;
+        for (int C = 0; C < ns; ++C) {
+          if (std::abs(whole.DS(A, C) - dac) >= tol || std::abs(whole.DS(B, C) - dbc) >= tol) {
+            continue;
+          }
+          TripleHypothesis c = h;
+          c.A = A, c.B = B, c.C = C;
+          candidates.push_back(c);
+        }
+      }
+    }
+    for (TripleHypothesis& c : candidates) c.score = TripleScore(part, whole, c, first_queries);
+    auto by_score = [](const TripleHypothesis& x, const TripleHypothesis& y) {
+      return x.score < y.score || (x.score == y.score && std::tie(x.A, x.B, x.C) < std::tie(y.A, y.B, y.C));
+    };
+    const size_t first = std::min<size_t>(kFirstKept, candidates.size());
+    std::partial_sort(candidates.begin(), candidates.begin() + first, candidates.end(), by_score);
+    candidates.resize(first);
+    for (TripleHypothesis& c : candidates) c.score = TripleScore(part, whole, c, queries);
+    std::sort(candidates.begin(), candidates.end(), by_score);
+    for (size_t i = 0; i < std::min<size_t>(kKeptPerTriple, candidates.size()); ++i) {
+      kept.push_back(candidates[i]);
+    }
+  }
+  std::stable_sort(kept.begin(), kept.end(),
+                   [](const TripleHypothesis& x, const TripleHypothesis& y) { return x.score < y.score; });
+  return kept;
+}
+
+// Distances (common unit) from each of `sources` to every vertex of the side.
+Eigen::MatrixXd DistancesFrom(const PartialSide& side, const std::vector<int>& sources) {
+  return EdgeGraphDistances(side.graph, sources, 1) * side.unit;
+}
+
+// The whole's vertex nearest in L1 to each of `vertices`' distances to the landmarks.
+std::vector<int> MapVerticesBrute(const Eigen::MatrixXd& part_rows, const Eigen::MatrixXd& whole_rows,
+                                  const std::vector<int>& vertices, double* mean_cost) {
+  std::vector<int> image(vertices.size());
+  double sum = 0.0;
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const auto [j, cost] = NearestColumnL1(whole_rows, part_rows.col(vertices[i]));
+    image[i] = j;
+    sum += cost;
+  }
+  if (mean_cost) *mean_cost = vertices.empty() ? 0.0 : sum / vertices.size() / part_rows.rows();
+  return image;
+}
+
+// Refines the images of the landmarks (part vertices, whose distances to every part vertex
+// are part_rows) from `images` (whole vertices): each round maps them by their distances to all
+// of them. *whole_rows: on return, the distances from the final images.
+std::vector<int> RefineLandmarks(const PartialSide& whole, const std::vector<int>& landmarks,
+                                 const Eigen::MatrixXd& part_rows, std::vector<int> images,
+                                 int iterations, Eigen::MatrixXd* whole_rows) {
+  for (int it = 0; it < iterations; ++it) {
+    std::vector<int> next = MapVerticesBrute(part_rows, *whole_rows, landmarks, nullptr);
+    if (next == images) break;
+    images = std::move(next);
+    *whole_rows = DistancesFrom(whole, images);
+  }
+  return images;
+}
+
+// Share of the part's samples whose small triangle (the sample and its two nearest samples)
+// keeps its orientation against the vertex normal under `image` (whole vertex per sample).
+double OrientationAgreement(const PartialSide& part, const PartialSide& whole,
+                            const std::vector<int>& image) {
+  const int n = part.NumSamples();
+  int agree = 0, total = 0;
+  for (int i = 0; i < n; ++i) {
+    int j = -1, k = -1;
+    for (int m = 0; m < n; ++m) {
+      if (m == i) continue;
+      if (j < 0 || part.DS(i, m) < part.DS(i, j)) {
+        k = j;
+        j = m;
+      } else if (k < 0 || part.DS(i, m) < part.DS(i, k)) {
+        k = m;
+      }
+    }
+    if (k < 0) continue;
+    const Eigen::MatrixX3d& P = part.surface->V;
+    const Eigen::MatrixX3d& W = whole.surface->V;
+    const int p = part.samples[i], q = part.samples[j], r = part.samples[k];
+    const double sp = (P.row(q) - P.row(p)).cross(P.row(r) - P.row(p)).dot(part.normals.row(p));
+    const double sw = (W.row(image[j]) - W.row(image[i]))
+                          .cross(W.row(image[k]) - W.row(image[i]))
+                          .dot(whole.normals.row(image[i]));
+    if (sp == 0.0 || sw == 0.0) continue;
+    ++total;
+    if ((sp > 0) == (sw > 0)) ++agree;
+  }
+  return total > 0 ? static_cast<double>(agree) / total : 0.5;
+}
+
+// Maps every vertex of `from` to a vertex of `to` by its distances to the landmarks (rows
+// from_rows, to_rows: k x #V), searching near the image of its nearest anchor: anchors_from[i]
+// (a vertex of `from`) has image anchors_to[i].
+std::vector<int> MapAllVertices(const PartialSide& from, const PartialSide& to,
+                                const Eigen::MatrixXd& from_rows, const Eigen::MatrixXd& to_rows,
+                                const std::vector<int>& anchors_from,
+                                const std::vector<int>& anchors_to) {
+  const int n = from.surface->NumVertices();
+  const std::vector<int> seed = NearestSeeds(from.graph, anchors_from);
+  std::vector<std::vector<int>> cell(anchors_from.size());
+  for (int v = 0; v < n; ++v) {
+    if (seed[v] >= 0) cell[seed[v]].push_back(v);
+  }
+  // The radius of each cell (common unit): its farthest vertex from the anchor in space, which
+  // within a cell this small is close to the distance along the surface.
+  std::vector<double> radius(anchors_from.size(), 0.0);
+  std::vector<double> radii;
+  for (size_t i = 0; i < anchors_from.size(); ++i) {
+    if (cell[i].empty()) continue;
+    for (int v : cell[i]) {
+      radius[i] = std::max(
+          radius[i], (from.surface->V.row(v) - from.surface->V.row(anchors_from[i])).norm() * from.unit);
+    }
+    radii.push_back(radius[i]);
+  }
+  double cap = std::numeric_limits<double>::infinity();
+  if (!radii.empty()) {
+    std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+    cap = 3.0 * radii[radii.size() / 2];
+  }
+  std::vector<int> map(n, anchors_to.empty() ? 0 : anchors_to[0]);
+  std::vector<std::pair<int, double>> ball;
+  DijkstraWorkspace<double> ball_ws;
+  for (size_t i = 0; i < anchors_from.size(); ++i) {
+    if (cell[i].empty()) continue;
+    const double r = std::min(2.0 * radius[i], cap) + 2.0 * to.graph.max_length * to.unit;
+    DijkstraBall(to.graph, anchors_to[i], r / to.unit, &ball, &ball_ws);
+    for (int v : cell[i]) {
+      int best = anchors_to[i];
+      double best_cost = std::numeric_limits<double>::infinity();
+      for (const auto& [u, d] : ball) {
+        (void)d;
+        double cost = 0.0;
+        for (int l = 0; l < from_rows.rows() && cost < best_cost; ++l) {
+          cost += std::abs(from_rows(l, v) - to_rows(l, u));
+        }
+        if (cost < best_cost) {
+          best_cost = cost;
+          best = u;
+        }
+      }
+      map[v] = best;
+    }
+  }
+  return map;
+}
+
+}  // namespace
+
+bool PartialMatchOptions::IsValid(std::string* error) const {
+  std::ostringstream out;
+  if (!kBoundaryRatio.Contains(boundary_ratio))
+    out << "boundary_ratio " << kBoundaryRatio.Violation(boundary_ratio);
+  else if (!kPartSamples.Contains(part_samples))
+    out << "part_samples " << kPartSamples.Violation(part_samples);
+  else if (!kWholeSamples.Contains(whole_samples))
+    out << "whole_samples " << kWholeSamples.Violation(whole_samples);
+  else if (!kTriples.Contains(triples))
+    out << "triples " << kTriples.Violation(triples);
+  else if (!kPool.Contains(pool))
+    out << "pool " << kPool.Violation(pool);
+  else if (!kTolerance.Contains(tolerance))
+    out << "tolerance " << kTolerance.Violation(tolerance);
+  else if (!kQueries.Contains(queries))
+    out << "queries " << kQueries.Violation(queries);
+  else if (!kLandmarks.Contains(landmarks))
+    out << "landmarks " << kLandmarks.Violation(landmarks);
+  else if (!kIterations.Contains(iterations))
+    out << "iterations " << kIterations.Violation(iterations);
+  else if (!kHypotheses.Contains(hypotheses))
+    out << "hypotheses " << kHypotheses.Violation(hypotheses);
+  else if (landmarks > part_samples)
+    out << "landmarks (" << landmarks << ") must not exceed part_samples (" << part_samples << ")";
+  if (error) *error = out.str();
+  return out.str().empty();
+}
+
+double BoundaryRatio(const Surface& surface) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(3 * surface.NumFaces());
+  for (int f = 0; f < surface.NumFaces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = surface.F(f, k), b = surface.F(f, (k + 1) % 3);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  double length = 0.0;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) length += (surface.V.row(edges[i].first) - surface.V.row(edges[i].second)).norm();
+    i = j;
+  }
+  const double area = SurfaceArea(surface);
+  return area > 0.0 ? length / std::sqrt(area) : 0.0;
+}
+
+bool IsPartialPair(const Surface& source, const Surface& target,
+                   const PartialMatchOptions& options) {
+  if (options.boundary_ratio <= 0.0) return false;
+  return BoundaryRatio(source) > options.boundary_ratio ||
+         BoundaryRatio(target) > options.boundary_ratio;
+}
+
+MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_samples,
+                         double source_unit, const Surface& target,
+                         const std::vector<int>& target_samples, double target_unit,
+                         const PartialMatchOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("partial matching: " + error);
+  const bool source_is_part =
+      SurfaceArea(source) * source_unit * source_unit <= SurfaceArea(target) * target_unit * target_unit;
+  PartialSide part, whole;
+  if (source_is_part) {
+    part.Prepare(source, source_samples, options.part_samples, source_unit, "source");
+    whole.Prepare(target, target_samples, options.whole_samples, target_unit, "target");
+  } else {
+    part.Prepare(target, target_samples, options.part_samples, target_unit, "target");
+    whole.Prepare(source, source_samples, options.whole_samples, source_unit, "source");
+  }
+  if (part.NumSamples() < options.landmarks || whole.NumSamples() < 3) {
+    throw InvalidInputError("partial matching needs " + std::to_string(options.landmarks) +
+                            " samples of the part and 3 of the whole; they have " +
+                            std::to_string(part.NumSamples()) + " and " +
+                            std::to_string(whole.NumSamples()));
+  }
+  const std::vector<TripleHypothesis> triples = TripleHypotheses(part, whole, options);
+
+  const std::vector<int> landmarks(part.samples.begin(), part.samples.begin() + options.landmarks);
+
+  // The landmarks are the part's first samples, whose distance rows are at hand.
+  const Eigen::MatrixXd part_rows = part.D.topRows(options.landmarks);
+  struct Refined {
+    std::vector<int> images;         // whole vertex of each landmark
+    Eigen::MatrixXd whole_rows;      // distances from the images
+    std::vector<int> sample_images;  // whole vertex of each part sample
+    double residual = 0.0;           // per landmark, over sqrt(area of the whole)
+    double orientation = 0.0;
+  };
+  auto evaluate = [&](Refined* r) {
+    double cost = 0.0;
+    r->sample_images = MapVerticesBrute(part_rows, r->whole_rows, part.samples, &cost);
+    r->residual = cost / std::sqrt(whole.area);
+    r->orientation = OrientationAgreement(part, whole, r->sample_images);
+  };
+  // The map to keep of `maps`: the lowest residual among those that keep the orientation (of
+  // all, when none does).
+  auto choose = [](const std::vector<Refined>& maps, int skip) {
+    int chosen = -1;
+    for (int pass = 0; pass < 2 && chosen < 0; ++pass) {
+      for (size_t i = 0; i < maps.size(); ++i) {
+        if (static_cast<int>(i) == skip || (pass == 0 && maps[i].orientation <= 0.5)) continue;
+        if (chosen < 0 || maps[i].residual < maps[chosen].residual) chosen = static_cast<int>(i);
+      }
+    }
+    return chosen;
+  };
+  const double distinct = 0.05 * std::sqrt(whole.area);
+  auto mean_gap = [&](const std::vector<int>& x, const std::vector<int>& y) {
+    double sum = 0.0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      sum += (whole.surface->V.row(x[i]) - whole.surface->V.row(y[i])).norm() * whole.unit;
+    }
+    return x.empty() ? 0.0 : sum / x.size();
+  };
+  // Each distinct start gets one round of refinement; the two best get the rest.
+  std::vector<Refined> refined;
+  std::vector<std::vector<int>> starts;
+  for (const TripleHypothesis& h : triples) {
+    if (static_cast<int>(refined.size()) >= options.hypotheses) break;
+    // The landmarks' first images: by their distances to the triple, over every vertex.
+    Eigen::MatrixXd whole3(3, whole.surface->NumVertices());
+    whole3.row(0) = whole.D.row(h.A);
+    whole3.row(1) = whole.D.row(h.B);
+    whole3.row(2) = whole.D.row(h.C);
+    Eigen::MatrixXd part3(3, part.surface->NumVertices());
+    part3.row(0) = part.D.row(h.a);
+    part3.row(1) = part.D.row(h.b);
+    part3.row(2) = part.D.row(h.c);
+    std::vector<int> start = MapVerticesBrute(part3, whole3, landmarks, nullptr);
+    bool seen = false;
+    for (const auto& s : starts) seen = seen || mean_gap(s, start) < distinct;
+    if (seen) continue;
+    starts.push_back(start);
+    Refined r;
+    r.whole_rows = DistancesFrom(whole, start);
+    r.images = RefineLandmarks(whole, landmarks, part_rows, start,
+                               std::min(options.iterations, 1), &r.whole_rows);
+    evaluate(&r);
+    bool duplicate = false;
+    for (const Refined& other : refined) {
+      duplicate = duplicate || mean_gap(other.sample_images, r.sample_images) < distinct;
+    }
+    if (!duplicate) refined.push_back(std::move(r));
+  }
+  if (refined.empty()) {
+    throw SolverError("partial matching found no triple of the whole's samples whose distances "
+                      "agree with the part's within the tolerance");
+  }
+  if (options.iterations > 1) {
+    const int first = choose(refined, -1);
+    const int second = choose(refined, first);
+    for (int i : {first, second}) {
+      if (i < 0) continue;
+      refined[i].images = RefineLandmarks(whole, landmarks, part_rows, refined[i].images,
+                                          options.iterations - 1, &refined[i].whole_rows);
+      evaluate(&refined[i]);
+    }
+  }
+  const int chosen = choose(refined, -1);
+  const Refined& best = refined[chosen];
+
+  MatchResult result;
+  if (source_is_part) {
+    result.map = MapAllVertices(part, whole, part_rows, best.whole_rows, part.samples,
+                                best.sample_images);
+  } else {
+    result.map = MapAllVertices(whole, part, best.whole_rows, part_rows,
+                                best.sample_images, part.samples);
+  }
+  std::ostringstream message;
+  message << "partial: the " << (source_is_part ? "source" : "target") << " is the part ("
+          << static_cast<int>(std::lround(100.0 * part.area / whole.area))
+          << "% of the whole's area); map by geodesic landmarks, residual " << best.residual
+          << ", orientation kept by " << best.orientation << " of the samples; " << refined.size()
+          << " distinct maps from " << triples.size() << " triple hypotheses";
+  result.status.residual = best.residual;
+  result.status.iterations = static_cast<int>(refined.size());
+  result.status.message = message.str();
+  return result;
+}
+
+}  // namespace symembed

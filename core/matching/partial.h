@@ -1,0 +1,93 @@
+// Correspondence between a partial shape (a cut, a scan of part of a body) and a shape it is a
+// part of, from geodesic distances alone: neither shape's embedding, frame or symmetry plane is
+// used, since a partial surface has none that agrees with the whole's.
+//
+// Between two points of the part whose shortest path on the whole stays inside the part, the
+// part's geodesic distance is the whole's. So a point of the part is placed on the whole by its
+// distances to landmarks whose images are known ("geodesic coordinates"), and the landmarks'
+// images are found by hypothesis and test:
+//   1. three far-apart samples of the part (from the first `pool` farthest-point samples) and
+//      every triple of the whole's samples whose mutual distances agree with theirs within
+//      `tolerance` (times the square root of the whole's area);
+//   2. each such triple maps some of the part's samples to the whole's sample of the nearest
+//      distances (L1) to it; the triples whose mapped samples keep their mutual distances best
+//      are kept (a few query samples first, then `queries`);
+//   3. each kept triple maps `landmarks` samples of the part, then again with the distances to
+//      all of them, `iterations` times (L1 over the landmarks, which tolerates a landmark whose
+//      path on the part goes around the cut);
+//   4. of the distinct refined maps, the one of lowest residual among those that keep the
+//      surface's orientation is chosen. Mirror images under an intrinsic left-right symmetry
+//      keep every distance but turn the orientation (the sign of a small triangle of samples
+//      against the vertex normal), so the orientation tells them apart.
+// Every vertex of the source is then mapped by its distances to the landmarks, searched near
+// the image of its nearest sample. Distances are along mesh edges (core/mesh_graph.h).
+//
+// Units: the two surfaces' coordinates times their `unit` (e.g. 1 / ShapeData::scale, the
+// input units) must be in one unit; the part is the one of smaller area in that unit (either
+// the source or the target). Deterministic. Throws InvalidInputError for a surface without
+// faces or with fewer samples than `landmarks`.
+//
+// Related: generalized MDS, which embeds a part into a whole's geodesic metric [Bronstein,
+// Bronstein & Kimmel 2006, PNAS]; RANSAC [Fischler & Bolles 1981].
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/matching/match.h"
+#include "core/mesh.h"
+#include "core/range.h"
+
+namespace symembed {
+
+struct PartialMatchOptions {
+  // A shape is matched as a part when its open boundary is longer than this times the square
+  // root of its area (BoundaryRatio); 0: never. A closed shape has 0; small holes stay below.
+  double boundary_ratio = 0.4;
+  static constexpr Range kBoundaryRatio = Range::AtLeast(0.0);
+  // Samples (prefixes of the shapes' farthest-point samples) of the part and of the whole.
+  int part_samples = 120;
+  static constexpr Range kPartSamples = Range::Closed(10, 2000);
+  int whole_samples = 300;
+  static constexpr Range kWholeSamples = Range::Closed(10, 4000);
+  // Triples of the part's first `pool` samples tried, spread over all of them.
+  int triples = 16;
+  static constexpr Range kTriples = Range::Closed(1, 200);
+  int pool = 10;
+  static constexpr Range kPool = Range::Closed(3, 100);
+  // Distances agree within tolerance * sqrt(area of the whole).
+  double tolerance = 0.03;
+  static constexpr Range kTolerance = Range::OpenClosed(0.0, 1.0);
+  // Samples of the part mapped to score a triple.
+  int queries = 30;
+  static constexpr Range kQueries = Range::Closed(4, 500);
+  // Landmarks of the refined maps, refinement rounds, distinct maps compared.
+  int landmarks = 40;
+  static constexpr Range kLandmarks = Range::Closed(4, 500);
+  int iterations = 3;
+  static constexpr Range kIterations = Range::Closed(0, 100);
+  int hypotheses = 6;
+  static constexpr Range kHypotheses = Range::Closed(1, 100);
+
+  bool IsValid(std::string* error) const;
+};
+
+// Length of the open boundary (edges of one face) over the square root of the area;
+// scale-invariant. 0 for a closed surface or one without faces.
+double BoundaryRatio(const Surface& surface);
+
+// Whether the pair is matched as part and whole: either shape's BoundaryRatio above
+// options.boundary_ratio (> 0).
+bool IsPartialPair(const Surface& source, const Surface& target,
+                   const PartialMatchOptions& options);
+
+// map[v]: the target vertex of source vertex v. samples: farthest-point samples of each
+// surface in sampling order (the first spread widest). status.residual: the chosen map's mean
+// L1 disagreement of distances to the landmarks per landmark, over the whole's square root of
+// area; status.message: the part, the orientation agreement and the maps compared.
+MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_samples,
+                         double source_unit, const Surface& target,
+                         const std::vector<int>& target_samples, double target_unit,
+                         const PartialMatchOptions& options = {});
+
+}  // namespace symembed
