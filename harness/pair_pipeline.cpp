@@ -9,6 +9,7 @@
 
 #include "core/clock.h"
 #include "core/laplacian.h"
+#include "core/matching/partial.h"
 #include "core/mesh_graph.h"
 #include "registry/hash.h"
 
@@ -173,18 +174,32 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     }
     return alignment[c] == 1 ? moved[c] : source_points;
   };
-  MatchResult matched;
-  const bool on_surfaces = pipeline.matching->MatchSurfaces(input, &matched);
-  if (on_surfaces) {
-    CheckMap(matched, a.surface.NumVertices(), nb, "matching");
-    // The map comes from no rotation: the flip stage's choice stays in the record, named as
-    // unused.
-    out.flip.status.message += "; not used: the matching stage mapped the surfaces (" +
-                               matched.status.message + ")";
-  }
+  MatchResult on_surfaces_map;
+  const bool partial = pipeline.matching->MatchSurfaces(input, &on_surfaces_map);
   const EmbeddedPoints chosen_target = Rotated(target_points, rotations[out.flip.chosen]);
-  if (!on_surfaces) {
-    matched = pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
+  MatchResult matched =
+      pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
+  bool on_surfaces = false;
+  if (partial) {
+    CheckMap(on_surfaces_map, a.surface.NumVertices(), nb, "matching");
+    // Of the map on the surfaces and the one in the embeddings, the one that keeps the part's
+    // distances better: a part that lacks little (a few holes) keeps its embedding and frame.
+    auto distortion = [&](const std::vector<int>& map) {
+      return LandmarkDistortion(a.surface, a.samples, 1.0 / a.scale, b.surface, b.samples,
+                                1.0 / b.scale, map);
+    };
+    const double surfaces = distortion(on_surfaces_map.map), embeddings = distortion(matched.map);
+    on_surfaces = surfaces < embeddings;
+    std::ostringstream note;
+    note << "the matching stage mapped the surfaces (" << on_surfaces_map.status.message
+         << "); landmark distortion " << surfaces << " on the surfaces, " << embeddings
+         << " in the embeddings";
+    if (on_surfaces) {
+      out.flip.status.message += "; not used: " + note.str();
+      matched = std::move(on_surfaces_map);
+    } else {
+      out.flip.status.message += "; " + note.str() + ": the embeddings' map kept";
+    }
   }
   out.times.push_back({"matching", SecondsSince(start), false});
   counters->Executed("matching");

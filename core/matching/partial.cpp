@@ -489,4 +489,45 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
   return result;
 }
 
+double LandmarkDistortion(const Surface& source, const std::vector<int>& source_samples,
+                          double source_unit, const Surface& target,
+                          const std::vector<int>& target_samples, double target_unit,
+                          const std::vector<int>& map, int count) {
+  const double source_area = SurfaceArea(source) * source_unit * source_unit;
+  const double target_area = SurfaceArea(target) * target_unit * target_unit;
+  const bool source_is_part = source_area <= target_area;
+  const std::vector<int>& samples = source_is_part ? source_samples : target_samples;
+  const std::vector<int> landmarks(samples.begin(),
+                                   samples.begin() + std::min<size_t>(count, samples.size()));
+  const int n = static_cast<int>(landmarks.size());
+  if (n < 2) return 0.0;
+  Eigen::MatrixXd on_part, on_other;
+  std::vector<int> counterparts(n);
+  if (source_is_part) {
+    on_part = EdgeGraphDistances(source, landmarks, 1) * source_unit;
+    for (int i = 0; i < n; ++i) counterparts[i] = map[landmarks[i]];
+    on_other = EdgeGraphDistances(target, counterparts, 1) * target_unit;
+  } else {
+    on_part = EdgeGraphDistances(target, landmarks, 1) * target_unit;
+    for (int i = 0; i < n; ++i) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (size_t v = 0; v < map.size(); ++v) {
+        if (on_part(i, map[v]) < nearest) {
+          nearest = on_part(i, map[v]);
+          counterparts[i] = static_cast<int>(v);
+        }
+      }
+    }
+    on_other = EdgeGraphDistances(source, counterparts, 1) * source_unit;
+  }
+  std::vector<double> gaps;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      gaps.push_back(std::abs(on_part(i, landmarks[j]) - on_other(i, counterparts[j])));
+    }
+  }
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  return gaps[gaps.size() / 2] / std::sqrt(std::min(source_area, target_area));
+}
+
 }  // namespace symembed

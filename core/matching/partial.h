@@ -90,4 +90,15 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
                          const std::vector<int>& target_samples, double target_unit,
                          const PartialMatchOptions& options = {});
 
+// How well `map` (source vertex -> target vertex) keeps geodesic distances on the part (the
+// shape of smaller area in the common unit): the median over pairs of `count` landmarks of
+// the part (its first samples) of |distance between them - distance between their
+// counterparts|, over the square root of the part's area. The counterpart of a source landmark
+// is its image; of a target landmark, the source vertex whose image is nearest to it. Lower is
+// better; 0 for a map that keeps every such distance.
+double LandmarkDistortion(const Surface& source, const std::vector<int>& source_samples,
+                          double source_unit, const Surface& target,
+                          const std::vector<int>& target_samples, double target_unit,
+                          const std::vector<int>& map, int count = 40);
+
 }  // namespace symembed

@@ -137,6 +137,30 @@ TEST(PartialMatch, ComparesTheShapesInTheirCommonUnit) {
   EXPECT_GT(same, 0.95 * a.map.size());
 }
 
+TEST(PartialMatch, LandmarkDistortionIsLowForTheTrueMapFromEitherSide) {
+  const PartAndWhole s = CutHumanoid();
+  const std::vector<int> ps = Samples(s.part.surface, 100), ws = Samples(s.whole.surface, 100);
+  const std::map<int, int> whole_of_rest = ByRestId(s.whole);
+  std::vector<int> truth(s.part.surface.NumVertices()), reversed(truth.size());
+  for (size_t v = 0; v < truth.size(); ++v) {
+    truth[v] = whole_of_rest.at(s.part.rest_ids[v]);
+    reversed[v] = truth[truth.size() - 1 - v];
+  }
+  const double good = LandmarkDistortion(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, truth);
+  const double bad =
+      LandmarkDistortion(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, reversed);
+  EXPECT_LT(good, 0.02);
+  EXPECT_GT(bad, 5 * good);
+  // The whole onto the part: measured on the part's landmarks and their counterparts.
+  const std::map<int, int> part_of_rest = ByRestId(s.part);
+  std::vector<int> back(s.whole.surface.NumVertices());
+  for (int v = 0; v < s.whole.surface.NumVertices(); ++v) {
+    const auto it = part_of_rest.find(s.whole.rest_ids[v]);
+    back[v] = it != part_of_rest.end() ? it->second : 0;
+  }
+  EXPECT_LT(LandmarkDistortion(s.whole.surface, ws, 1.0, s.part.surface, ps, 1.0, back), 0.02);
+}
+
 TEST(PartialMatch, RejectsBadOptionsAndSurfacesWithoutFaces) {
   PartialMatchOptions o;
   o.landmarks = 200;
