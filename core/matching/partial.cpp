@@ -49,6 +49,13 @@ struct PartialSide {
       for (size_t j = 0; j < samples.size(); ++j) DS(i, j) = D(i, samples[j]);
     }
     normals = VertexNormals(s);
+    // The faces of an open surface may be consistently oriented either way (no inside to point
+    // away from); the normals are turned to point away from the centroid on the whole, as a
+    // body's outward normals do, so that the orientation of two shapes compares.
+    const Eigen::RowVector3d centroid = s.V.colwise().mean();
+    double outward = 0.0;
+    for (int v = 0; v < s.NumVertices(); ++v) outward += normals.row(v).dot(s.V.row(v) - centroid);
+    if (outward < 0.0) normals = -normals;
   }
   int NumSamples() const { return static_cast<int>(samples.size()); }
 };
