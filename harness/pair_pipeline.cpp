@@ -174,11 +174,12 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     }
     return alignment[c] == 1 ? moved[c] : source_points;
   };
-  MatchResult on_surfaces_map;
-  const bool partial = pipeline.matching->MatchSurfaces(input, &on_surfaces_map);
   const EmbeddedPoints chosen_target = Rotated(target_points, rotations[out.flip.chosen]);
   MatchResult matched =
       pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
+  CheckMap(matched, a.surface.NumVertices(), nb, "matching");
+  MatchResult on_surfaces_map;
+  const bool partial = pipeline.matching->MatchSurfaces(input, matched.map, &on_surfaces_map);
   bool on_surfaces = false;
   if (partial) {
     CheckMap(on_surfaces_map, a.surface.NumVertices(), nb, "matching");

@@ -117,11 +117,13 @@ class MatchingStage : public PairStage {
     (void)pair, (void)source, (void)target, (void)moved;
     return false;
   }
-  // The map of a pair this stage matches on the surfaces instead of in the embeddings (a
-  // partial shape, core/matching/partial.h): returns true with *out set, or false, leaving *out
-  // alone, for a pair matched in the embeddings by Align and Run (the default).
-  virtual bool MatchSurfaces(const PairInput& pair, MatchResult* out) const {
-    (void)pair, (void)out;
+  // The map of a pair this stage matches on the surfaces as well as in the embeddings (a
+  // partial shape, core/matching/partial.h), given the embeddings' map as a seed: returns true
+  // with *out set, or false, leaving *out alone, for a pair matched in the embeddings alone by
+  // Align and Run (the default).
+  virtual bool MatchSurfaces(const PairInput& pair, const std::vector<int>& seed,
+                             MatchResult* out) const {
+    (void)pair, (void)seed, (void)out;
     return false;
   }
 };

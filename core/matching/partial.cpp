@@ -14,6 +14,10 @@
 namespace symembed {
 namespace {
 
+// The seed's map is kept over the best of the triples' when its residual is at most this
+// times theirs: distances alone do not tell apart two maps of a nearly symmetric body.
+constexpr double kSeedResidualSlack = 1.5;
+
 double SurfaceArea(const Surface& s) {
   double area = 0.0;
   for (int f = 0; f < s.NumFaces(); ++f) {
@@ -371,7 +375,7 @@ bool IsPartialPair(const Surface& source, const Surface& target,
 MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_samples,
                          double source_unit, const Surface& target,
                          const std::vector<int>& target_samples, double target_unit,
-                         const PartialMatchOptions& options) {
+                         const PartialMatchOptions& options, const std::vector<int>* seed) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("partial matching: " + error);
   const bool source_is_part =
@@ -463,9 +467,43 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
     throw SolverError("partial matching found no triple of the whole's samples whose distances "
                       "agree with the part's within the tolerance");
   }
+  // The seed's map of the landmarks, refined in full: kept where the distances and the
+  // orientation cannot tell it from the map chosen above.
+  int seeded = -1;
+  if (seed != nullptr && seed->size() == static_cast<size_t>(source.NumVertices())) {
+    std::vector<int> start(landmarks.size());
+    for (size_t i = 0; i < landmarks.size(); ++i) {
+      if (source_is_part) {
+        start[i] = (*seed)[landmarks[i]];
+      } else {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (size_t v = 0; v < seed->size(); ++v) {
+          if (part.D(i, (*seed)[v]) < nearest) {
+            nearest = part.D(i, (*seed)[v]);
+            start[i] = static_cast<int>(v);
+          }
+        }
+      }
+    }
+    Refined r;
+    r.whole_rows = DistancesFrom(whole, start);
+    r.images = RefineLandmarks(whole, landmarks, part_rows, start, options.iterations,
+                               &r.whole_rows);
+    evaluate(&r);
+    refined.push_back(std::move(r));
+    seeded = static_cast<int>(refined.size()) - 1;
+  }
   if (options.iterations > 1) {
-    const int first = choose(refined, -1);
-    const int second = choose(refined, first);
+    const int first = choose(refined, seeded);
+    int second = -1;
+    for (size_t i = 0; i < refined.size(); ++i) {
+      if (static_cast<int>(i) == first || static_cast<int>(i) == seeded) continue;
+      const bool kept = refined[i].orientation > 0.5;
+      if (second < 0 || (kept && refined[second].orientation <= 0.5) ||
+          (kept == (refined[second].orientation > 0.5) && refined[i].residual < refined[second].residual)) {
+        second = static_cast<int>(i);
+      }
+    }
     for (int i : {first, second}) {
       if (i < 0) continue;
       refined[i].images = RefineLandmarks(whole, landmarks, part_rows, refined[i].images,
@@ -473,7 +511,13 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
       evaluate(&refined[i]);
     }
   }
-  const int chosen = choose(refined, -1);
+  int chosen = choose(refined, seeded);
+  if (chosen < 0) chosen = seeded;
+  if (seeded >= 0 && refined[seeded].orientation > 0.5 &&
+      (refined[chosen].orientation <= 0.5 ||
+       refined[seeded].residual <= kSeedResidualSlack * refined[chosen].residual)) {
+    chosen = seeded;
+  }
   const Refined& best = refined[chosen];
 
   MatchResult result;
@@ -489,7 +533,8 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
           << static_cast<int>(std::lround(100.0 * part.area / whole.area))
           << "% of the whole's area); map by geodesic landmarks, residual " << best.residual
           << ", orientation kept by " << best.orientation << " of the samples; " << refined.size()
-          << " distinct maps from " << triples.size() << " triple hypotheses";
+          << " distinct maps from " << triples.size() << " triple hypotheses"
+          << (seeded < 0 ? "" : chosen == seeded ? ", the seed's kept" : ", not the seed's");
   result.status.residual = best.residual;
   result.status.iterations = static_cast<int>(refined.size());
   result.status.message = message.str();

@@ -88,7 +88,8 @@ bool IsPartialPair(const Surface& source, const Surface& target,
 MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_samples,
                          double source_unit, const Surface& target,
                          const std::vector<int>& target_samples, double target_unit,
-                         const PartialMatchOptions& options = {});
+                         const PartialMatchOptions& options = {},
+                         const std::vector<int>* seed = nullptr);
 
 // How well `map` (source vertex -> target vertex) keeps geodesic distances on the part (the
 // shape of smaller area in the common unit): the median over pairs of `count` landmarks of

@@ -16,11 +16,12 @@ namespace {
 class PartialAwareMatchingStage : public MatchingStage {
  public:
   void set_partial(const PartialMatchOptions& partial) { partial_ = partial; }
-  bool MatchSurfaces(const PairInput& pair, MatchResult* out) const override {
+  bool MatchSurfaces(const PairInput& pair, const std::vector<int>& seed,
+                     MatchResult* out) const override {
     if (!IsPartialPair(pair.source.surface, pair.target.surface, partial_)) return false;
     *out = MatchPartial(pair.source.surface, pair.source.samples, 1.0 / pair.source.scale,
                         pair.target.surface, pair.target.samples, 1.0 / pair.target.scale,
-                        partial_);
+                        partial_, &seed);
     return true;
   }
 
