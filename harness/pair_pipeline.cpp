@@ -204,7 +204,6 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   }
   out.times.push_back({"matching", SecondsSince(start), false});
   counters->Executed("matching");
-  CheckMap(matched, a.surface.NumVertices(), nb, "matching");
   out.matching_status = matched.status;
 
   if (pipeline.evaluation.refine_start == "ground_truth") {

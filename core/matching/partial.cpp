@@ -18,15 +18,6 @@ namespace {
 // times theirs: distances alone do not tell apart two maps of a nearly symmetric body.
 constexpr double kSeedResidualSlack = 1.5;
 
-double SurfaceArea(const Surface& s) {
-  double area = 0.0;
-  for (int f = 0; f < s.NumFaces(); ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    area += 0.5 * (b - a).cross(c - a).norm();
-  }
-  return area;
-}
-
 // One shape of the pair, in the common unit.
 struct PartialSide {
   const Surface* surface = nullptr;
@@ -43,7 +34,7 @@ struct PartialSide {
     if (s.NumFaces() == 0) throw InvalidInputError(std::string(which) + " surface has no faces");
     surface = &s;
     unit = u;
-    area = SurfaceArea(s) * u * u;
+    area = TotalArea(s) * u * u;
     graph = BuildMeshGraph(s);
     samples.assign(all_samples.begin(),
                    all_samples.begin() + std::min<size_t>(count, all_samples.size()));
@@ -361,7 +352,7 @@ double BoundaryRatio(const Surface& surface) {
     if (j - i == 1) length += (surface.V.row(edges[i].first) - surface.V.row(edges[i].second)).norm();
     i = j;
   }
-  const double area = SurfaceArea(surface);
+  const double area = TotalArea(surface);
   return area > 0.0 ? length / std::sqrt(area) : 0.0;
 }
 
@@ -379,7 +370,7 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("partial matching: " + error);
   const bool source_is_part =
-      SurfaceArea(source) * source_unit * source_unit <= SurfaceArea(target) * target_unit * target_unit;
+      TotalArea(source) * source_unit * source_unit <= TotalArea(target) * target_unit * target_unit;
   PartialSide part, whole;
   if (source_is_part) {
     part.Prepare(source, source_samples, options.part_samples, source_unit, "source");
@@ -415,12 +406,13 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
   };
   // The map to keep of `maps`: the lowest residual among those that keep the orientation (of
   // all, when none does).
-  auto choose = [](const std::vector<Refined>& maps, int skip) {
+  auto choose = [](const std::vector<Refined>& maps, int skip, int skip_too) {
     int chosen = -1;
     for (int pass = 0; pass < 2 && chosen < 0; ++pass) {
       for (size_t i = 0; i < maps.size(); ++i) {
-        if (static_cast<int>(i) == skip || (pass == 0 && maps[i].orientation <= 0.5)) continue;
-        if (chosen < 0 || maps[i].residual < maps[chosen].residual) chosen = static_cast<int>(i);
+        const int at = static_cast<int>(i);
+        if (at == skip || at == skip_too || (pass == 0 && maps[i].orientation <= 0.5)) continue;
+        if (chosen < 0 || maps[i].residual < maps[chosen].residual) chosen = at;
       }
     }
     return chosen;
@@ -494,16 +486,8 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
     seeded = static_cast<int>(refined.size()) - 1;
   }
   if (options.iterations > 1) {
-    const int first = choose(refined, seeded);
-    int second = -1;
-    for (size_t i = 0; i < refined.size(); ++i) {
-      if (static_cast<int>(i) == first || static_cast<int>(i) == seeded) continue;
-      const bool kept = refined[i].orientation > 0.5;
-      if (second < 0 || (kept && refined[second].orientation <= 0.5) ||
-          (kept == (refined[second].orientation > 0.5) && refined[i].residual < refined[second].residual)) {
-        second = static_cast<int>(i);
-      }
-    }
+    const int first = choose(refined, seeded, -1);
+    const int second = choose(refined, first, seeded);
     for (int i : {first, second}) {
       if (i < 0) continue;
       refined[i].images = RefineLandmarks(whole, landmarks, part_rows, refined[i].images,
@@ -511,7 +495,7 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
       evaluate(&refined[i]);
     }
   }
-  int chosen = choose(refined, seeded);
+  int chosen = choose(refined, seeded, -1);
   if (chosen < 0) chosen = seeded;
   if (seeded >= 0 && refined[seeded].orientation > 0.5 &&
       (refined[chosen].orientation <= 0.5 ||
@@ -545,8 +529,8 @@ double LandmarkDistortion(const Surface& source, const std::vector<int>& source_
                           double source_unit, const Surface& target,
                           const std::vector<int>& target_samples, double target_unit,
                           const std::vector<int>& map, int count) {
-  const double source_area = SurfaceArea(source) * source_unit * source_unit;
-  const double target_area = SurfaceArea(target) * target_unit * target_unit;
+  const double source_area = TotalArea(source) * source_unit * source_unit;
+  const double target_area = TotalArea(target) * target_unit * target_unit;
   const bool source_is_part = source_area <= target_area;
   const std::vector<int>& samples = source_is_part ? source_samples : target_samples;
   const std::vector<int> landmarks(samples.begin(),

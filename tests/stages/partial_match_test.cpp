@@ -20,15 +20,6 @@ std::vector<int> Samples(const Surface& s, int count) {
   return FarthestPointSampling(s, o).samples;
 }
 
-double Area(const Surface& s) {
-  double a = 0.0;
-  for (int f = 0; f < s.NumFaces(); ++f) {
-    const Eigen::Vector3d p = s.V.row(s.F(f, 0)), q = s.V.row(s.F(f, 1)), r = s.V.row(s.F(f, 2));
-    a += 0.5 * (q - p).cross(r - p).norm();
-  }
-  return a;
-}
-
 // Mean edge-graph distance on `on` between map[v] and truth[v] over the v with a truth (>= 0),
 // over sqrt(area of `on`).
 double MeanError(const Surface& on, const std::vector<int>& map, const std::vector<int>& truth) {
@@ -41,7 +32,7 @@ double MeanError(const Surface& on, const std::vector<int>& map, const std::vect
   const Eigen::MatrixXd D = EdgeGraphDistances(graph, sources, 1);
   double sum = 0.0;
   for (size_t i = 0; i < rows.size(); ++i) sum += D(i, map[rows[i]]);
-  return sum / rows.size() / std::sqrt(Area(on));
+  return sum / rows.size() / std::sqrt(TotalArea(on));
 }
 
 // A humanoid pose with a plane cut (the part) and another pose of the whole body: the synthetic
