@@ -9,7 +9,6 @@
 
 #include "core/clock.h"
 #include "core/laplacian.h"
-#include "core/matching/partial.h"
 #include "core/mesh_graph.h"
 #include "registry/hash.h"
 
@@ -178,26 +177,23 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   MatchResult matched =
       pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
   CheckMap(matched, a.surface.NumVertices(), nb, "matching");
-  MatchResult on_surfaces_map;
+  SurfaceMatch on_surfaces_map;
   const bool partial = pipeline.matching->MatchSurfaces(input, matched.map, &on_surfaces_map);
   bool on_surfaces = false;
   if (partial) {
-    CheckMap(on_surfaces_map, a.surface.NumVertices(), nb, "matching");
+    CheckMap(on_surfaces_map.result, a.surface.NumVertices(), nb, "matching");
     // Of the map on the surfaces and the one in the embeddings, the one that keeps the part's
     // distances better: a part that lacks little (a few holes) keeps its embedding and frame.
-    auto distortion = [&](const std::vector<int>& map) {
-      return LandmarkDistortion(a.surface, a.samples, 1.0 / a.scale, b.surface, b.samples,
-                                1.0 / b.scale, map);
-    };
-    const double surfaces = distortion(on_surfaces_map.map), embeddings = distortion(matched.map);
+    const double surfaces = on_surfaces_map.distortion;
+    const double embeddings = on_surfaces_map.seed_distortion;
     on_surfaces = surfaces < embeddings;
     std::ostringstream note;
-    note << "the matching stage mapped the surfaces (" << on_surfaces_map.status.message
+    note << "the matching stage mapped the surfaces (" << on_surfaces_map.result.status.message
          << "); landmark distortion " << surfaces << " on the surfaces, " << embeddings
          << " in the embeddings";
     if (on_surfaces) {
       out.flip.status.message += "; not used: " + note.str();
-      matched = std::move(on_surfaces_map);
+      matched = std::move(on_surfaces_map.result);
     } else {
       out.flip.status.message += "; " + note.str() + ": the embeddings' map kept";
     }

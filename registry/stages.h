@@ -105,6 +105,15 @@ class FlipStage : public PairStage {
   virtual FlipResult Run(const PairInput& pair) const = 0;
 };
 
+// A pair's map on the surfaces (MatchingStage::MatchSurfaces) and how well it and the seed it was
+// given (the embeddings' map) keep the part's geodesic distances (LandmarkDistortion, lower is
+// better).
+struct SurfaceMatch {
+  MatchResult result;
+  double distortion = 0.0;
+  double seed_distortion = 0.0;
+};
+
 class MatchingStage : public PairStage {
  public:
   // source: points of the source embedding; target: the target embedding, already rotated.
@@ -122,7 +131,7 @@ class MatchingStage : public PairStage {
   // with *out set, or false, leaving *out alone, for a pair matched in the embeddings alone by
   // Align and Run (the default).
   virtual bool MatchSurfaces(const PairInput& pair, const std::vector<int>& seed,
-                             MatchResult* out) const {
+                             SurfaceMatch* out) const {
     (void)pair, (void)seed, (void)out;
     return false;
   }

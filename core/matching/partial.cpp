@@ -18,9 +18,20 @@ namespace {
 // times theirs: distances alone do not tell apart two maps of a nearly symmetric body.
 constexpr double kSeedResidualSlack = 1.5;
 
+// Rows of one call without a cache of the caller's: bounded by what one call computes.
+constexpr size_t kCallRowBytes = size_t{1} << 40;
+
+// The cache of `rows`, or `own` (for this call alone), and the two surfaces' keys in it.
+PartialRows RowsOf(const PartialRows& rows, EdgeDistanceCache* own) {
+  if (rows.cache != nullptr) return rows;
+  return PartialRows{own, 1, 2};
+}
+
 // One shape of the pair, in the common unit.
 struct PartialSide {
   const Surface* surface = nullptr;
+  EdgeDistanceCache* cache = nullptr;
+  uint64_t key = 0;  // of the surface in *cache
   double unit = 1.0;
   double area = 0.0;  // in the common unit
   MeshGraph graph;
@@ -29,16 +40,18 @@ struct PartialSide {
   Eigen::MatrixXd DS;  // #samples x #samples
   Eigen::MatrixX3d normals;
 
-  void Prepare(const Surface& s, const std::vector<int>& all_samples, int count, double u,
-               const char* which) {
+  void Prepare(const Surface& s, EdgeDistanceCache* rows, uint64_t rows_key,
+               const std::vector<int>& all_samples, int count, double u, const char* which) {
     if (s.NumFaces() == 0) throw InvalidInputError(std::string(which) + " surface has no faces");
     surface = &s;
+    cache = rows;
+    key = rows_key;
     unit = u;
     area = TotalArea(s) * u * u;
     graph = BuildMeshGraph(s);
     samples.assign(all_samples.begin(),
                    all_samples.begin() + std::min<size_t>(count, all_samples.size()));
-    D = EdgeGraphDistances(graph, samples, 1) * u;
+    D = Distances(samples);
     DS.resize(samples.size(), samples.size());
     for (size_t i = 0; i < samples.size(); ++i) {
       for (size_t j = 0; j < samples.size(); ++j) DS(i, j) = D(i, samples[j]);
@@ -53,6 +66,10 @@ struct PartialSide {
     if (outward < 0.0) normals = -normals;
   }
   int NumSamples() const { return static_cast<int>(samples.size()); }
+  // Distances (common unit) from each of `sources` to every vertex.
+  Eigen::MatrixXd Distances(const std::vector<int>& sources) const {
+    return cache->Rows(key, graph, sources) * unit;
+  }
 };
 
 
@@ -182,11 +199,6 @@ std::vector<TripleHypothesis> TripleHypotheses(const PartialSide& part, const Pa
   return kept;
 }
 
-// Distances (common unit) from each of `sources` to every vertex of the side.
-Eigen::MatrixXd DistancesFrom(const PartialSide& side, const std::vector<int>& sources) {
-  return EdgeGraphDistances(side.graph, sources, 1) * side.unit;
-}
-
 // The whole's vertex nearest in L1 to each of `vertices`' distances to the landmarks.
 std::vector<int> MapVerticesBrute(const Eigen::MatrixXd& part_rows, const Eigen::MatrixXd& whole_rows,
                                   const std::vector<int>& vertices, double* mean_cost) {
@@ -211,7 +223,7 @@ std::vector<int> RefineLandmarks(const PartialSide& whole, const std::vector<int
     std::vector<int> next = MapVerticesBrute(part_rows, *whole_rows, landmarks, nullptr);
     if (next == images) break;
     images = std::move(next);
-    *whole_rows = DistancesFrom(whole, images);
+    *whole_rows = whole.Distances(images);
   }
   return images;
 }
@@ -366,18 +378,25 @@ bool IsPartialPair(const Surface& source, const Surface& target,
 MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_samples,
                          double source_unit, const Surface& target,
                          const std::vector<int>& target_samples, double target_unit,
-                         const PartialMatchOptions& options, const std::vector<int>* seed) {
+                         const PartialMatchOptions& options, const std::vector<int>* seed,
+                         const PartialRows& cached) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("partial matching: " + error);
+  EdgeDistanceCache own(kCallRowBytes);
+  const PartialRows rows = RowsOf(cached, &own);
   const bool source_is_part =
       TotalArea(source) * source_unit * source_unit <= TotalArea(target) * target_unit * target_unit;
   PartialSide part, whole;
   if (source_is_part) {
-    part.Prepare(source, source_samples, options.part_samples, source_unit, "source");
-    whole.Prepare(target, target_samples, options.whole_samples, target_unit, "target");
+    part.Prepare(source, rows.cache, rows.source_key, source_samples, options.part_samples,
+                 source_unit, "source");
+    whole.Prepare(target, rows.cache, rows.target_key, target_samples, options.whole_samples,
+                  target_unit, "target");
   } else {
-    part.Prepare(target, target_samples, options.part_samples, target_unit, "target");
-    whole.Prepare(source, source_samples, options.whole_samples, source_unit, "source");
+    part.Prepare(target, rows.cache, rows.target_key, target_samples, options.part_samples,
+                 target_unit, "target");
+    whole.Prepare(source, rows.cache, rows.source_key, source_samples, options.whole_samples,
+                  source_unit, "source");
   }
   if (part.NumSamples() < options.landmarks || whole.NumSamples() < 3) {
     throw InvalidInputError("partial matching needs " + std::to_string(options.landmarks) +
@@ -445,7 +464,7 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
     if (seen) continue;
     starts.push_back(start);
     Refined r;
-    r.whole_rows = DistancesFrom(whole, start);
+    r.whole_rows = whole.Distances(start);
     r.images = RefineLandmarks(whole, landmarks, part_rows, start,
                                std::min(options.iterations, 1), &r.whole_rows);
     evaluate(&r);
@@ -478,7 +497,7 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
       }
     }
     Refined r;
-    r.whole_rows = DistancesFrom(whole, start);
+    r.whole_rows = whole.Distances(start);
     r.images = RefineLandmarks(whole, landmarks, part_rows, start, options.iterations,
                                &r.whole_rows);
     evaluate(&r);
@@ -528,7 +547,13 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
 double LandmarkDistortion(const Surface& source, const std::vector<int>& source_samples,
                           double source_unit, const Surface& target,
                           const std::vector<int>& target_samples, double target_unit,
-                          const std::vector<int>& map, int count) {
+                          const std::vector<int>& map, int count, const PartialRows& cached) {
+  EdgeDistanceCache own(kCallRowBytes);
+  const PartialRows rows = RowsOf(cached, &own);
+  auto distances = [&](const Surface& surface, uint64_t key, const std::vector<int>& sources,
+                       double unit) -> Eigen::MatrixXd {
+    return rows.cache->Rows(key, BuildMeshGraph(surface), sources) * unit;
+  };
   const double source_area = TotalArea(source) * source_unit * source_unit;
   const double target_area = TotalArea(target) * target_unit * target_unit;
   const bool source_is_part = source_area <= target_area;
@@ -540,11 +565,11 @@ double LandmarkDistortion(const Surface& source, const std::vector<int>& source_
   Eigen::MatrixXd on_part, on_other;
   std::vector<int> counterparts(n);
   if (source_is_part) {
-    on_part = EdgeGraphDistances(source, landmarks, 1) * source_unit;
+    on_part = distances(source, rows.source_key, landmarks, source_unit);
     for (int i = 0; i < n; ++i) counterparts[i] = map[landmarks[i]];
-    on_other = EdgeGraphDistances(target, counterparts, 1) * target_unit;
+    on_other = distances(target, rows.target_key, counterparts, target_unit);
   } else {
-    on_part = EdgeGraphDistances(target, landmarks, 1) * target_unit;
+    on_part = distances(target, rows.target_key, landmarks, target_unit);
     for (int i = 0; i < n; ++i) {
       double nearest = std::numeric_limits<double>::infinity();
       for (size_t v = 0; v < map.size(); ++v) {
@@ -554,7 +579,7 @@ double LandmarkDistortion(const Surface& source, const std::vector<int>& source_
         }
       }
     }
-    on_other = EdgeGraphDistances(source, counterparts, 1) * source_unit;
+    on_other = distances(source, rows.source_key, counterparts, source_unit);
   }
   std::vector<double> gaps;
   for (int i = 0; i < n; ++i) {

@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "core/edge_distance_cache.h"
 #include "core/matching/match.h"
 #include "core/mesh.h"
 #include "core/range.h"
@@ -81,6 +82,14 @@ double BoundaryRatio(const Surface& surface);
 bool IsPartialPair(const Surface& source, const Surface& target,
                    const PartialMatchOptions& options);
 
+// Distance rows kept across calls (EdgeDistanceCache) and the keys of the two surfaces in it,
+// derived from their content. Without a cache, a call keeps its own rows for itself.
+struct PartialRows {
+  EdgeDistanceCache* cache = nullptr;
+  uint64_t source_key = 0;
+  uint64_t target_key = 0;
+};
+
 // map[v]: the target vertex of source vertex v. samples: farthest-point samples of each
 // surface in sampling order (the first spread widest). status.residual: the chosen map's mean
 // L1 disagreement of distances to the landmarks per landmark, over the whole's square root of
@@ -89,7 +98,7 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
                          double source_unit, const Surface& target,
                          const std::vector<int>& target_samples, double target_unit,
                          const PartialMatchOptions& options = {},
-                         const std::vector<int>* seed = nullptr);
+                         const std::vector<int>* seed = nullptr, const PartialRows& rows = {});
 
 // How well `map` (source vertex -> target vertex) keeps geodesic distances on the part (the
 // shape of smaller area in the common unit): the median over pairs of `count` landmarks of
@@ -100,6 +109,7 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
 double LandmarkDistortion(const Surface& source, const std::vector<int>& source_samples,
                           double source_unit, const Surface& target,
                           const std::vector<int>& target_samples, double target_unit,
-                          const std::vector<int>& map, int count = 40);
+                          const std::vector<int>& map, int count = 40,
+                          const PartialRows& rows = {});
 
 }  // namespace symembed

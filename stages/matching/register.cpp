@@ -5,6 +5,7 @@
 #include "core/matching/deformed.h"
 #include "core/matching/nearest.h"
 #include "core/matching/partial.h"
+#include "registry/hash.h"
 #include "registry/product_needs.h"
 #include "stages/register.h"
 
@@ -17,16 +18,39 @@ class PartialAwareMatchingStage : public MatchingStage {
  public:
   void set_partial(const PartialMatchOptions& partial) { partial_ = partial; }
   bool MatchSurfaces(const PairInput& pair, const std::vector<int>& seed,
-                     MatchResult* out) const override {
-    if (!IsPartialPair(pair.source.surface, pair.target.surface, partial_)) return false;
-    *out = MatchPartial(pair.source.surface, pair.source.samples, 1.0 / pair.source.scale,
-                        pair.target.surface, pair.target.samples, 1.0 / pair.target.scale,
-                        partial_, &seed);
+                     SurfaceMatch* out) const override {
+    const Surface& source = pair.source.surface;
+    const Surface& target = pair.target.surface;
+    if (!IsPartialPair(source, target, partial_)) return false;
+    const PartialRows rows{rows_.get(), ContentKey(source), ContentKey(target)};
+    const double source_unit = 1.0 / pair.source.scale, target_unit = 1.0 / pair.target.scale;
+    out->result = MatchPartial(source, pair.source.samples, source_unit, target,
+                               pair.target.samples, target_unit, partial_, &seed, rows);
+    auto distortion = [&](const std::vector<int>& map) {
+      return LandmarkDistortion(source, pair.source.samples, source_unit, target,
+                                pair.target.samples, target_unit, map, 40, rows);
+    };
+    out->distortion = distortion(out->result.map);
+    out->seed_distortion = distortion(seed);
     return true;
   }
 
  private:
+  // The shape's key among the rows kept: its vertices and faces.
+  static uint64_t ContentKey(const Surface& surface) {
+    return Hasher()
+        .AddU64(static_cast<uint64_t>(surface.V.rows()))
+        .AddBytes(surface.V.data(), sizeof(double) * surface.V.size())
+        .AddBytes(surface.F.data(), sizeof(int) * surface.F.size())
+        .Digest();
+  }
+
   PartialMatchOptions partial_;
+  // The distance rows of the shapes of partial pairs, kept across the pairs of a run: a whole
+  // shape's samples are the same in every pair it is in. The cache is thread-safe, so matching
+  // stays const.
+  std::unique_ptr<EdgeDistanceCache> rows_ =
+      std::make_unique<EdgeDistanceCache>(size_t{384} << 20);
 };
 
 // Reads the option of the partial route and returns the stage with it.

@@ -115,6 +115,28 @@ TEST(PartialMatch, MapsTheWholeOntoThePartWhereThePartHasIt) {
   EXPECT_NE(r.status.message.find("the target is the part"), std::string::npos);
 }
 
+TEST(PartialMatch, RowsKeptAcrossCallsChangeNoMapOrDistortion) {
+  // A cache shared by calls, as a matching stage keeps one over a run's pairs: the second call
+  // finds the whole's rows kept and gives the map of a call that keeps none.
+  const PartAndWhole s = CutHumanoid();
+  const std::vector<int> ps = Samples(s.part.surface, 300), ws = Samples(s.whole.surface, 300);
+  const MatchResult alone = MatchPartial(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0);
+  EdgeDistanceCache cache(size_t{1} << 30);
+  const PartialRows rows{&cache, 11, 12};
+  const MatchResult first = MatchPartial(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, {},
+                                         nullptr, rows);
+  const size_t kept = cache.Bytes();
+  EXPECT_GT(kept, 0u);
+  const MatchResult again = MatchPartial(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, {},
+                                         nullptr, rows);
+  EXPECT_EQ(cache.Bytes(), kept);  // every row of the second call was kept
+  EXPECT_EQ(first.map, alone.map);
+  EXPECT_EQ(again.map, alone.map);
+  EXPECT_EQ(LandmarkDistortion(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, alone.map, 40,
+                               rows),
+            LandmarkDistortion(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, alone.map));
+}
+
 TEST(PartialMatch, ComparesTheShapesInTheirCommonUnit) {
   // The part given in units ten times smaller, with its unit saying so: the same map.
   const PartAndWhole s = CutHumanoid();
