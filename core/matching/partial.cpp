@@ -459,8 +459,10 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
     part3.row(1) = part.D.row(h.b);
     part3.row(2) = part.D.row(h.c);
     std::vector<int> start = MapVerticesBrute(part3, whole3, landmarks, nullptr);
+    // A start near an earlier start, or near a map already refined, would refine to that map.
     bool seen = false;
     for (const auto& s : starts) seen = seen || mean_gap(s, start) < distinct;
+    for (const Refined& r : refined) seen = seen || mean_gap(r.images, start) < distinct;
     if (seen) continue;
     starts.push_back(start);
     Refined r;
