@@ -1,6 +1,7 @@
 #include "core/handles.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -474,6 +475,90 @@ CutPlan PlanCut(const Surface& s, const Topology& t, const Event& event,
   return plan;
 }
 
+// Closes the boundary loops of `after` whose edges all had two faces in `before` (the loops a
+// removal of faces opened) with faces between each loop's vertices, appended to *F. The
+// polygon is triangulated as a zigzag from both ends of the loop, which keeps the triangles
+// less thin than a fan from one vertex. Returns the loops closed.
+int CapOpenedLoops(const Eigen::MatrixX3i& before, Eigen::MatrixX3i* F) {
+  auto key = [](int a, int b) {
+    return (static_cast<uint64_t>(static_cast<uint32_t>(std::min(a, b))) << 32) |
+           static_cast<uint32_t>(std::max(a, b));
+  };
+  std::unordered_map<uint64_t, int> faces_before, faces_after;
+  for (int f = 0; f < before.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) ++faces_before[key(before(f, k), before(f, (k + 1) % 3))];
+  }
+  for (int f = 0; f < F->rows(); ++f) {
+    for (int k = 0; k < 3; ++k) ++faces_after[key((*F)(f, k), (*F)(f, (k + 1) % 3))];
+  }
+  // Boundary half-edges u -> v of the faces kept on an edge that had two faces before.
+  std::unordered_map<int, std::vector<int>> next;
+  for (int f = 0; f < F->rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int u = (*F)(f, k), v = (*F)(f, (k + 1) % 3);
+      if (faces_after[key(u, v)] == 1 && faces_before[key(u, v)] == 2) next[u].push_back(v);
+    }
+  }
+  std::vector<std::array<int, 3>> added;
+  std::unordered_map<int, char> used;
+  std::vector<int> starts;
+  for (const auto& [u, vs] : next) starts.push_back(u);
+  std::sort(starts.begin(), starts.end());
+  int capped = 0;
+  for (int start : starts) {
+    if (used[start]) continue;
+    std::vector<int> loop = {start};
+    bool simple = next[start].size() == 1;
+    used[start] = 1;
+    for (int v = next[start][0]; simple && v != start;) {
+      auto it = next.find(v);
+      if (it == next.end() || it->second.size() != 1 || used[v]) {
+        simple = false;
+        break;
+      }
+      used[v] = 1;
+      loop.push_back(v);
+      v = it->second[0];
+    }
+    if (!simple || loop.size() < 3) continue;
+    // The closing polygon runs the loop backwards, so that each of its edges is the twin of
+    // the kept face's half-edge on it.
+    std::vector<int> p(loop.size());
+    p[0] = loop[0];
+    for (size_t i = 1; i < loop.size(); ++i) p[i] = loop[loop.size() - i];
+    std::vector<std::array<int, 3>> faces;
+    int a = 0, b = static_cast<int>(p.size()) - 1;
+    for (bool front = true; b - a >= 2; front = !front) {
+      if (front) {
+        faces.push_back({p[a], p[a + 1], p[b]});
+        ++a;
+      } else {
+        faces.push_back({p[a], p[b - 1], p[b]});
+        --b;
+      }
+    }
+    // The diagonals are new edges: one the surface has already would get a third face.
+    std::unordered_map<uint64_t, char> on_loop;
+    for (size_t i = 0; i < loop.size(); ++i) on_loop[key(loop[i], loop[(i + 1) % loop.size()])] = 1;
+    bool clear = true;
+    for (const auto& t : faces) {
+      for (int k = 0; k < 3 && clear; ++k) {
+        const uint64_t e = key(t[k], t[(k + 1) % 3]);
+        clear = on_loop.count(e) > 0 || faces_after.count(e) == 0;
+      }
+    }
+    if (!clear) continue;
+    for (const auto& t : faces) added.push_back(t);
+    ++capped;
+  }
+  const Eigen::Index kept = F->rows();
+  F->conservativeResize(kept + static_cast<Eigen::Index>(added.size()), 3);
+  for (size_t i = 0; i < added.size(); ++i) {
+    F->row(kept + static_cast<Eigen::Index>(i)) << added[i][0], added[i][1], added[i][2];
+  }
+  return capped;
+}
+
 }  // namespace
 
 int SurfaceGenus(const Surface& surface) { return BuildTopology(surface, false).genus; }
@@ -536,6 +621,11 @@ HandleCutResult CutHandles(const Surface& surface, const HandleCutOptions& optio
   }
   r.F = s.F;
   r.genus_after = t.genus;
+  if (options.cap && r.cuts > 0) {
+    const Eigen::Index kept = r.F.rows();
+    r.capped_loops = CapOpenedLoops(surface.F, &r.F);
+    r.cap_faces = static_cast<int>(r.F.rows() - kept);
+  }
   return r;
 }
 

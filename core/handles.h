@@ -18,7 +18,8 @@
 // No vertex is renumbered; the few a strip leaves without a face (on a thin bridge) become
 // unreferenced. A cut that would split the surface or not lower its genus is passed over.
 // Repeated until the genus is 0, no handle is found, or max_cuts. Each boundary loop counts as
-// filled in, so that a loop around a hole is not taken for a handle.
+// filled in, so that a loop around a hole is not taken for a handle. Then the loops the cuts
+// opened are closed (HandleCutOptions::cap).
 //
 // Needs a consistently oriented manifold (every edge in one or two faces, every vertex's faces
 // one fan); otherwise nothing is cut and the report says why. A genus-0 surface is returned
@@ -35,6 +36,11 @@ namespace symembed {
 struct HandleCutOptions {
   int max_cuts = 32;  // at most this many handles cut
   int seeds = 64;     // balls grown first, from farthest-point seeds (then every vertex)
+  // Close each boundary loop the cuts opened with new faces between its own vertices (no vertex
+  // is added), so that the surface keeps no hole where a merge was undone: a body whose merged
+  // parts were cut apart is whole, not partial. A loop that passes a vertex twice, or whose
+  // closing faces would reuse an edge of the surface, stays open.
+  bool cap = true;
 };
 
 struct HandleCutResult {
@@ -45,6 +51,8 @@ struct HandleCutResult {
   int removed_faces = 0;
   int removed_vertices = 0;   // vertices the cuts left without a face
   double longest_loop = 0.0;  // the longest cut loop's length (edge lengths summed)
+  int capped_loops = 0;       // loops closed (options.cap)
+  int cap_faces = 0;          // faces added to close them, after the faces kept in F
   std::string skipped;        // why nothing was searched, when it was not (non-manifold)
 };
 

@@ -43,6 +43,8 @@ void RegisterPreprocessStages(Registry& registry) {
                      reader.GetDouble("degenerate_tolerance", options.degenerate_tolerance,
                                       StandardPreprocessOptions::kDegenerateTolerance);
                  options.cut_handles = reader.GetBool("cut_handles", options.cut_handles);
+                 options.cap_cut_handles =
+                     reader.GetBool("cap_cut_handles", options.cap_cut_handles);
                  return std::make_unique<StandardPreprocessStage>(options);
                });
 }

@@ -272,7 +272,7 @@ void Orient(const Eigen::MatrixX3d& V, std::vector<Face>* faces_ptr, bool orient
 
 // Step 3b: cut the handles of a surface that should be genus 0 (topological noise). Vertices a
 // cut leaves without a face are dropped by step 4 like any unreferenced vertex.
-void CutTopologicalNoise(const Eigen::MatrixX3d& V, std::vector<Face>* faces, bool cut,
+void CutTopologicalNoise(const Eigen::MatrixX3d& V, std::vector<Face>* faces, bool cut, bool cap,
                          Report* report) {
   Surface surface;
   surface.V = V;
@@ -284,11 +284,14 @@ void CutTopologicalNoise(const Eigen::MatrixX3d& V, std::vector<Face>* faces, bo
     report->emplace_back("genus", SurfaceGenus(surface));
     return;
   }
-  const HandleCutResult r = CutHandles(surface);
+  HandleCutOptions options;
+  options.cap = cap;
+  const HandleCutResult r = CutHandles(surface, options);
   report->emplace_back("genus", r.genus_before);
   report->emplace_back("handles_cut", r.cuts);
   report->emplace_back("handle_faces_removed", r.removed_faces);
   report->emplace_back("handle_vertices_removed", r.removed_vertices);
+  report->emplace_back("handle_loops_capped", r.capped_loops);
   if (r.cuts == 0) return;
   faces->resize(r.F.rows());
   for (int f = 0; f < r.F.rows(); ++f) (*faces)[f] = {r.F(f, 0), r.F(f, 1), r.F(f, 2)};
@@ -331,7 +334,7 @@ PreprocessResult StandardPreprocess(const Surface& in, const StandardPreprocessO
   faces = LargestComponent(in.V, faces, options.keep_largest_component, options.max_removed_area,
                            &report);
   Orient(in.V, &faces, options.orient, &report);
-  CutTopologicalNoise(in.V, &faces, options.cut_handles, &report);
+  CutTopologicalNoise(in.V, &faces, options.cut_handles, options.cap_cut_handles, &report);
 
   // Step 4: keep referenced vertices in input order.
   std::vector<int> new_id(nv, -1);

@@ -15,8 +15,9 @@
 //   3b. cut the handles (core/handles.h): bodies are genus 0, so a handle is topological noise,
 //      touching parts merged by the scan, whose short circuit every geodesic would take; the
 //      faces along a short loop around each handle are removed until the genus is 0 (the few
-//      vertices a cut leaves without a face go in step 4). A genus-0 surface, or one that is
-//      not an oriented manifold, is unchanged;
+//      vertices a cut leaves without a face go in step 4), and the loops the cuts opened are
+//      closed with faces between their own vertices (cap_cut_handles), so that undoing a merge
+//      leaves no hole. A genus-0 surface, or one that is not an oriented manifold, is unchanged;
 //   4. drop unreferenced vertices (input_ids maps kept vertices to input ids);
 //   5. translate the area-weighted centroid to the origin and scale to unit total area.
 // Output coordinates are (input - centre) * scale; `scale` and the centre are reported so
@@ -27,7 +28,8 @@
 // direction by both faces: a non-orientable patch), non_manifold_edges, boundary_edges,
 // unreferenced_vertices, output_vertices, output_faces, input_area, scale, centre_x, centre_y,
 // centre_z, genus (before step 3b; -1: not an oriented manifold), handles_cut,
-// handle_faces_removed, handle_vertices_removed (the last three only with cut_handles).
+// handle_faces_removed, handle_vertices_removed, handle_loops_capped (the last four only with
+// cut_handles).
 #pragma once
 
 #include <string>
@@ -50,6 +52,7 @@ struct StandardPreprocessOptions {
   // above that drops every face.
   static constexpr Range kDegenerateTolerance = Range::Closed(0.0, 0.5);
   bool cut_handles = true;              // step 3b
+  bool cap_cut_handles = true;          // step 3b: close the loops a cut opens
 
   bool IsValid(std::string* error) const;
 };

@@ -63,7 +63,9 @@ TEST(Handles, GenusZeroIsLeftAlone) {
 TEST(Handles, ATorusIsCutAroundItsTubeKeepingEveryVertex) {
   const Surface torus = Torus(48, 12, 1.0, 0.25);
   EXPECT_EQ(SurfaceGenus(torus), 1);
-  const HandleCutResult r = CutHandles(torus);
+  HandleCutOptions open;
+  open.cap = false;
+  const HandleCutResult r = CutHandles(torus, open);
   EXPECT_EQ(r.genus_before, 1);
   EXPECT_EQ(r.genus_after, 0);
   EXPECT_EQ(r.cuts, 1);
@@ -79,6 +81,34 @@ TEST(Handles, ATorusIsCutAroundItsTubeKeepingEveryVertex) {
   EXPECT_EQ(report.components, 1) << report.ToString();
   EXPECT_EQ(report.boundary_loops, 2) << report.ToString();
   EXPECT_EQ(SurfaceGenus(cut), 0);
+  EXPECT_EQ(r.capped_loops, 0);
+}
+
+TEST(Handles, TheLoopsACutOpensAreClosedWithoutNewVertices) {
+  const Surface torus = Torus(48, 12, 1.0, 0.25);
+  HandleCutOptions open;
+  open.cap = false;
+  const HandleCutResult cut = CutHandles(torus, open);
+  const HandleCutResult r = CutHandles(torus);
+  EXPECT_EQ(r.cuts, 1);
+  EXPECT_EQ(r.removed_faces, cut.removed_faces);
+  EXPECT_EQ(r.capped_loops, 2);
+  // The faces kept come first, as without capping; each loop of n vertices gets n - 2 faces.
+  ASSERT_EQ(r.F.rows(), cut.F.rows() + r.cap_faces);
+  EXPECT_TRUE(r.F.topRows(cut.F.rows()) == cut.F);
+  EXPECT_GT(r.cap_faces, 0);
+  Surface closed = torus;
+  closed.F = r.F;
+  const MeshReport report = ValidateMesh(closed, "capped torus");
+  EXPECT_EQ(report.components, 1) << report.ToString();
+  EXPECT_EQ(report.boundary_loops, 0) << report.ToString();
+  EXPECT_EQ(report.non_manifold_edges, 0) << report.ToString();
+  EXPECT_EQ(SurfaceGenus(closed), 0);
+  // Each cap runs its loop against the kept faces: the orientation stays consistent.
+  EXPECT_EQ(report.inconsistent_edges, 0) << report.ToString();
+  EXPECT_EQ(report.non_manifold_vertices, 0) << report.ToString();
+  // A surface whose handle is not cut gets no cap: the open grid keeps its boundary.
+  EXPECT_EQ(CutHandles(GridMesh(10, 10)).capped_loops, 0);
 }
 
 class GluedKinds : public ::testing::TestWithParam<FigureKind> {};
