@@ -7,6 +7,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/curvature.h"
 #include "core/errors.h"
 #include "core/laplacian.h"
 #include "core/mesh_graph.h"
@@ -17,6 +18,12 @@ namespace {
 // The seed's map is kept over the best of the triples' when its residual is at most this
 // times theirs: distances alone do not tell apart two maps of a nearly symmetric body.
 constexpr double kSeedResidualSlack = 1.5;
+// Of the maps within that slack that keep the orientation, one whose shape disagrees clearly
+// less (below this times the chosen map's) replaces it: a body turned front to back keeps
+// distances and orientation, but not where it bulges and where it hollows.
+constexpr double kShapeClearlyLess = 0.75;
+// The shape index is smoothed over this radius times the square root of the whole's area.
+constexpr double kShapeRadius = 0.05;
 
 // Rows of one call without a cache of the caller's: bounded by what one call computes.
 constexpr size_t kCallRowBytes = size_t{1} << 40;
@@ -39,6 +46,7 @@ struct PartialSide {
   Eigen::MatrixXd D;   // #samples x #V distances from each sample, common unit
   Eigen::MatrixXd DS;  // #samples x #samples
   Eigen::MatrixX3d normals;
+  Eigen::VectorXd shape_index;  // #V, smoothed over one radius in the common unit (SetShape)
 
   void Prepare(const Surface& s, EdgeDistanceCache* rows, uint64_t rows_key,
                const std::vector<int>& all_samples, int count, double u, const char* which) {
@@ -66,6 +74,14 @@ struct PartialSide {
     if (outward < 0.0) normals = -normals;
   }
   int NumSamples() const { return static_cast<int>(samples.size()); }
+  // The shape index (core/curvature.h) smoothed over `radius` in the common unit, so that
+  // both shapes' are smoothed alike whatever their extent.
+  void SetShape(double radius) {
+    CurvatureOptions curvature;
+    curvature.smoothing_rings = 0;
+    curvature.smoothing_radius = radius / std::sqrt(area);
+    shape_index = ComputeCurvature(*surface, curvature).shape_index;
+  }
   // Distances (common unit) from each of `sources` to every vertex.
   Eigen::MatrixXd Distances(const std::vector<int>& sources) const {
     return cache->Rows(key, graph, sources) * unit;
@@ -404,6 +420,8 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
                             std::to_string(part.NumSamples()) + " and " +
                             std::to_string(whole.NumSamples()));
   }
+  part.SetShape(kShapeRadius * std::sqrt(whole.area));
+  whole.SetShape(kShapeRadius * std::sqrt(whole.area));
   const std::vector<TripleHypothesis> triples = TripleHypotheses(part, whole, options);
 
   const std::vector<int> landmarks(part.samples.begin(), part.samples.begin() + options.landmarks);
@@ -416,12 +434,19 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
     std::vector<int> sample_images;  // whole vertex of each part sample
     double residual = 0.0;           // per landmark, over sqrt(area of the whole)
     double orientation = 0.0;
+    double shape = 0.0;              // mean shape-index disagreement of the samples
   };
   auto evaluate = [&](Refined* r) {
     double cost = 0.0;
     r->sample_images = MapVerticesBrute(part_rows, r->whole_rows, part.samples, &cost);
     r->residual = cost / std::sqrt(whole.area);
     r->orientation = OrientationAgreement(part, whole, r->sample_images);
+    double disagreement = 0.0;
+    for (size_t i = 0; i < part.samples.size(); ++i) {
+      disagreement += std::abs(part.shape_index(part.samples[i]) -
+                               whole.shape_index(r->sample_images[i]));
+    }
+    r->shape = disagreement / part.samples.size();
   };
   // The map to keep of `maps`: the lowest residual among those that keep the orientation (of
   // all, when none does).
@@ -523,6 +548,20 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
        refined[seeded].residual <= kSeedResidualSlack * refined[chosen].residual)) {
     chosen = seeded;
   }
+  // Distances and orientation cannot tell maps within the slack apart; the shape can.
+  double least_residual = std::numeric_limits<double>::infinity();
+  for (const Refined& r : refined) {
+    if (r.orientation > 0.5) least_residual = std::min(least_residual, r.residual);
+  }
+  int by_shape = -1;
+  for (size_t i = 0; i < refined.size(); ++i) {
+    const Refined& r = refined[i];
+    if (r.orientation <= 0.5 || r.residual > kSeedResidualSlack * least_residual) continue;
+    if (by_shape < 0 || r.shape < refined[by_shape].shape) by_shape = static_cast<int>(i);
+  }
+  const bool shape_decided = by_shape >= 0 && by_shape != chosen &&
+                             refined[by_shape].shape < kShapeClearlyLess * refined[chosen].shape;
+  if (shape_decided) chosen = by_shape;
   const Refined& best = refined[chosen];
 
   MatchResult result;
@@ -539,7 +578,8 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
           << "% of the whole's area); map by geodesic landmarks, residual " << best.residual
           << ", orientation kept by " << best.orientation << " of the samples; " << refined.size()
           << " distinct maps from " << triples.size() << " triple hypotheses"
-          << (seeded < 0 ? "" : chosen == seeded ? ", the seed's kept" : ", not the seed's");
+          << (seeded < 0 ? "" : chosen == seeded ? ", the seed's kept" : ", not the seed's")
+          << ", shape disagreement " << best.shape << (shape_decided ? ", chosen by shape" : "");
   result.status.residual = best.residual;
   result.status.iterations = static_cast<int>(refined.size());
   result.status.message = message.str();

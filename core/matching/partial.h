@@ -18,7 +18,11 @@
 //   4. of the distinct refined maps, the one of lowest residual among those that keep the
 //      surface's orientation is chosen. Mirror images under an intrinsic left-right symmetry
 //      keep every distance but turn the orientation (the sign of a small triangle of samples
-//      against the vertex normal), so the orientation tells them apart.
+//      against the vertex normal), so the orientation tells them apart. A body turned front to
+//      back keeps both; of the maps whose residual is within 1.5 times the least, one whose
+//      samples' shape index (core/curvature.h, smoothed over 0.05 sqrt(area of the whole))
+//      disagrees with their images' clearly less (below 0.75 times) than the chosen map's is
+//      taken instead: where a body bulges and where it hollows tells front from back.
 // Every vertex of the source is then mapped by its distances to the landmarks, searched near
 // the image of its nearest sample. Distances are along mesh edges (core/mesh_graph.h).
 //
