@@ -592,9 +592,11 @@ double LandmarkDistortion(const Surface& source, const std::vector<int>& source_
                           const std::vector<int>& map, int count, const PartialRows& cached) {
   EdgeDistanceCache own(kCallRowBytes);
   const PartialRows rows = RowsOf(cached, &own);
+  const MeshGraph source_graph = BuildMeshGraph(source), target_graph = BuildMeshGraph(target);
   auto distances = [&](const Surface& surface, uint64_t key, const std::vector<int>& sources,
                        double unit) -> Eigen::MatrixXd {
-    return rows.cache->Rows(key, BuildMeshGraph(surface), sources) * unit;
+    const MeshGraph& graph = &surface == &source ? source_graph : target_graph;
+    return rows.cache->Rows(key, graph, sources) * unit;
   };
   const double source_area = TotalArea(source) * source_unit * source_unit;
   const double target_area = TotalArea(target) * target_unit * target_unit;
