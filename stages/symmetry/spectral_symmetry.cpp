@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "core/errors.h"
@@ -82,6 +83,19 @@ std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int 
   if (num_candidates <= 0 || G.rows() < 2) return all;
   const KnnIndex index(G);
   const double size = RmsRadius(G);
+  const int n = static_cast<int>(G.rows());
+  // TruncatedScore's scale and cap: a score is the sum of the capped residuals over n * scale.
+  const double scale = std::max(size, std::numeric_limits<double>::min());
+  const double cap = outlier_distance * scale;
+  // The lowest scores so far, at most num_candidates, ascending. A pattern whose capped residuals
+  // over its first samples already sum past the highest of them (with a margin far above the
+  // rounding of the sum) scores above it, so its search stops there. partial_sort below would
+  // pass over such a pattern (it is not below the top of its heap of the lowest so far), so the
+  // patterns kept, their order among equal scores, their maps and scores are those of searching
+  // every pattern to the end.
+  std::vector<double> lowest;
+  constexpr int kChunk = 64;
+  constexpr double kMargin = 1e-9;
   for (unsigned pattern = 1; pattern < (1u << k); ++pattern) {
     Eigen::MatrixXd Q = G;
     for (int j = 0; j < k; ++j) {
@@ -89,9 +103,28 @@ std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int 
     }
     SignFlipCandidate c;
     c.pattern = pattern;
-    c.sigma = index.Nearest(Q, &c.residual, 1);
+    c.sigma.resize(n);
+    c.residual.resize(n);
+    const bool bounded = static_cast<int>(lowest.size()) == num_candidates;
+    const double bound = bounded ? lowest.back() * n * scale * (1.0 + kMargin) : 0.0;
+    double capped = 0.0;
+    bool beaten = false;
+    for (int begin = 0; begin < n && !beaten; begin += kChunk) {
+      const int rows = std::min(kChunk, n - begin);
+      Eigen::VectorXd distances;
+      const std::vector<int> nearest = index.Nearest(Q.middleRows(begin, rows), &distances, 1);
+      for (int r = 0; r < rows; ++r) {
+        c.sigma[begin + r] = nearest[r];
+        c.residual(begin + r) = distances(r);
+        capped += std::min(distances(r), cap);
+      }
+      beaten = bounded && capped > bound;
+    }
+    if (beaten) continue;
     c.score = TruncatedScore(c.residual, size, outlier_distance);
     c.fixed_fraction = FixedFraction(c.sigma);
+    lowest.insert(std::upper_bound(lowest.begin(), lowest.end(), c.score), c.score);
+    if (static_cast<int>(lowest.size()) > num_candidates) lowest.pop_back();
     all.push_back(std::move(c));
   }
   const size_t keep = std::min<size_t>(num_candidates, all.size());

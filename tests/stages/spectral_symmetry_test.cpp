@@ -8,8 +8,10 @@
 #include "core/errors.h"
 #include "core/knn.h"
 #include "core/primitives.h"
+#include "core/procrustes.h"
 #include "registry/registry.h"
 #include "stages/symmetry/plane2d.h"
+#include "stages/symmetry/reflection_search.h"
 #include "stages/symmetry/spectral_symmetry.h"
 #include "tests/test_util.h"
 
@@ -116,6 +118,60 @@ TEST(SpectralSymmetry, SignFlipsFindTheMirrorsOfABox) {
     // are exact up to the eigensolver's tolerance, except at a few points of the mesh where
     // two vertices lie equally near.
     EXPECT_GT(best_agreement, 0.98 * box.NumVertices()) << "axis " << axis;
+  }
+}
+
+// Every sign pattern searched to the end and the lowest scores kept: what SignFlipCandidates
+// returns, which stops searching a pattern once it cannot be among them.
+std::vector<SignFlipCandidate> EverySignFlip(const Eigen::MatrixXd& G, int keep,
+                                             double outlier_distance) {
+  const KnnIndex index(G);
+  std::vector<SignFlipCandidate> all;
+  for (unsigned pattern = 1; pattern < (1u << G.cols()); ++pattern) {
+    Eigen::MatrixXd Q = G;
+    for (int j = 0; j < G.cols(); ++j) {
+      if (pattern >> j & 1u) Q.col(j) = -Q.col(j);
+    }
+    SignFlipCandidate c;
+    c.pattern = pattern;
+    c.sigma = index.Nearest(Q, &c.residual, 1);
+    c.score = TruncatedScore(c.residual, RmsRadius(G), outlier_distance);
+    all.push_back(std::move(c));
+  }
+  // As SignFlipCandidates orders them: a pattern that stops early scores above the keep-th
+  // lowest score found before it, so partial_sort's selection passes over it and orders equal
+  // scores (the box's mirrors give some) as it would with every pattern.
+  const size_t kept = std::min<size_t>(keep, all.size());
+  std::partial_sort(all.begin(), all.begin() + kept, all.end(),
+                    [](const SignFlipCandidate& a, const SignFlipCandidate& b) {
+                      return a.score < b.score;
+                    });
+  all.resize(kept);
+  return all;
+}
+
+TEST(SpectralSymmetry, SignFlipsThatCannotBeKeptStopEarlyAndChangeNothing) {
+  // The figure's samples in 8 coordinates (the default) and the box's in 6; few kept and many;
+  // a cap that truncates most residuals and one that truncates few.
+  const Surface figure = testing::SymmetricFigure(1, true);
+  const Surface box = TestBox();
+  const Eigen::MatrixXd Gs[] = {
+      SampleSpectralCoordinates(figure, AllVertices(figure.NumVertices()), 8),
+      SampleSpectralCoordinates(box, AllVertices(box.NumVertices()), 6)};
+  for (const Eigen::MatrixXd& G : Gs) {
+    for (const int keep : {1, 4, 40}) {
+      for (const double outlier : {0.1, 2.0}) {
+        const std::vector<SignFlipCandidate> fast = SignFlipCandidates(G, keep, outlier);
+        const std::vector<SignFlipCandidate> every = EverySignFlip(G, keep, outlier);
+        ASSERT_EQ(fast.size(), every.size());
+        for (size_t i = 0; i < fast.size(); ++i) {
+          EXPECT_EQ(fast[i].pattern, every[i].pattern) << keep << " " << outlier << " " << i;
+          EXPECT_EQ(fast[i].score, every[i].score);
+          EXPECT_EQ(fast[i].sigma, every[i].sigma);
+          EXPECT_EQ(fast[i].residual, every[i].residual);
+        }
+      }
+    }
   }
 }
 
