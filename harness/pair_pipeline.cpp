@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <optional>
+#include <type_traits>
 #include <sstream>
 
 #include "core/clock.h"
@@ -112,27 +114,76 @@ PreprocessedGroundTruth ToPreprocessedIds(const InputGroundTruth& ground_truth,
   return out;
 }
 
-PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
-                        const Pipeline& pipeline, const InputGroundTruth* ground_truth,
-                        const MeanErrorFunction& mean_error, StageCounters* counters) {
-  PairOutcome out;
-  PreprocessedGroundTruth truth_pre;
-  if (ground_truth) truth_pre = ToPreprocessedIds(*ground_truth, source, target);
+namespace {
 
-  // With a second plane hypothesis for either shape, the flip stage scores every combination
-  // of planes and the pair goes on with the one whose chosen rotation scores lowest (the first
-  // plane on ties): which of a shape's planes holds is told by the partner's frame.
-  auto start = std::chrono::steady_clock::now();
-  const ShapeData* a_ptr = nullptr;
-  const ShapeData* b_ptr = nullptr;
+// What the per-pair chain has computed of one pair: each kind's step (RunPairStep) reads what the
+// steps before it wrote and adds its kind's output and time.
+struct PairChain {
+  PairChain(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
+            const InputGroundTruth* ground_truth, StageCounters* counters, PairOutcome& out)
+      : source(source),
+        target(target),
+        pipeline(pipeline),
+        ground_truth(ground_truth),
+        counters(counters),
+        out(out) {
+    if (ground_truth) truth_pre = ToPreprocessedIds(*ground_truth, source, target);
+  }
+
+  const ShapeOutcome& source;
+  const ShapeOutcome& target;
+  const Pipeline& pipeline;
+  const InputGroundTruth* ground_truth;
+  StageCounters* counters;
+  PairOutcome& out;
+  PreprocessedGroundTruth truth_pre;
+  const std::array<Eigen::Matrix3d, 4> rotations = CandidateRotations();
+
+  // The planes the flip step chose (each shape's first, or its second hypothesis).
+  const ShapeData* a = nullptr;
+  const ShapeData* b = nullptr;
+  std::optional<PairInput> input;
+  // The normals of both embedded surfaces, once per pair (the oracle rotates the target's).
+  EmbeddedPoints source_points, target_points;
+  EmbeddedPoints chosen_target;  // target_points under the chosen rotation
+  MatchResult matched;
+  bool on_surfaces = false;  // the matching stage's map on the surfaces replaced matched
+  MatchResult refined;
+
+  const PreprocessedGroundTruth* Truth() const { return ground_truth ? &truth_pre : nullptr; }
+  // Per candidate, the source's points as the matching stage compares them with the target so
+  // rotated (its Align), once each: the oracle reuses the chosen candidate's.
+  const EmbeddedPoints& Aligned(int c, const EmbeddedPoints& rotated_target) {
+    if (alignment[c] == 0) {
+      alignment[c] =
+          pipeline.matching->Align(*input, source_points, rotated_target, &moved[c]) ? 1 : 2;
+    }
+    return alignment[c] == 1 ? moved[c] : source_points;
+  }
+
+ private:
+  std::array<EmbeddedPoints, 4> moved;
+  std::array<int, 4> alignment{};  // 0: not computed, 1: moved[c], 2: the points as they are
+};
+
+// One overload per per-pair kind's interface: ComputePair calls them in the order of the
+// stage-kind table, so a per-pair kind without its step does not compile.
+//
+// With a second plane hypothesis for either shape, the flip stage scores every combination of
+// planes and the pair goes on with the one whose chosen rotation scores lowest (the first plane
+// on ties): which of a shape's planes holds is told by the partner's frame.
+void RunPairStep(const std::string& kind, const FlipStage& stage, PairChain& chain) {
+  const auto start = std::chrono::steady_clock::now();
+  PairOutcome& out = chain.out;
+  const ShapeOutcome& source = chain.source;
+  const ShapeOutcome& target = chain.target;
   std::string chosen_planes;
   std::ostringstream planes;  // each combination's score of its chosen rotation
   for (const ShapeData* sa : {source.data.get(), source.alternative.get()}) {
     for (const ShapeData* sb : {target.data.get(), target.alternative.get()}) {
       if (!sa || !sb) continue;
-      FlipResult flip =
-          pipeline.flip->Run(PairInput{*sa, *sb, ground_truth ? &truth_pre : nullptr});
-      counters->Executed("flip");
+      FlipResult flip = stage.Run(PairInput{*sa, *sb, chain.Truth()});
+      chain.counters->Executed(kind);
       if (flip.chosen < 0 || flip.chosen > 3) {
         throw SolverError("flip scorer chose candidate " + std::to_string(flip.chosen) +
                           " outside [0, 3]");
@@ -140,10 +191,10 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
       const std::string name = std::string(sa == source.data.get() ? "first" : "second") + "/" +
                                (sb == target.data.get() ? "first" : "second");
       planes << (planes.tellp() > 0 ? ", " : "") << name << " " << flip.scores[flip.chosen];
-      if (!a_ptr || flip.scores[flip.chosen] < out.flip.scores[out.flip.chosen]) {
+      if (!chain.a || flip.scores[flip.chosen] < out.flip.scores[out.flip.chosen]) {
         out.flip = std::move(flip);
-        a_ptr = sa;
-        b_ptr = sb;
+        chain.a = sa;
+        chain.b = sb;
         chosen_planes = name;
       }
     }
@@ -152,79 +203,97 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     out.flip.status.message +=
         "; planes (source/target): " + planes.str() + "; chosen " + chosen_planes;
   }
-  out.times.push_back({"flip", SecondsSince(start), false});
-  const ShapeData& a = *a_ptr;
-  const ShapeData& b = *b_ptr;
-  const int nb = b.surface.NumVertices();
-  const PairInput input{a, b, ground_truth ? &truth_pre : nullptr};
-  const auto rotations = CandidateRotations();
+  out.times.push_back({kind, SecondsSince(start), false});
+  chain.input.emplace(PairInput{*chain.a, *chain.b, chain.Truth()});
+}
 
-  start = std::chrono::steady_clock::now();
-  // The normals of both embedded surfaces, once per pair (the oracle below rotates the target's).
-  const EmbeddedPoints source_points = EmbeddedShape(a), target_points = EmbeddedShape(b);
-  // Per candidate, the source's points as the matching stage compares them with the target so
-  // rotated (its Align), once each: the oracle below reuses the chosen candidate's.
-  std::array<EmbeddedPoints, 4> moved;
-  std::array<int, 4> alignment{};  // 0: not computed, 1: moved[c], 2: the points as they are
-  auto aligned = [&](int c, const EmbeddedPoints& rotated_target) -> const EmbeddedPoints& {
-    if (alignment[c] == 0) {
-      alignment[c] =
-          pipeline.matching->Align(input, source_points, rotated_target, &moved[c]) ? 1 : 2;
-    }
-    return alignment[c] == 1 ? moved[c] : source_points;
-  };
-  const EmbeddedPoints chosen_target = Rotated(target_points, rotations[out.flip.chosen]);
-  MatchResult matched =
-      pipeline.matching->Run(aligned(out.flip.chosen, chosen_target), chosen_target);
-  CheckMap(matched, a.surface.NumVertices(), nb, "matching");
+// The embeddings' map under the chosen rotation; for a partial pair also the map on the
+// surfaces, kept when it keeps the part's distances better.
+void RunPairStep(const std::string& kind, const MatchingStage& stage, PairChain& chain) {
+  const auto start = std::chrono::steady_clock::now();
+  const ShapeData& a = *chain.a;
+  const ShapeData& b = *chain.b;
+  const int nb = b.surface.NumVertices();
+  chain.source_points = EmbeddedShape(a);
+  chain.target_points = EmbeddedShape(b);
+  const int chosen = chain.out.flip.chosen;
+  chain.chosen_target = Rotated(chain.target_points, chain.rotations[chosen]);
+  MatchResult matched = stage.Run(chain.Aligned(chosen, chain.chosen_target), chain.chosen_target);
+  CheckMap(matched, a.surface.NumVertices(), nb, kind.c_str());
   SurfaceMatch on_surfaces_map;
-  const bool partial = pipeline.matching->MatchSurfaces(input, matched.map, &on_surfaces_map);
-  bool on_surfaces = false;
+  const bool partial = stage.MatchSurfaces(*chain.input, matched.map, &on_surfaces_map);
   if (partial) {
-    CheckMap(on_surfaces_map.result, a.surface.NumVertices(), nb, "matching");
+    CheckMap(on_surfaces_map.result, a.surface.NumVertices(), nb, kind.c_str());
     // Of the map on the surfaces and the one in the embeddings, the one that keeps the part's
     // distances better: a part that lacks little (a few holes) keeps its embedding and frame.
     const double surfaces = on_surfaces_map.distortion;
     const double embeddings = on_surfaces_map.seed_distortion;
-    on_surfaces = surfaces < embeddings;
+    chain.on_surfaces = surfaces < embeddings;
     std::ostringstream note;
     note << "the matching stage mapped the surfaces (" << on_surfaces_map.result.status.message
          << "); landmark distortion " << surfaces << " on the surfaces, " << embeddings
          << " in the embeddings";
-    if (on_surfaces) {
-      out.flip.status.message += "; not used: " + note.str();
+    if (chain.on_surfaces) {
+      chain.out.flip.status.message += "; not used: " + note.str();
       matched = std::move(on_surfaces_map.result);
     } else {
-      out.flip.status.message += "; " + note.str() + ": the embeddings' map kept";
+      chain.out.flip.status.message += "; " + note.str() + ": the embeddings' map kept";
     }
   }
-  out.times.push_back({"matching", SecondsSince(start), false});
-  counters->Executed("matching");
-  out.matching_status = matched.status;
+  chain.out.times.push_back({kind, SecondsSince(start), false});
+  chain.counters->Executed(kind);
+  chain.out.matching_status = matched.status;
+  chain.matched = std::move(matched);
+}
 
-  if (pipeline.evaluation.refine_start == "ground_truth") {
-    if (!ground_truth) {
+// The refined map, from the matching stage's map or, with `evaluation.refine_start:
+// ground_truth`, from the ground truth.
+void RunPairStep(const std::string& kind, const RefineStage& stage, PairChain& chain) {
+  const ShapeData& a = *chain.a;
+  const int nb = chain.b->surface.NumVertices();
+  if (chain.pipeline.evaluation.refine_start == "ground_truth") {
+    if (!chain.ground_truth) {
       throw InvalidInputError(
           "evaluation.refine_start: ground_truth: the dataset gives this pair no ground truth");
     }
-    matched.map = MapFromGroundTruth(a.surface, nb, truth_pre);
+    chain.matched.map = MapFromGroundTruth(a.surface, nb, chain.truth_pre);
   }
-
-  start = std::chrono::steady_clock::now();
+  const auto start = std::chrono::steady_clock::now();
   MatchResult refined;
-  if (on_surfaces) {
+  if (chain.on_surfaces) {
     // The refine stages pull a map towards one that covers the whole target, which a part's
     // map must not; the surfaces' map is refined by its own rounds.
-    refined.map = matched.map;
+    refined.map = chain.matched.map;
     refined.status.message = "not run: the matching stage mapped the surfaces";
   } else {
-    refined = pipeline.refine->Run(RefineInput{
-        input, matched.map, &aligned(out.flip.chosen, chosen_target), &chosen_target});
-    counters->Executed("refine");
+    const int chosen = chain.out.flip.chosen;
+    refined = stage.Run(RefineInput{*chain.input, chain.matched.map,
+                                    &chain.Aligned(chosen, chain.chosen_target),
+                                    &chain.chosen_target});
+    chain.counters->Executed(kind);
   }
-  out.times.push_back({"refine", SecondsSince(start), false});
-  CheckMap(refined, a.surface.NumVertices(), nb, "refine");
-  out.refine_status = refined.status;
+  chain.out.times.push_back({kind, SecondsSince(start), false});
+  CheckMap(refined, a.surface.NumVertices(), nb, kind.c_str());
+  chain.out.refine_status = refined.status;
+  chain.refined = std::move(refined);
+}
+
+}  // namespace
+
+PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
+                        const Pipeline& pipeline, const InputGroundTruth* ground_truth,
+                        const MeanErrorFunction& mean_error, StageCounters* counters) {
+  PairOutcome out;
+  PairChain chain(source, target, pipeline, ground_truth, counters, out);
+  Pipeline::ForEachStage(pipeline, [&](const char* kind, const auto& stage) {
+    using T = typename std::decay_t<decltype(stage)>::element_type;
+    if constexpr (std::is_base_of_v<PairStage, T>) RunPairStep(kind, *stage, chain);
+  });
+  const ShapeData& b = *chain.b;
+  const int nb = b.surface.NumVertices();
+  const auto& rotations = chain.rotations;
+  const MatchResult& matched = chain.matched;
+  const MatchResult& refined = chain.refined;
 
   auto to_input_ids = [&](const std::vector<int>& map) {
     std::vector<int> ids(source.nearest_kept.size());
@@ -235,7 +304,7 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
   if (refined.map != matched.map) out.initial_map = to_input_ids(matched.map);
 
   if (ground_truth && !ground_truth->source_ids.empty() && mean_error) {
-    start = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now();
     for (int v : ground_truth->source_ids) {
       if (v < 0 || v >= static_cast<int>(source.nearest_kept.size())) {
         throw InvalidInputError("ground truth names source vertex " + std::to_string(v) +
@@ -248,8 +317,8 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     // they are the evaluation's, timed apart from the oracle's own work.
     double distance_seconds = 0.0;
     for (int c = 0; c < 4; ++c) {
-      const EmbeddedPoints rotated_target = Rotated(target_points, rotations[c]);
-      const EmbeddedPoints& from = aligned(c, rotated_target);
+      const EmbeddedPoints rotated_target = Rotated(chain.target_points, rotations[c]);
+      const EmbeddedPoints& from = chain.Aligned(c, rotated_target);
       EmbeddedPoints points;
       points.Y.resize(ground_truth->source_ids.size(), 3);
       points.N.resize(ground_truth->source_ids.size(), 3);
