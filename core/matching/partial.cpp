@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -31,7 +32,7 @@ constexpr size_t kCallRowBytes = size_t{1} << 40;
 // The cache of `rows`, or `own` (for this call alone), and the two surfaces' keys in it.
 PartialRows RowsOf(const PartialRows& rows, EdgeDistanceCache* own) {
   if (rows.cache != nullptr) return rows;
-  return PartialRows{own, 1, 2};
+  return PartialRows{own, 1, 2, nullptr};
 }
 
 // One shape of the pair, in the common unit.
@@ -76,11 +77,13 @@ struct PartialSide {
   int NumSamples() const { return static_cast<int>(samples.size()); }
   // The shape index (core/curvature.h) smoothed over `radius` in the common unit, so that
   // both shapes' are smoothed alike whatever their extent.
-  void SetShape(double radius) {
+  // `kept`: where values are kept across calls under this side's key, or null.
+  void SetShape(double radius, ShapeIndexCache* kept) {
     CurvatureOptions curvature;
     curvature.smoothing_rings = 0;
     curvature.smoothing_radius = radius / std::sqrt(area);
-    shape_index = ComputeCurvature(*surface, curvature).shape_index;
+    auto compute = [&] { return ComputeCurvature(*surface, curvature).shape_index; };
+    shape_index = kept ? kept->Get(key, curvature.smoothing_radius, compute) : compute();
   }
   // Distances (common unit) from each of `sources` to every vertex.
   Eigen::MatrixXd Distances(const std::vector<int>& sources) const {
@@ -335,6 +338,33 @@ std::vector<int> MapAllVertices(const PartialSide& from, const PartialSide& to,
 
 }  // namespace
 
+Eigen::VectorXd ShapeIndexCache::Get(uint64_t surface_key, double radius,
+                                     const std::function<Eigen::VectorXd()>& compute) {
+  uint64_t bits = 0;
+  static_assert(sizeof bits == sizeof radius, "a double's bits key the radius");
+  std::memcpy(&bits, &radius, sizeof bits);
+  const std::pair<uint64_t, uint64_t> key{surface_key, bits};
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = values_.find(key);
+    if (it != values_.end()) return it->second;
+  }
+  Eigen::VectorXd value = compute();
+  const size_t bytes = sizeof(double) * static_cast<size_t>(value.size());
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (bytes_ + bytes > max_bytes_) {
+    values_.clear();
+    bytes_ = 0;
+  }
+  if (bytes <= max_bytes_ && values_.emplace(key, value).second) bytes_ += bytes;
+  return value;
+}
+
+size_t ShapeIndexCache::Size() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return values_.size();
+}
+
 bool PartialMatchOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   if (!kBoundaryRatio.Contains(boundary_ratio))
@@ -420,8 +450,8 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
                             std::to_string(part.NumSamples()) + " and " +
                             std::to_string(whole.NumSamples()));
   }
-  part.SetShape(kShapeRadius * std::sqrt(whole.area));
-  whole.SetShape(kShapeRadius * std::sqrt(whole.area));
+  part.SetShape(kShapeRadius * std::sqrt(whole.area), rows.shape_index);
+  whole.SetShape(kShapeRadius * std::sqrt(whole.area), rows.shape_index);
   const std::vector<TripleHypothesis> triples = TripleHypotheses(part, whole, options);
 
   const std::vector<int> landmarks(part.samples.begin(), part.samples.begin() + options.landmarks);

@@ -35,7 +35,12 @@
 // Bronstein & Kimmel 2006, PNAS]; RANSAC [Fischler & Bolles 1981].
 #pragma once
 
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/edge_distance_cache.h"
@@ -86,12 +91,38 @@ double BoundaryRatio(const Surface& surface);
 bool IsPartialPair(const Surface& source, const Surface& target,
                    const PartialMatchOptions& options);
 
+// Smoothed shape indices of surfaces kept across calls: a whole shape's is the same in every
+// pair it is in. Keyed by the surface's key (as in EdgeDistanceCache) and the smoothing radius
+// (its bits), so a value from the cache is the one the call would compute. Thread-safe: a value
+// missing in two threads at once is computed in both, with the same result. When the values
+// kept exceed `max_bytes`, all are dropped.
+class ShapeIndexCache {
+ public:
+  explicit ShapeIndexCache(size_t max_bytes) : max_bytes_(max_bytes) {}
+  ShapeIndexCache(const ShapeIndexCache&) = delete;
+  ShapeIndexCache& operator=(const ShapeIndexCache&) = delete;
+
+  // The value kept for (surface_key, radius), or compute()'s, then kept.
+  Eigen::VectorXd Get(uint64_t surface_key, double radius,
+                      const std::function<Eigen::VectorXd()>& compute);
+  size_t Size() const;
+
+ private:
+  size_t max_bytes_;
+  mutable std::mutex mutex_;
+  std::map<std::pair<uint64_t, uint64_t>, Eigen::VectorXd> values_;
+  size_t bytes_ = 0;
+};
+
 // Distance rows kept across calls (EdgeDistanceCache) and the keys of the two surfaces in it,
-// derived from their content. Without a cache, a call keeps its own rows for itself.
+// derived from their content; optionally their smoothed shape indices (ShapeIndexCache) under
+// the same keys. Without a cache, a call keeps its own rows for itself and computes the shape
+// indices.
 struct PartialRows {
   EdgeDistanceCache* cache = nullptr;
   uint64_t source_key = 0;
   uint64_t target_key = 0;
+  ShapeIndexCache* shape_index = nullptr;
 };
 
 // map[v]: the target vertex of source vertex v. samples: farthest-point samples of each

@@ -22,7 +22,8 @@ class PartialAwareMatchingStage : public MatchingStage {
     const Surface& source = pair.source.surface;
     const Surface& target = pair.target.surface;
     if (!IsPartialPair(source, target, partial_)) return false;
-    const PartialRows rows{rows_.get(), ContentKey(source), ContentKey(target)};
+    const PartialRows rows{rows_.get(), ContentKey(source), ContentKey(target),
+                           shape_index_.get()};
     const double source_unit = 1.0 / pair.source.scale, target_unit = 1.0 / pair.target.scale;
     out->result = MatchPartial(source, pair.source.samples, source_unit, target,
                                pair.target.samples, target_unit, partial_, &seed, rows);
@@ -51,6 +52,9 @@ class PartialAwareMatchingStage : public MatchingStage {
   // stays const.
   std::unique_ptr<EdgeDistanceCache> rows_ =
       std::make_unique<EdgeDistanceCache>(size_t{384} << 20);
+  // Their smoothed shape indices, likewise (a whole shape's is the same in every pair).
+  std::unique_ptr<ShapeIndexCache> shape_index_ =
+      std::make_unique<ShapeIndexCache>(size_t{64} << 20);
 };
 
 // Reads the option of the partial route and returns the stage with it.

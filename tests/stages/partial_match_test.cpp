@@ -137,6 +137,47 @@ TEST(PartialMatch, RowsKeptAcrossCallsChangeNoMapOrDistortion) {
             LandmarkDistortion(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, alone.map));
 }
 
+TEST(PartialMatch, ShapeIndicesKeptAcrossCallsChangeNoMap) {
+  // Kept as a matching stage keeps them over a run's pairs: the first call keeps both surfaces'
+  // shape indices, the second finds them and gives the map of a call that keeps none.
+  const PartAndWhole s = CutHumanoid();
+  const std::vector<int> ps = Samples(s.part.surface, 300), ws = Samples(s.whole.surface, 300);
+  const MatchResult alone = MatchPartial(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0);
+  EdgeDistanceCache cache(size_t{1} << 30);
+  ShapeIndexCache shapes(size_t{1} << 30);
+  const PartialRows rows{&cache, 11, 12, &shapes};
+  const MatchResult first = MatchPartial(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, {},
+                                         nullptr, rows);
+  EXPECT_EQ(shapes.Size(), 2u);
+  const MatchResult again = MatchPartial(s.part.surface, ps, 1.0, s.whole.surface, ws, 1.0, {},
+                                         nullptr, rows);
+  EXPECT_EQ(shapes.Size(), 2u);  // both found, none added
+  EXPECT_EQ(first.map, alone.map);
+  EXPECT_EQ(again.map, alone.map);
+  EXPECT_EQ(again.status.message, alone.status.message);
+}
+
+TEST(PartialMatch, ShapeIndexCacheKeysByRadiusAndDropsAllWhenFull) {
+  ShapeIndexCache kept(3 * sizeof(double) * 4);  // room for three values of 4
+  int computed = 0;
+  auto value = [&](double x) {
+    return [&computed, x] {
+      ++computed;
+      return Eigen::VectorXd::Constant(4, x);
+    };
+  };
+  EXPECT_EQ(kept.Get(1, 0.5, value(1.0))(0), 1.0);
+  EXPECT_EQ(kept.Get(1, 0.5, value(9.0))(0), 1.0);  // kept: not computed again
+  EXPECT_EQ(kept.Get(1, 0.25, value(2.0))(0), 2.0);  // another radius, another value
+  EXPECT_EQ(kept.Get(2, 0.5, value(3.0))(0), 3.0);   // another surface
+  EXPECT_EQ(computed, 3);
+  EXPECT_EQ(kept.Size(), 3u);
+  EXPECT_EQ(kept.Get(3, 0.5, value(4.0))(0), 4.0);  // full: the others dropped
+  EXPECT_EQ(kept.Size(), 1u);
+  EXPECT_EQ(kept.Get(1, 0.5, value(5.0))(0), 5.0);
+  EXPECT_EQ(computed, 5);
+}
+
 // Plane-cut poses of the synthetic humanoid (as in configs/bench/synthetic_failures.yaml,
 // plane_cuts), whose front and back are nearly alike: for these pairs a map turned front to back
 // keeps distances and orientation as well as the right one (0.52-0.85 against the truth when the
