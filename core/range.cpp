@@ -41,4 +41,11 @@ std::string Range::Violation(double x) const {
   return "must be in " + Text() + ", got " + NumberText(x);
 }
 
+std::string FirstViolation(std::initializer_list<RangeField> fields) {
+  for (const RangeField& f : fields) {
+    if (!f.range.Contains(f.value)) return std::string(f.name) + " " + f.range.Violation(f.value);
+  }
+  return "";
+}
+
 }  // namespace symembed

@@ -8,6 +8,7 @@
 // same type: every int is exactly a double.
 #pragma once
 
+#include <initializer_list>
 #include <limits>
 #include <string>
 
@@ -61,5 +62,21 @@ class Range {
   bool min_open_;
   bool max_open_;
 };
+
+// A numeric option as IsValid checks it: its name in messages, its declared range, its value
+// (any arithmetic type, compared as a double, as Range::Contains does).
+struct RangeField {
+  template <typename T>
+  RangeField(const char* name, const Range& range, T value)
+      : name(name), range(range), value(static_cast<double>(value)) {}
+  const char* name;
+  Range range;
+  double value;
+};
+
+// "NAME must be in [a, b), got x" for the first of `fields`, in the order given, whose value lies
+// outside its range; "" when every value is allowed. An IsValid lists its bounded options in one
+// call, between the checks of its own that must come before or after them.
+std::string FirstViolation(std::initializer_list<RangeField> fields);
 
 }  // namespace symembed

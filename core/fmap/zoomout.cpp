@@ -11,15 +11,11 @@ namespace symembed {
 
 bool ZoomOutOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kKStart.Contains(k_start)) {
-    out << "k_start " << kKStart.Violation(k_start);
-  } else if (!kKEnd.Contains(k_end)) {
-    out << "k_end " << kKEnd.Violation(k_end);
-  } else if (k_end < k_start) {
+  out << FirstViolation({{"k_start", kKStart, k_start}, {"k_end", kKEnd, k_end}});
+  if (out.str().empty() && k_end < k_start) {
     out << "k_end (" << k_end << ") must be >= k_start (" << k_start << ")";
-  } else if (!kStep.Contains(step)) {
-    out << "step " << kStep.Violation(step);
   }
+  if (out.str().empty()) out << FirstViolation({{"step", kStep, step}});
   for (size_t i = 0; i < extra_k_starts.size() && out.str().empty(); ++i) {
     const int k = extra_k_starts[i];
     const auto earlier = extra_k_starts.begin() + i;

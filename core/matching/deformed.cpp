@@ -13,23 +13,17 @@ namespace symembed {
 
 bool DeformOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kKStart.Contains(k_start))
-    out << "k_start " << kKStart.Violation(k_start);
-  else if (!kKEnd.Contains(k_end))
-    out << "k_end " << kKEnd.Violation(k_end);
-  else if (k_end < k_start) out << "k_end must be >= k_start (" << k_start << "), got " << k_end;
-  else if (!kStep.Contains(step))
-    out << "step " << kStep.Violation(step);
-  else if (!kIterations.Contains(iterations))
-    out << "iterations " << kIterations.Violation(iterations);
-  else if (!kSmoothness.Contains(smoothness))
-    out << "smoothness " << kSmoothness.Violation(smoothness);
-  else if (!kSamples.Contains(samples))
-    out << "samples " << kSamples.Violation(samples);
-  else if (!kNormalWeight.Contains(normal_weight))
-    out << "normal_weight " << kNormalWeight.Violation(normal_weight);
-  else if (!kThreads.Contains(threads))
-    out << "threads " << kThreads.Violation(threads);
+  out << FirstViolation({{"k_start", kKStart, k_start}, {"k_end", kKEnd, k_end}});
+  if (out.str().empty() && k_end < k_start) {
+    out << "k_end must be >= k_start (" << k_start << "), got " << k_end;
+  }
+  if (out.str().empty())
+    out << FirstViolation({{"step", kStep, step},
+                           {"iterations", kIterations, iterations},
+                           {"smoothness", kSmoothness, smoothness},
+                           {"samples", kSamples, samples},
+                           {"normal_weight", kNormalWeight, normal_weight},
+                           {"threads", kThreads, threads}});
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -65,16 +65,11 @@ MatchResult MatchNearest(const EmbeddedPoints& source, const EmbeddedPoints& tar
 
 bool ScaledIcpOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kIterations.Contains(iterations))
-    out << "iterations " << kIterations.Violation(iterations);
-  else if (!kMinScale.Contains(min_scale))
-    out << "min_scale " << kMinScale.Violation(min_scale);
-  else if (!kMaxScale.Contains(max_scale))
-    out << "max_scale " << kMaxScale.Violation(max_scale);
-  else if (!kNormalWeight.Contains(normal_weight))
-    out << "normal_weight " << kNormalWeight.Violation(normal_weight);
-  else if (!kThreads.Contains(threads))
-    out << "threads " << kThreads.Violation(threads);
+  out << FirstViolation({{"iterations", kIterations, iterations},
+                         {"min_scale", kMinScale, min_scale},
+                         {"max_scale", kMaxScale, max_scale},
+                         {"normal_weight", kNormalWeight, normal_weight},
+                         {"threads", kThreads, threads}});
   if (error) *error = out.str();
   return out.str().empty();
 }

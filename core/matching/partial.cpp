@@ -367,28 +367,19 @@ size_t ShapeIndexCache::Size() const {
 
 bool PartialMatchOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kBoundaryRatio.Contains(boundary_ratio))
-    out << "boundary_ratio " << kBoundaryRatio.Violation(boundary_ratio);
-  else if (!kPartSamples.Contains(part_samples))
-    out << "part_samples " << kPartSamples.Violation(part_samples);
-  else if (!kWholeSamples.Contains(whole_samples))
-    out << "whole_samples " << kWholeSamples.Violation(whole_samples);
-  else if (!kTriples.Contains(triples))
-    out << "triples " << kTriples.Violation(triples);
-  else if (!kPool.Contains(pool))
-    out << "pool " << kPool.Violation(pool);
-  else if (!kTolerance.Contains(tolerance))
-    out << "tolerance " << kTolerance.Violation(tolerance);
-  else if (!kQueries.Contains(queries))
-    out << "queries " << kQueries.Violation(queries);
-  else if (!kLandmarks.Contains(landmarks))
-    out << "landmarks " << kLandmarks.Violation(landmarks);
-  else if (!kIterations.Contains(iterations))
-    out << "iterations " << kIterations.Violation(iterations);
-  else if (!kHypotheses.Contains(hypotheses))
-    out << "hypotheses " << kHypotheses.Violation(hypotheses);
-  else if (landmarks > part_samples)
+  out << FirstViolation({{"boundary_ratio", kBoundaryRatio, boundary_ratio},
+                         {"part_samples", kPartSamples, part_samples},
+                         {"whole_samples", kWholeSamples, whole_samples},
+                         {"triples", kTriples, triples},
+                         {"pool", kPool, pool},
+                         {"tolerance", kTolerance, tolerance},
+                         {"queries", kQueries, queries},
+                         {"landmarks", kLandmarks, landmarks},
+                         {"iterations", kIterations, iterations},
+                         {"hypotheses", kHypotheses, hypotheses}});
+  if (out.str().empty() && landmarks > part_samples) {
     out << "landmarks (" << landmarks << ") must not exceed part_samples (" << part_samples << ")";
+  }
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -14,18 +14,12 @@ namespace symembed {
 
 bool SmacofOptions::IsValid(std::string* error) const {
   std::ostringstream why;
-  if (!kTolerance.Contains(tolerance))
-    why << "tolerance " << kTolerance.Violation(tolerance);
-  else if (!kMaxIterations.Contains(max_iterations))
-    why << "max_iterations " << kMaxIterations.Violation(max_iterations);
-  else if (!kWeightPower.Contains(weight_power))
-    why << "weight_power " << kWeightPower.Violation(weight_power);
-  else if (!kRelaxation.Contains(relaxation))
-    why << "relaxation " << kRelaxation.Violation(relaxation);
-  else if (!kAndersonWindow.Contains(anderson_window))
-    why << "anderson_window " << kAndersonWindow.Violation(anderson_window);
-  else if (!kThreads.Contains(threads))
-    why << "threads " << kThreads.Violation(threads);
+  why << FirstViolation({{"tolerance", kTolerance, tolerance},
+                         {"max_iterations", kMaxIterations, max_iterations},
+                         {"weight_power", kWeightPower, weight_power},
+                         {"relaxation", kRelaxation, relaxation},
+                         {"anderson_window", kAndersonWindow, anderson_window},
+                         {"threads", kThreads, threads}});
   if (why.str().empty()) return true;
   if (error) *error = why.str();
   return false;

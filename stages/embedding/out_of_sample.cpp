@@ -13,16 +13,11 @@ namespace symembed {
 
 bool OutOfSampleOptions::IsValid(std::string* error) const {
   std::ostringstream why;
-  if (!kNeighbors.Contains(neighbors))
-    why << "neighbors " << kNeighbors.Violation(neighbors);
-  else if (!kWeightPower.Contains(weight_power))
-    why << "weight_power " << kWeightPower.Violation(weight_power);
-  else if (!kMaxIterations.Contains(max_iterations))
-    why << "max_iterations " << kMaxIterations.Violation(max_iterations);
-  else if (!kTolerance.Contains(tolerance))
-    why << "tolerance " << kTolerance.Violation(tolerance);
-  else if (!kThreads.Contains(threads))
-    why << "threads " << kThreads.Violation(threads);
+  why << FirstViolation({{"neighbors", kNeighbors, neighbors},
+                         {"weight_power", kWeightPower, weight_power},
+                         {"max_iterations", kMaxIterations, max_iterations},
+                         {"tolerance", kTolerance, tolerance},
+                         {"threads", kThreads, threads}});
   if (why.str().empty()) return true;
   if (error) *error = why.str();
   return false;

@@ -11,21 +11,16 @@ namespace symembed {
 
 bool DescriptorMapOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kK.Contains(k))
-    out << "k " << kK.Violation(k);
-  else if (!kEigenpairs.Contains(eigenpairs))
-    out << "eigenpairs " << kEigenpairs.Violation(eigenpairs);
-  else if (eigenpairs < k) out << "eigenpairs must be >= k (" << k << "), got " << eigenpairs;
-  else if (!kEnergies.Contains(energies))
-    out << "energies " << kEnergies.Violation(energies);
-  else if (!kSigma.Contains(sigma))
-    out << "sigma " << kSigma.Violation(sigma);
-  else if (!kMu.Contains(mu))
-    out << "mu " << kMu.Violation(mu);
-  else if (!kSamples.Contains(samples))
-    out << "samples " << kSamples.Violation(samples);
-  else if (!kAxes.Contains(axes))
-    out << "axes " << kAxes.Violation(axes);
+  out << FirstViolation({{"k", kK, k}, {"eigenpairs", kEigenpairs, eigenpairs}});
+  if (out.str().empty() && eigenpairs < k) {
+    out << "eigenpairs must be >= k (" << k << "), got " << eigenpairs;
+  }
+  if (out.str().empty())
+    out << FirstViolation({{"energies", kEnergies, energies},
+                           {"sigma", kSigma, sigma},
+                           {"mu", kMu, mu},
+                           {"samples", kSamples, samples},
+                           {"axes", kAxes, axes}});
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -14,30 +14,24 @@ namespace symembed {
 bool ExtrinsicFlipOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string smoothing_error;
-  if (!kWeight.Contains(local_weight))
-    out << "local_weight " << kWeight.Violation(local_weight);
-  else if (!kWeight.Contains(global_weight))
-    out << "global_weight " << kWeight.Violation(global_weight);
-  else if (!kWeight.Contains(chamfer_weight))
-    out << "chamfer_weight " << kWeight.Violation(chamfer_weight);
-  else if (local_weight + global_weight + chamfer_weight <= 0.0)
+  out << FirstViolation({{"local_weight", kWeight, local_weight},
+                         {"global_weight", kWeight, global_weight},
+                         {"chamfer_weight", kWeight, chamfer_weight}});
+  if (out.str().empty() && local_weight + global_weight + chamfer_weight <= 0.0) {
     out << "at least one of local_weight, global_weight, chamfer_weight must be > 0";
-  else if (!kBins.Contains(profile_bins))
-    out << "profile_bins " << kBins.Violation(profile_bins);
-  else if (!kBins.Contains(histogram_bins))
-    out << "histogram_bins " << kBins.Violation(histogram_bins);
-  else if (!smoothing.IsValid(&smoothing_error))
-    out << smoothing_error;
+  }
+  if (out.str().empty())
+    out << FirstViolation(
+        {{"profile_bins", kBins, profile_bins}, {"histogram_bins", kBins, histogram_bins}});
+  if (out.str().empty() && !smoothing.IsValid(&smoothing_error)) out << smoothing_error;
   if (error) *error = out.str();
   return out.str().empty();
 }
 
 bool FeatureSmoothing::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kRings.Contains(rings))
-    out << "smoothing_rings " << kRings.Violation(rings);
-  else if (!kRadius.Contains(radius))
-    out << "smoothing_radius " << kRadius.Violation(radius);
+  out << FirstViolation(
+      {{"smoothing_rings", kRings, rings}, {"smoothing_radius", kRadius, radius}});
   if (error) *error = out.str();
   return out.str().empty();
 }

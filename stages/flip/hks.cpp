@@ -11,12 +11,9 @@ namespace symembed {
 
 bool HksFlipOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kEigenpairs.Contains(eigenpairs))
-    out << "eigenpairs " << kEigenpairs.Violation(eigenpairs);
-  else if (!kNumTimes.Contains(num_times))
-    out << "num_times " << kNumTimes.Violation(num_times);
-  else if (!kThreads.Contains(threads))
-    out << "threads " << kThreads.Violation(threads);
+  out << FirstViolation({{"eigenpairs", kEigenpairs, eigenpairs},
+                         {"num_times", kNumTimes, num_times},
+                         {"threads", kThreads, threads}});
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -33,10 +33,9 @@ bool RefinedAgreementOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string schedule;
   if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
-  else if (!kMargin.Contains(margin))
-    out << "margin " << kMargin.Violation(margin);
-  else if (!kNormalWeight.Contains(normal_weight))
-    out << "normal_weight " << kNormalWeight.Violation(normal_weight);
+  if (out.str().empty())
+    out << FirstViolation(
+        {{"margin", kMargin, margin}, {"normal_weight", kNormalWeight, normal_weight}});
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -32,27 +32,22 @@ bool RefinedMapsTermOptions::IsValid(std::string* error) const {
   std::string feature_error;
   std::string schedule;
   if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
-  else if (!kSources.Contains(sources))
-    out << "sources " << kSources.Violation(sources);
-  else if (!kTargets.Contains(targets))
-    out << "targets " << kTargets.Violation(targets);
-  else if (targets < sources) out << "targets must be >= sources (" << sources << "), got " << targets;
-  else if (targets > zoomout.samples)
+  if (out.str().empty())
+    out << FirstViolation({{"sources", kSources, sources}, {"targets", kTargets, targets}});
+  if (out.str().empty() && targets < sources) {
+    out << "targets must be >= sources (" << sources << "), got " << targets;
+  }
+  if (out.str().empty() && targets > zoomout.samples) {
     out << "targets must be <= zoomout.samples (" << zoomout.samples << "), got " << targets;
-  else if (!kWeight.Contains(distortion_weight))
-    out << "distortion_weight " << kWeight.Violation(distortion_weight);
-  else if (!kWeight.Contains(disagreement_weight))
-    out << "disagreement_weight " << kWeight.Violation(disagreement_weight);
-  else if (!kWeight.Contains(orientation_weight))
-    out << "orientation_weight " << kWeight.Violation(orientation_weight);
-  else if (!kWeight.Contains(long_axis_weight))
-    out << "long_axis_weight " << kWeight.Violation(long_axis_weight);
-  else if (!kLongAxisTime.Contains(long_axis_time))
-    out << "long_axis_time " << kLongAxisTime.Violation(long_axis_time);
-  else if (!smoothing.IsValid(&feature_error))
-    out << feature_error;
-  else if (!kNormalWeight.Contains(normal_weight))
-    out << "normal_weight " << kNormalWeight.Violation(normal_weight);
+  }
+  if (out.str().empty())
+    out << FirstViolation({{"distortion_weight", kWeight, distortion_weight},
+                           {"disagreement_weight", kWeight, disagreement_weight},
+                           {"orientation_weight", kWeight, orientation_weight},
+                           {"long_axis_weight", kWeight, long_axis_weight},
+                           {"long_axis_time", kLongAxisTime, long_axis_time}});
+  if (out.str().empty() && !smoothing.IsValid(&feature_error)) out << feature_error;
+  if (out.str().empty()) out << FirstViolation({{"normal_weight", kNormalWeight, normal_weight}});
   if (error) *error = out.str();
   return out.str().empty();
 }

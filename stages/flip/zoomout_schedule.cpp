@@ -8,19 +8,15 @@ namespace symembed {
 
 bool FlipZoomOutSchedule::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kKStart.Contains(k_start))
-    out << "k_start " << kKStart.Violation(k_start);
-  else if (!kKEnd.Contains(k_end))
-    out << "k_end " << kKEnd.Violation(k_end);
-  else if (k_end < k_start)
-    out << "need 1 <= k_start <= k_end";
-  else if (!kStep.Contains(step))
-    out << "step " << kStep.Violation(step);
-  else if (!kSamples.Contains(samples))
-    out << "samples " << kSamples.Violation(samples);
-  else if (samples < k_end) out << "samples must be >= k_end (" << k_end << "), got " << samples;
-  else if (!kTargetSamples.Contains(target_samples))
-    out << "target_samples " << kTargetSamples.Violation(target_samples);
+  out << FirstViolation({{"k_start", kKStart, k_start}, {"k_end", kKEnd, k_end}});
+  if (out.str().empty() && k_end < k_start) out << "need 1 <= k_start <= k_end";
+  if (out.str().empty())
+    out << FirstViolation({{"step", kStep, step}, {"samples", kSamples, samples}});
+  if (out.str().empty() && samples < k_end) {
+    out << "samples must be >= k_end (" << k_end << "), got " << samples;
+  }
+  if (out.str().empty())
+    out << FirstViolation({{"target_samples", kTargetSamples, target_samples}});
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -10,11 +10,10 @@
 namespace symembed {
 
 bool FastMarchingOptions::IsValid(std::string* error) const {
-  if (!kMaxUnfoldSteps.Contains(max_unfold_steps)) {
-    if (error) *error = "max_unfold_steps " + kMaxUnfoldSteps.Violation(max_unfold_steps);
-    return false;
-  }
-  return common.IsValid(error);
+  const std::string why = FirstViolation({{"max_unfold_steps", kMaxUnfoldSteps, max_unfold_steps}});
+  if (why.empty()) return common.IsValid(error);
+  if (error) *error = why;
+  return false;
 }
 
 namespace {

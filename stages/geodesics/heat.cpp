@@ -10,11 +10,10 @@
 namespace symembed {
 
 bool HeatOptions::IsValid(std::string* error) const {
-  if (!kTimeFactor.Contains(time_factor)) {
-    if (error) *error = "time_factor " + kTimeFactor.Violation(time_factor);
-    return false;
-  }
-  return common.IsValid(error);
+  const std::string why = FirstViolation({{"time_factor", kTimeFactor, time_factor}});
+  if (why.empty()) return common.IsValid(error);
+  if (error) *error = why;
+  return false;
 }
 
 namespace {

@@ -15,16 +15,12 @@
 namespace symembed {
 
 bool StandardPreprocessOptions::IsValid(std::string* error) const {
-  if (!kDegenerateTolerance.Contains(degenerate_tolerance)) {
-    if (error)
-      *error = "degenerate_tolerance " + kDegenerateTolerance.Violation(degenerate_tolerance);
-    return false;
-  }
-  if (!kMaxRemovedArea.Contains(max_removed_area)) {
-    if (error) *error = "max_removed_area " + kMaxRemovedArea.Violation(max_removed_area);
-    return false;
-  }
-  return true;
+  const std::string why =
+      FirstViolation({{"degenerate_tolerance", kDegenerateTolerance, degenerate_tolerance},
+                      {"max_removed_area", kMaxRemovedArea, max_removed_area}});
+  if (why.empty()) return true;
+  if (error) *error = why;
+  return false;
 }
 
 namespace {

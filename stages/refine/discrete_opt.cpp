@@ -16,28 +16,20 @@ namespace symembed {
 bool DiscreteOptOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   const DiscreteOptWeights& w = weights;
-  const std::pair<const char*, double> named_weights[] = {{"orthogonality", w.orthogonality},
-                                                          {"bijectivity", w.bijectivity},
-                                                          {"proper", w.proper},
-                                                          {"laplacian", w.laplacian},
-                                                          {"descriptor", w.descriptor},
-                                                          {"embedding", w.embedding}};
-  if (!kKStart.Contains(k_start)) {
-    out << "k_start " << kKStart.Violation(k_start);
-  } else if (!kKEnd.Contains(k_end)) {
-    out << "k_end " << kKEnd.Violation(k_end);
-  } else if (k_end < k_start) {
+  const Range& weight = DiscreteOptWeights::kWeight;
+  out << FirstViolation({{"k_start", kKStart, k_start}, {"k_end", kKEnd, k_end}});
+  if (out.str().empty() && k_end < k_start) {
     out << "k_end (" << k_end << ") must be >= k_start (" << k_start << ")";
-  } else if (!kStep.Contains(step)) {
-    out << "step " << kStep.Violation(step);
-  } else if (!kDescriptors.Contains(descriptors)) {
-    out << "descriptors " << kDescriptors.Violation(descriptors);
   }
-  for (const auto& [name, value] : named_weights) {
-    if (out.str().empty() && !DiscreteOptWeights::kWeight.Contains(value)) {
-      out << "weights." << name << " " << DiscreteOptWeights::kWeight.Violation(value);
-    }
-  }
+  if (out.str().empty())
+    out << FirstViolation({{"step", kStep, step}, {"descriptors", kDescriptors, descriptors}});
+  if (out.str().empty())
+    out << FirstViolation({{"weights.orthogonality", weight, w.orthogonality},
+                           {"weights.bijectivity", weight, w.bijectivity},
+                           {"weights.proper", weight, w.proper},
+                           {"weights.laplacian", weight, w.laplacian},
+                           {"weights.descriptor", weight, w.descriptor},
+                           {"weights.embedding", weight, w.embedding}});
   // The descriptor and embedding terms alone do not depend on the functional maps: the
   // iterations would repeat one query.
   if (out.str().empty() && !(w.orthogonality + w.bijectivity + w.proper + w.laplacian > 0)) {

@@ -10,11 +10,7 @@ namespace symembed {
 
 bool FunctionalMapIcpOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kK.Contains(k)) {
-    out << "k " << kK.Violation(k);
-  } else if (!kMaxIterations.Contains(max_iterations)) {
-    out << "max_iterations " << kMaxIterations.Violation(max_iterations);
-  }
+  out << FirstViolation({{"k", kK, k}, {"max_iterations", kMaxIterations, max_iterations}});
   if (out.str().empty()) return true;
   if (error != nullptr) *error = out.str();
   return false;

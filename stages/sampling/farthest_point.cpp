@@ -11,11 +11,10 @@
 namespace symembed {
 
 bool FarthestPointOptions::IsValid(std::string* error) const {
-  if (!kCount.Contains(count)) {
-    if (error) *error = "count " + kCount.Violation(count);
-    return false;
-  }
-  return true;
+  const std::string why = FirstViolation({{"count", kCount, count}});
+  if (why.empty()) return true;
+  if (error) *error = why;
+  return false;
 }
 
 SamplingResult FarthestPointSampling(const Surface& surface, const FarthestPointOptions& options) {

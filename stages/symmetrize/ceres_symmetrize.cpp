@@ -15,28 +15,17 @@ namespace symembed {
 
 bool CeresSymmetrizeOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kWeight.Contains(symmetry_weight))
-    out << "symmetry_weight " << kWeight.Violation(symmetry_weight);
-  else if (!kWeight.Contains(plane_weight))
-    out << "plane_weight " << kWeight.Violation(plane_weight);
-  else if (!kWeight.Contains(anchor_weight))
-    out << "anchor_weight " << kWeight.Violation(anchor_weight);
-  else if (!kGraphNeighbors.Contains(graph_neighbors))
-    out << "graph_neighbors " << kGraphNeighbors.Violation(graph_neighbors);
-  else if (!kMirrorNeighbors.Contains(mirror_neighbors))
-    out << "mirror_neighbors " << kMirrorNeighbors.Violation(mirror_neighbors);
-  else if (!kFollowNeighbors.Contains(follow_neighbors))
-    out << "follow_neighbors " << kFollowNeighbors.Violation(follow_neighbors);
-  else if (!kMaxIterations.Contains(max_iterations))
-    out << "max_iterations " << kMaxIterations.Violation(max_iterations);
-  else if (!kFunctionTolerance.Contains(function_tolerance))
-    out << "function_tolerance " << kFunctionTolerance.Violation(function_tolerance);
-  else if (!kThreads.Contains(threads))
-    out << "threads " << kThreads.Violation(threads);
-  else if (!kWarmStartIterations.Contains(warm_start_iterations))
-    out << "warm_start_iterations " << kWarmStartIterations.Violation(warm_start_iterations);
-  else if (!kWarmStartTolerance.Contains(warm_start_tolerance))
-    out << "warm_start_tolerance " << kWarmStartTolerance.Violation(warm_start_tolerance);
+  out << FirstViolation({{"symmetry_weight", kWeight, symmetry_weight},
+                         {"plane_weight", kWeight, plane_weight},
+                         {"anchor_weight", kWeight, anchor_weight},
+                         {"graph_neighbors", kGraphNeighbors, graph_neighbors},
+                         {"mirror_neighbors", kMirrorNeighbors, mirror_neighbors},
+                         {"follow_neighbors", kFollowNeighbors, follow_neighbors},
+                         {"max_iterations", kMaxIterations, max_iterations},
+                         {"function_tolerance", kFunctionTolerance, function_tolerance},
+                         {"threads", kThreads, threads},
+                         {"warm_start_iterations", kWarmStartIterations, warm_start_iterations},
+                         {"warm_start_tolerance", kWarmStartTolerance, warm_start_tolerance}});
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -19,28 +19,19 @@ bool Plane2dOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string sub;
   if (!search.IsValid(&sub)) out << sub;
-  else if (!spectral.IsValid(&sub)) out << sub;
-  else if (!kNumAngles.Contains(num_angles))
-    out << "num_angles " << kNumAngles.Violation(num_angles);
-  else if (!kIntrinsicWeight.Contains(intrinsic_weight))
-    out << "intrinsic_weight " << kIntrinsicWeight.Violation(intrinsic_weight);
-  else if (!kIntrinsicPairs.Contains(intrinsic_pairs))
-    out << "intrinsic_pairs " << kIntrinsicPairs.Violation(intrinsic_pairs);
-  else if (!kSmacofIterations.Contains(smacof_iterations))
-    out << "smacof_iterations " << kSmacofIterations.Violation(smacof_iterations);
-  else if (!kRefine3dIterations.Contains(refine_3d_iterations))
-    out << "refine_3d_iterations " << kRefine3dIterations.Violation(refine_3d_iterations);
-  else if (!kNumDirections.Contains(num_directions))
-    out << "num_directions " << kNumDirections.Violation(num_directions);
-  else if (!kThreads.Contains(threads))
-    out << "threads " << kThreads.Violation(threads);
-  else if (!kMinSelfMapDisplacement.Contains(min_self_map_displacement))
-    out << "min_self_map_displacement "
-        << kMinSelfMapDisplacement.Violation(min_self_map_displacement);
-  else if (!kSecondPlaneBelow.Contains(second_plane_below))
-    out << "second_plane_below " << kSecondPlaneBelow.Violation(second_plane_below);
-  else if (!kDistanceConfidence.Contains(distance_confidence))
-    out << "distance_confidence " << kDistanceConfidence.Violation(distance_confidence);
+  if (out.str().empty() && !spectral.IsValid(&sub)) out << sub;
+  if (out.str().empty())
+    out << FirstViolation(
+        {{"num_angles", kNumAngles, num_angles},
+         {"intrinsic_weight", kIntrinsicWeight, intrinsic_weight},
+         {"intrinsic_pairs", kIntrinsicPairs, intrinsic_pairs},
+         {"smacof_iterations", kSmacofIterations, smacof_iterations},
+         {"refine_3d_iterations", kRefine3dIterations, refine_3d_iterations},
+         {"num_directions", kNumDirections, num_directions},
+         {"threads", kThreads, threads},
+         {"min_self_map_displacement", kMinSelfMapDisplacement, min_self_map_displacement},
+         {"second_plane_below", kSecondPlaneBelow, second_plane_below},
+         {"distance_confidence", kDistanceConfidence, distance_confidence}});
   if (error) *error = out.str();
   return out.str().empty();
 }

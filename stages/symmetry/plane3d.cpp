@@ -14,14 +14,11 @@ bool Plane3dOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string sub;
   if (!search.IsValid(&sub)) out << sub;
-  else if (!kNumDirections.Contains(num_directions))
-    out << "num_directions " << kNumDirections.Violation(num_directions);
-  else if (!kIntrinsicWeight.Contains(intrinsic_weight))
-    out << "intrinsic_weight " << kIntrinsicWeight.Violation(intrinsic_weight);
-  else if (!kIntrinsicPairs.Contains(intrinsic_pairs))
-    out << "intrinsic_pairs " << kIntrinsicPairs.Violation(intrinsic_pairs);
-  else if (!kThreads.Contains(threads))
-    out << "threads " << kThreads.Violation(threads);
+  if (out.str().empty())
+    out << FirstViolation({{"num_directions", kNumDirections, num_directions},
+                           {"intrinsic_weight", kIntrinsicWeight, intrinsic_weight},
+                           {"intrinsic_pairs", kIntrinsicPairs, intrinsic_pairs},
+                           {"threads", kThreads, threads}});
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -14,16 +14,11 @@ namespace symembed {
 
 bool ReflectionSearchOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kMaxIterations.Contains(max_iterations))
-    out << "max_iterations " << kMaxIterations.Violation(max_iterations);
-  else if (!kTrimFraction.Contains(trim_fraction))
-    out << "trim_fraction " << kTrimFraction.Violation(trim_fraction);
-  else if (!kOutlierDistance.Contains(outlier_distance))
-    out << "outlier_distance " << kOutlierDistance.Violation(outlier_distance);
-  else if (!kMaxFixedFraction.Contains(max_fixed_fraction))
-    out << "max_fixed_fraction " << kMaxFixedFraction.Violation(max_fixed_fraction);
-  else if (!kTolerance.Contains(tolerance))
-    out << "tolerance " << kTolerance.Violation(tolerance);
+  out << FirstViolation({{"max_iterations", kMaxIterations, max_iterations},
+                         {"trim_fraction", kTrimFraction, trim_fraction},
+                         {"outlier_distance", kOutlierDistance, outlier_distance},
+                         {"max_fixed_fraction", kMaxFixedFraction, max_fixed_fraction},
+                         {"tolerance", kTolerance, tolerance}});
   if (error) *error = out.str();
   return out.str().empty();
 }

@@ -16,16 +16,12 @@ namespace symembed {
 
 bool SpectralSymmetryOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  if (!kNumEigenfunctions.Contains(num_eigenfunctions))
-    out << "spectral_eigenfunctions " << kNumEigenfunctions.Violation(num_eigenfunctions);
-  else if (!kNumCandidates.Contains(num_candidates))
-    out << "spectral_candidates " << kNumCandidates.Violation(num_candidates);
-  else if (!kMinConsistency.Contains(min_consistency))
-    out << "spectral_min_consistency " << kMinConsistency.Violation(min_consistency);
-  else if (!kWeight.Contains(weight))
-    out << "spectral_weight " << kWeight.Violation(weight);
-  else if (!kEigenvalueTolerance.Contains(eigenvalue_tolerance))
-    out << "spectral_eigenvalue_tolerance " << kEigenvalueTolerance.Violation(eigenvalue_tolerance);
+  out << FirstViolation(
+      {{"spectral_eigenfunctions", kNumEigenfunctions, num_eigenfunctions},
+       {"spectral_candidates", kNumCandidates, num_candidates},
+       {"spectral_min_consistency", kMinConsistency, min_consistency},
+       {"spectral_weight", kWeight, weight},
+       {"spectral_eigenvalue_tolerance", kEigenvalueTolerance, eigenvalue_tolerance}});
   if (error) *error = out.str();
   return out.str().empty();
 }

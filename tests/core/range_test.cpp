@@ -25,6 +25,17 @@ TEST(Range, ContainsAndText) {
   EXPECT_TRUE(Range::Any().Contains(-1e300));
 }
 
+TEST(FirstViolation, NamesTheFirstFieldOutsideItsRangeInTheOrderGiven) {
+  const Range count = Range::AtLeast(1), fraction = Range::Closed(0.0, 1.0);
+  const int samples = 0;
+  EXPECT_EQ(FirstViolation({{"samples", count, 10}, {"fraction", fraction, 0.5}}), "");
+  EXPECT_EQ(FirstViolation({{"samples", count, samples}, {"fraction", fraction, 1.5}}),
+            "samples must be in [1, inf), got 0");
+  EXPECT_EQ(FirstViolation({{"samples", count, 3}, {"fraction", fraction, 1.5}}),
+            "fraction must be in [0, 1], got 1.5");
+  EXPECT_EQ(FirstViolation({}), "");
+}
+
 TEST(FormatNumber, ShortestTextThatReadsBackExactly) {
   EXPECT_EQ(FormatNumber(0.1), "0.1");
   EXPECT_EQ(FormatNumber(1.0 / 3.0), "0.3333333333333333");
