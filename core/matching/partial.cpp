@@ -32,7 +32,7 @@ constexpr size_t kCallRowBytes = size_t{1} << 40;
 // The cache of `rows`, or `own` (for this call alone), and the two surfaces' keys in it.
 PartialRows RowsOf(const PartialRows& rows, EdgeDistanceCache* own) {
   if (rows.cache != nullptr) return rows;
-  return PartialRows{own, 1, 2, nullptr};
+  return PartialRows{own, 1, 2};
 }
 
 // One shape of the pair, in the common unit.
@@ -614,9 +614,8 @@ double LandmarkDistortion(const Surface& source, const std::vector<int>& source_
   EdgeDistanceCache own(kCallRowBytes);
   const PartialRows rows = RowsOf(cached, &own);
   const MeshGraph source_graph = BuildMeshGraph(source), target_graph = BuildMeshGraph(target);
-  auto distances = [&](const Surface& surface, uint64_t key, const std::vector<int>& sources,
+  auto distances = [&](const MeshGraph& graph, uint64_t key, const std::vector<int>& sources,
                        double unit) -> Eigen::MatrixXd {
-    const MeshGraph& graph = &surface == &source ? source_graph : target_graph;
     return rows.cache->Rows(key, graph, sources) * unit;
   };
   const double source_area = TotalArea(source) * source_unit * source_unit;
@@ -630,11 +629,11 @@ double LandmarkDistortion(const Surface& source, const std::vector<int>& source_
   Eigen::MatrixXd on_part, on_other;
   std::vector<int> counterparts(n);
   if (source_is_part) {
-    on_part = distances(source, rows.source_key, landmarks, source_unit);
+    on_part = distances(source_graph, rows.source_key, landmarks, source_unit);
     for (int i = 0; i < n; ++i) counterparts[i] = map[landmarks[i]];
-    on_other = distances(target, rows.target_key, counterparts, target_unit);
+    on_other = distances(target_graph, rows.target_key, counterparts, target_unit);
   } else {
-    on_part = distances(target, rows.target_key, landmarks, target_unit);
+    on_part = distances(target_graph, rows.target_key, landmarks, target_unit);
     for (int i = 0; i < n; ++i) {
       double nearest = std::numeric_limits<double>::infinity();
       for (size_t v = 0; v < map.size(); ++v) {
@@ -644,7 +643,7 @@ double LandmarkDistortion(const Surface& source, const std::vector<int>& source_
         }
       }
     }
-    on_other = distances(source, rows.source_key, counterparts, source_unit);
+    on_other = distances(source_graph, rows.source_key, counterparts, source_unit);
   }
   std::vector<double> gaps;
   for (int i = 0; i < n; ++i) {
