@@ -47,6 +47,17 @@ class IdentityPreprocess : public PreprocessStage {
 
 Surface LoadGrid(const DatasetShape&) { return GridMesh(kN, kN, 3.0, 3.0); }
 
+// Scores the grid maps in maps_dir (options: the rest of ScoreMapsOptions) on the dataset's
+// pairs with exact (Euclidean) distances on the unchanged grids.
+ScoreMapsResult ScoreGrids(const Dataset& dataset, const std::string& maps_dir,
+                           ScoreMapsOptions options = {}) {
+  IdentityPreprocess preprocess;
+  testing::EuclideanGeodesics geodesics;
+  Evaluator evaluator(EvaluationOptions{}, geodesics);
+  options.maps_dir = maps_dir;
+  return ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+}
+
 std::vector<int> Identity() {
   std::vector<int> map(kN * kN);
   for (int v = 0; v < kN * kN; ++v) map[v] = v;
@@ -61,13 +72,9 @@ TEST(ScoreMaps, MalformedAndMissingMapsFailOnlyTheirPair) {
   testing::WriteText(dir.File("a_c.map"), bad);
   // b_c.map is missing.
   GridDataset dataset;
-  IdentityPreprocess preprocess;
-  testing::EuclideanGeodesics geodesics;
-  Evaluator evaluator(EvaluationOptions{}, geodesics);
   ScoreMapsOptions options;
-  options.maps_dir = dir.path();
   options.threads = 2;
-  const ScoreMapsResult r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  const ScoreMapsResult r = ScoreGrids(dataset, dir.path(), options);
   ASSERT_EQ(r.pairs.size(), 4u);
   EXPECT_EQ(r.pairs[0].target, "b");
   EXPECT_TRUE(r.pairs[0].ok) << r.pairs[0].message;
@@ -98,13 +105,9 @@ TEST(ScoreMaps, ReverseScoresTheFileAsTheOppositePair) {
   for (int v = 0; v < kN * kN; ++v) mirror[v] = (v / kN) * kN + (kN - 1 - v % kN);
   WriteMapFile(dir.File("a_b.map"), mirror);
   GridDataset dataset;
-  IdentityPreprocess preprocess;
-  testing::EuclideanGeodesics geodesics;
-  Evaluator evaluator(EvaluationOptions{}, geodesics);
   ScoreMapsOptions options;
-  options.maps_dir = dir.path();
   options.reverse = true;
-  const ScoreMapsResult r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  const ScoreMapsResult r = ScoreGrids(dataset, dir.path(), options);
   const PairEvaluation* ba = nullptr;
   for (const auto& p : r.pairs) {
     if (p.source == "b" && p.target == "a") ba = &p;
@@ -145,18 +148,13 @@ TEST(ScoreMaps, GroundTruthOntoAnotherShapeScoresThroughItsLines) {
   for (int v = 0; v < kN * kN; ++v) up[v] = std::min(v + kN, kN * kN - 1);
   WriteMapFile(dir.File("part_whole.map"), Identity());
   OntoDataset dataset;
-  IdentityPreprocess preprocess;
-  testing::EuclideanGeodesics geodesics;
-  Evaluator evaluator(EvaluationOptions{}, geodesics);
-  ScoreMapsOptions options;
-  options.maps_dir = dir.path();
-  ScoreMapsResult r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  ScoreMapsResult r = ScoreGrids(dataset, dir.path());
   ASSERT_EQ(r.pairs.size(), 1u);
   ASSERT_TRUE(r.pairs[0].ok) << r.pairs[0].message;
   EXPECT_EQ(r.pairs[0].points, kN * (kN - 1));
   EXPECT_NEAR(r.pairs[0].mean_direct, 1.0 / 3.0, 1e-6);  // one row off, over sqrt(area 9)
   WriteMapFile(dir.File("part_whole.map"), up);
-  r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  r = ScoreGrids(dataset, dir.path());
   ASSERT_TRUE(r.pairs[0].ok) << r.pairs[0].message;
   EXPECT_NEAR(r.pairs[0].mean_direct, 0.0, 1e-9);
 }
@@ -180,13 +178,9 @@ TEST(ScoreMaps, AnAmbiguousPlainNameIsNotReadAndTheEscapedOnesAreNamed) {
   WriteMapFile(dir.File("p_q1_r1.map"), Identity());
   WriteMapFile(dir.File("a_b.map"), Identity());
   CollidingDataset dataset;
-  IdentityPreprocess preprocess;
-  testing::EuclideanGeodesics geodesics;
-  Evaluator evaluator(EvaluationOptions{}, geodesics);
   ScoreMapsOptions options;
-  options.maps_dir = dir.path();
   options.threads = 2;
-  ScoreMapsResult r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  ScoreMapsResult r = ScoreGrids(dataset, dir.path(), options);
   std::map<std::string, const PairEvaluation*> by_source;
   for (const PairEvaluation& p : r.pairs) by_source[p.source] = &p;
   ASSERT_EQ(by_source.size(), 3u);
@@ -204,7 +198,7 @@ TEST(ScoreMaps, AnAmbiguousPlainNameIsNotReadAndTheEscapedOnesAreNamed) {
       << r.warnings[0];
 
   WriteMapFile(dir.File("p%5Fq1_r1.map"), Identity());
-  r = ScoreMaps(dataset, preprocess, evaluator, options, LoadGrid);
+  r = ScoreGrids(dataset, dir.path(), options);
   for (const PairEvaluation& p : r.pairs) EXPECT_TRUE(p.ok) << p.source << ": " << p.message;
 }
 

@@ -31,6 +31,7 @@ using testing::ReadText;
 using testing::TempDir;
 using testing::runner::OffText;
 using testing::runner::ReadOff;
+using testing::runner::RunShards;
 using testing::runner::TestRegistry;
 using testing::runner::WriteTestDataset;
 
@@ -179,14 +180,10 @@ TEST(RunEvaluation, ShardsMergedAndResumedRunsEqualASingleRun) {
   EXPECT_NE(single.at("flip2/pairs.csv").find("front_back"), std::string::npos)
       << single.at("flip2/pairs.csv");
 
-  std::vector<std::string> shards;
-  for (int i = 0; i < 3; ++i) {
-    RunOptions shard;
-    shard.shard_index = i;
-    shard.shard_count = 3;
-    shards.push_back(tmp.File("shard" + std::to_string(i)));
-    RunConfig(config, shards.back(), tmp.File("cache"), shard);
-  }
+  const std::vector<std::string> shards =
+      RunShards(tmp, 3, [&](const std::string& out, const RunOptions& shard) {
+        RunConfig(config, out, tmp.File("cache"), shard);
+      });
   GroundTruthRunEvaluation evaluation;
   EXPECT_EQ(MergeRuns(shards, tmp.File("merged"), evaluation).size(), 2u * (1 + 6));
   EXPECT_EQ(Outputs(tmp.File("merged")), single);
@@ -260,14 +257,10 @@ TEST(RunEvaluation, PairsWhosePlainFileNamesCollideKeepTheirOwnMapsAndRecords) {
   EXPECT_TRUE(resumed.warnings.empty()) << resumed.warnings[0];
 
   // One pair per shard, merged: the single run's outputs, both pairs scored.
-  std::vector<std::string> shards;
-  for (int i = 0; i < 2; ++i) {
-    RunOptions shard;
-    shard.shard_index = i;
-    shard.shard_count = 2;
-    shards.push_back(tmp.File("shard" + std::to_string(i)));
-    ASSERT_TRUE(RunConfig(config, shards.back(), tmp.File("cache"), shard).ok());
-  }
+  const std::vector<std::string> shards =
+      RunShards(tmp, 2, [&](const std::string& out, const RunOptions& shard) {
+        EXPECT_TRUE(RunConfig(config, out, tmp.File("cache"), shard).ok()) << out;
+      });
   GroundTruthRunEvaluation evaluation;
   EXPECT_TRUE(MergeRuns(shards, tmp.File("merged"), evaluation).empty());
   EXPECT_EQ(Outputs(tmp.File("merged")), Outputs(tmp.File("single")));

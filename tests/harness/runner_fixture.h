@@ -427,6 +427,23 @@ class TestEvaluation : public RunEvaluation {
   bool throw_in_write = false;  // WriteVariant throws IoError
 };
 
+// Runs `count` shards of a run through run(out, shard options), each into tmp/shardI, and
+// returns their folders in shard order.
+template <typename Run>
+std::vector<std::string> RunShards(const TempDir& tmp, int count, Run run,
+                                   ShardSplit split = ShardSplit::kPair) {
+  std::vector<std::string> outs;
+  for (int i = 0; i < count; ++i) {
+    RunOptions shard;
+    shard.shard_index = i;
+    shard.shard_count = count;
+    shard.shard_split = split;
+    outs.push_back(tmp.File("shard" + std::to_string(i)));
+    run(outs.back(), shard);
+  }
+  return outs;
+}
+
 // A run of config_text with the test registry and stages (2 jobs, quiet), and the test stages
 // called during it.
 struct RunResult {

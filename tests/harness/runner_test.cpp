@@ -43,9 +43,10 @@ using testing::ReadText;
 using testing::TempDir;
 using testing::WriteText;
 using testing::runner::CallCounter;
+using testing::runner::ReadOff;
 using testing::runner::RunConfig;
 using testing::runner::RunResult;
-using testing::runner::ReadOff;
+using testing::runner::RunShards;
 using testing::runner::TestEvaluation;
 using testing::runner::TestRegistry;
 using testing::runner::WriteTestDataset;
@@ -549,15 +550,11 @@ TEST(Runner, ShardsMergedEqualASingleRun) {
   const std::string config = WriteTestDataset(
       tmp.File("data"), 4, "variants:\n  - {name: flip1, set: {pipeline.flip.choose: 1}}\n");
   RunConfig(config, tmp.File("single"), tmp.File("cache"));
-  std::vector<std::string> shards;
   int pairs = 0;
-  for (int i = 0; i < 3; ++i) {
-    RunOptions shard;
-    shard.shard_index = i;
-    shard.shard_count = 3;
-    shards.push_back(tmp.File("shard" + std::to_string(i)));
-    pairs += RunConfig(config, shards.back(), tmp.File("cache"), shard).stats.pairs_total;
-  }
+  const std::vector<std::string> shards =
+      RunShards(tmp, 3, [&](const std::string& out, const RunOptions& shard) {
+        pairs += RunConfig(config, out, tmp.File("cache"), shard).stats.pairs_total;
+      });
   EXPECT_EQ(pairs, 2 * 12);  // every pair in exactly one shard, both variants
   TestEvaluation evaluation;
   EXPECT_TRUE(MergeRuns(shards, tmp.File("merged"), evaluation).empty());
@@ -596,19 +593,16 @@ TEST(Runner, ShapesOnlyShardsThenTargetShardsComputeEachShapeOnceAndEqualASingle
   EXPECT_EQ(computed,
             (std::map<std::string, int>{{"s0", 1}, {"s1", 1}, {"s2", 1}, {"s3", 1}, {"s4", 1}}));
 
-  std::vector<std::string> shards;
-  for (int i = 0; i < 3; ++i) {
-    RunOptions shard;
-    shard.shard_index = i;
-    shard.shard_count = 3;
-    shard.shard_split = ShardSplit::kTarget;
-    shards.push_back(tmp.File("shard" + std::to_string(i)));
-    const RunResult run = RunConfig(config, shards.back(), tmp.File("cache"), shard);
-    for (const char* kind : {"preprocess", "sampling", "geodesics", "embedding", "symmetry",
-                             "symmetrize", "test_feature"}) {
-      EXPECT_EQ(Get(run.stats.executed, kind), 0) << kind << " in shard " << i;
-    }
-  }
+  const std::vector<std::string> shards = RunShards(
+      tmp, 3,
+      [&](const std::string& out, const RunOptions& shard) {
+        const RunResult run = RunConfig(config, out, tmp.File("cache"), shard);
+        for (const char* kind : {"preprocess", "sampling", "geodesics", "embedding", "symmetry",
+                                 "symmetrize", "test_feature"}) {
+          EXPECT_EQ(Get(run.stats.executed, kind), 0) << kind << " in " << out;
+        }
+      },
+      ShardSplit::kTarget);
   TestEvaluation evaluation;
   EXPECT_TRUE(MergeRuns(shards, tmp.File("merged"), evaluation).empty());
   EXPECT_EQ(Snapshot(tmp.File("merged")), Snapshot(tmp.File("single")));
@@ -639,14 +633,10 @@ TEST(Runner, BadMeshIsRecordedAndTheRunGoesOn) {
   EXPECT_NE(summary.find("s1->s0: failed"), std::string::npos);
   EXPECT_NE(summary.find("failures 5"), std::string::npos);
   // Shard + merge reproduces the failures too.
-  std::vector<std::string> shards;
-  for (int i = 0; i < 2; ++i) {
-    RunOptions shard;
-    shard.shard_index = i;
-    shard.shard_count = 2;
-    shards.push_back(tmp.File("shard" + std::to_string(i)));
-    RunConfig(config, shards.back(), tmp.File("cache"), shard);
-  }
+  const std::vector<std::string> shards =
+      RunShards(tmp, 2, [&](const std::string& out, const RunOptions& shard) {
+        RunConfig(config, out, tmp.File("cache"), shard);
+      });
   TestEvaluation evaluation;
   EXPECT_EQ(MergeRuns(shards, tmp.File("merged"), evaluation).size(), 5u);
   EXPECT_EQ(Snapshot(tmp.File("merged")), Snapshot(tmp.File("out")));

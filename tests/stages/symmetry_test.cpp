@@ -40,18 +40,46 @@ double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::acos(std::min(1.0, std::abs(a.normalized().dot(b.normalized())))) * 180.0 / M_PI;
 }
 
-TEST(ReflectionSearch, FitIsExactOnAnExactlySymmetricSet) {
+// The symmetric test figure (with both arms or without the left one; its front-back axis z
+// scaled by thickness) moved by the rigid motion above: its points, every vertex as sample, the
+// samples' distances, and each vertex's mirror partner (-1 where the removed arm had it).
+struct MovedFigure {
+  explicit MovedFigure(bool with_left_arm, double thickness = 1.0) {
+    Surface figure = testing::SymmetricFigure(1, with_left_arm, &mirror);
+    figure.V.col(2) *= thickness;
+    Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
+    samples = AllVertices(figure.NumVertices());
+    D = EuclideanDistances(Y, samples);
+  }
+
+  // The fraction of the samples with a partner that the self map sends to it.
+  double FractionMirrored(const std::vector<int>& sigma) const {
+    int correct = 0, with_mirror = 0;
+    for (size_t i = 0; i < samples.size(); ++i) {
+      if (mirror[i] < 0) continue;
+      ++with_mirror;
+      correct += sigma[i] == mirror[i];
+    }
+    return static_cast<double>(correct) / with_mirror;
+  }
+
   std::vector<int> mirror;
-  const Surface figure = testing::SymmetricFigure(1, true, &mirror);
-  const Eigen::MatrixXd P = (figure.V * kRotation.transpose()).rowwise() + kShift;
+  Eigen::MatrixXd Y;
+  std::vector<int> samples;
+  Eigen::MatrixXd D;
+};
+
+TEST(ReflectionSearch, FitIsExactOnAnExactlySymmetricSet) {
+  const MovedFigure f(true);
+  const Eigen::MatrixXd& P = f.Y;
   Eigen::VectorXd normal;
   double offset = 0.0;
-  ASSERT_TRUE(FitReflection(P, mirror, Eigen::VectorXd::Ones(P.rows()), &normal, &offset));
+  ASSERT_TRUE(FitReflection(P, f.mirror, Eigen::VectorXd::Ones(P.rows()), &normal, &offset));
   const Eigen::Vector3d expected = kRotation.col(0);
   // Rounding only: the pairs are exact mirror images.
   EXPECT_LT(AngleDeg(normal, expected), 1e-6);
   EXPECT_NEAR(std::abs(offset), std::abs(expected.dot(kShift.transpose())), 1e-9);
-  EXPECT_NEAR((Reflect(P, normal, offset) - P(mirror, Eigen::all)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((Reflect(P, normal, offset) - P(f.mirror, Eigen::all)).norm(), 0.0, 1e-9);
 }
 
 TEST(ReflectionSearch, FitSumsEachPairAsTheVectorFormulaDoes) {
@@ -89,75 +117,43 @@ TEST(ReflectionSearch, FitSumsEachPairAsTheVectorFormulaDoes) {
 }
 
 TEST(Plane3d, FindsThePlaneOfAnExactlySymmetricFigure) {
-  std::vector<int> mirror;
-  const Surface figure = testing::SymmetricFigure(1, true, &mirror);
-  const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
-  const std::vector<int> samples = AllVertices(figure.NumVertices());
-  const SymmetryResult r =
-      DetectSymmetryPlane3d(EuclideanDistances(Y, samples), samples, Y, Plane3dOptions{});
+  const MovedFigure f(true);
+  const SymmetryResult r = DetectSymmetryPlane3d(f.D, f.samples, f.Y, Plane3dOptions{});
   // Exact data: the plane is found up to rounding (0.01 degree is far above it).
   EXPECT_LT(AngleDeg(r.normal, kRotation.col(0)), 0.01);
-  int correct = 0;
-  for (size_t i = 0; i < samples.size(); ++i) correct += r.sigma[i] == mirror[i];
-  EXPECT_EQ(correct, static_cast<int>(samples.size()));
+  EXPECT_EQ(r.sigma, f.mirror);
   EXPECT_LT(r.score, 1e-9);
   EXPECT_GT(r.confidence.minCoeff(), 0.99);
 }
 
 TEST(Plane3d, KeepsWorkingWithOneLimbRemoved) {
-  std::vector<int> mirror;
-  const Surface figure = testing::SymmetricFigure(1, false, &mirror);
-  const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
-  const std::vector<int> samples = AllVertices(figure.NumVertices());
-  const SymmetryResult r =
-      DetectSymmetryPlane3d(EuclideanDistances(Y, samples), samples, Y, Plane3dOptions{});
+  const MovedFigure f(false);
+  const SymmetryResult r = DetectSymmetryPlane3d(f.D, f.samples, f.Y, Plane3dOptions{});
   // The unmatched arm (about 12% of the points) costs a bounded amount: within a degree.
   EXPECT_LT(AngleDeg(r.normal, kRotation.col(0)), 1.0);
-  int correct = 0, with_mirror = 0;
-  for (size_t i = 0; i < samples.size(); ++i) {
-    if (mirror[i] < 0) continue;
-    ++with_mirror;
-    correct += r.sigma[i] == mirror[i];
-  }
-  EXPECT_GT(correct, 0.95 * with_mirror);
+  EXPECT_GT(f.FractionMirrored(r.sigma), 0.95);
 }
 
 TEST(Plane2d, FindsThePlaneOfAnExactlySymmetricFigure) {
-  std::vector<int> mirror;
-  const Surface figure = testing::SymmetricFigure(1, true, &mirror);
-  const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
-  const std::vector<int> samples = AllVertices(figure.NumVertices());
-  const SymmetryResult r =
-      DetectSymmetryPlane2d(EuclideanDistances(Y, samples), samples, Y, Plane2dOptions{});
+  const MovedFigure f(true);
+  const SymmetryResult r = DetectSymmetryPlane2d(f.D, f.samples, f.Y, Plane2dOptions{});
   // The 2D embedding is not exactly symmetric (SMACOF stops at a tolerance), but the 3D
   // refinement after the lift is exact: within 0.01 degree.
   EXPECT_LT(AngleDeg(r.normal, kRotation.col(0)), 0.01) << r.status.message;
-  int correct = 0;
-  for (size_t i = 0; i < samples.size(); ++i) correct += r.sigma[i] == mirror[i];
-  EXPECT_EQ(correct, static_cast<int>(samples.size()));
+  EXPECT_EQ(r.sigma, f.mirror);
 }
 
 TEST(Plane2d, LiftAloneIsCloseAndKeepsWorkingWithOneLimbRemoved) {
-  std::vector<int> mirror;
-  const Surface figure = testing::SymmetricFigure(1, false, &mirror);
-  const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
-  const std::vector<int> samples = AllVertices(figure.NumVertices());
-  const Eigen::MatrixXd D = EuclideanDistances(Y, samples);
+  const MovedFigure f(false);
   Plane2dOptions options;
   options.refine_3d_iterations = 0;  // the plane lifted from the 2D line, not refined in 3D
-  const SymmetryResult lifted = DetectSymmetryPlane2d(D, samples, Y, options);
+  const SymmetryResult lifted = DetectSymmetryPlane2d(f.D, f.samples, f.Y, options);
   // The 2D self map is nearly exact on this figure: the lifted plane is within 2 degrees.
   EXPECT_LT(AngleDeg(lifted.normal, kRotation.col(0)), 2.0) << lifted.status.message;
-  const SymmetryResult r = DetectSymmetryPlane2d(D, samples, Y, Plane2dOptions{});
+  const SymmetryResult r = DetectSymmetryPlane2d(f.D, f.samples, f.Y, Plane2dOptions{});
   // With the 3D refinement the unmatched arm costs a bounded amount: within a degree.
   EXPECT_LT(AngleDeg(r.normal, kRotation.col(0)), 1.0) << r.status.message;
-  int correct = 0, with_mirror = 0;
-  for (size_t i = 0; i < samples.size(); ++i) {
-    if (mirror[i] < 0) continue;
-    ++with_mirror;
-    correct += r.sigma[i] == mirror[i];
-  }
-  EXPECT_GT(correct, 0.95 * with_mirror);
+  EXPECT_GT(f.FractionMirrored(r.sigma), 0.95);
 }
 
 TEST(Plane2d, TheResultDoesNotDependOnTheThreads) {
@@ -195,23 +191,18 @@ TEST(Plane2d, TheResultDoesNotDependOnTheThreads) {
 // whose symmetrized embedding came out flat). With min_self_map_displacement the stage chooses
 // the left-right one, whose self map moves the limbs across the body.
 TEST(Plane2d, ASelfMapNearTheIdentityLosesToOneThatMovesTheSamples) {
-  std::vector<int> mirror;
-  Surface figure = testing::SymmetricFigure(1, false, &mirror);
-  figure.V.col(2) *= 0.02;
-  const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
-  const std::vector<int> samples = AllVertices(figure.NumVertices());
-  const Eigen::MatrixXd D = EuclideanDistances(Y, samples);
-  const SymmetryResult plain = DetectSymmetryPlane2d(D, samples, Y, Plane2dOptions{});
+  const MovedFigure f(false, 0.02);
+  const SymmetryResult plain = DetectSymmetryPlane2d(f.D, f.samples, f.Y, Plane2dOptions{});
   // Without the bound the exact symmetry across the thickness beats the left-right one, which
   // the missing arm makes inexact: the failure.
   EXPECT_LT(AngleDeg(plain.normal, kRotation.col(2)), 1.0) << plain.status.message;
   Plane2dOptions options;
   options.min_self_map_displacement = 0.3;
-  const SymmetryResult r = DetectSymmetryPlane2d(D, samples, Y, options);
+  const SymmetryResult r = DetectSymmetryPlane2d(f.D, f.samples, f.Y, options);
   EXPECT_LT(AngleDeg(r.normal, kRotation.col(0)), 1.0) << r.status.message;
   EXPECT_NE(r.status.message.find("self map displacement"), std::string::npos);
   options.min_self_map_displacement = -1.0;
-  EXPECT_THROW(DetectSymmetryPlane2d(D, samples, Y, options), ConfigError);
+  EXPECT_THROW(DetectSymmetryPlane2d(f.D, f.samples, f.Y, options), ConfigError);
 }
 
 // The figure made slightly asymmetric: x > 0 stretched by 3%, so that rightly paired samples
