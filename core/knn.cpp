@@ -38,8 +38,7 @@ void KnnIndex::Query(const Eigen::MatrixXd& queries, int k, Eigen::MatrixXi* ind
   if (num_queries == 0) return;
   std::call_once(index_once_, [&] {
     flann::Matrix<double> dataset(const_cast<double*>(data_.data()), num_points_, dims_);
-    index_ = std::make_unique<flann::Index<flann::L2<double>>>(
-        dataset, flann::KDTreeSingleIndexParams(leaf_size_));
+    index_ = std::make_unique<FlannL2Index>(dataset, flann::KDTreeSingleIndexParams(leaf_size_));
     index_->buildIndex();
   });
   // Chunks of queries, each searched single-threaded by FLANN into its own buffers.

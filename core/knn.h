@@ -10,12 +10,7 @@
 #include <mutex>
 #include <vector>
 
-namespace flann {
-template <typename T>
-struct L2;
-template <typename Distance>
-class Index;
-}  // namespace flann
+#include "core/flann_fwd.h"
 
 namespace symembed {
 
@@ -52,7 +47,7 @@ class KnnIndex {
   std::vector<double> data_;  // row-major copy the index points into
   // Each tree is built on its first use: FLANN's by Query, NearestKd's by Nearest.
   mutable std::once_flag index_once_, nearest_once_;
-  mutable std::unique_ptr<flann::Index<flann::L2<double>>> index_;
+  mutable std::unique_ptr<FlannL2Index> index_;
   mutable std::unique_ptr<NearestSearch> nearest_;
 };
 

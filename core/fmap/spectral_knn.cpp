@@ -22,8 +22,7 @@ SpectralNearest::SpectralNearest(const Eigen::MatrixXd& points, std::vector<int>
     return;
   }
   flann::Matrix<double> data(points_.data(), points_.rows(), points_.cols());
-  index_ =
-      std::make_unique<flann::Index<flann::L2<double>>>(data, flann::KDTreeSingleIndexParams(16));
+  index_ = std::make_unique<FlannL2Index>(data, flann::KDTreeSingleIndexParams(16));
   index_->buildIndex();
 }
 

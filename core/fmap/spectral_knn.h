@@ -17,14 +17,8 @@
 #include <memory>
 #include <vector>
 
+#include "core/flann_fwd.h"
 #include "core/fmap/nearest_kernel.h"
-
-namespace flann {
-template <typename T>
-struct L2;
-template <typename Distance>
-class Index;
-}  // namespace flann
 
 namespace symembed {
 
@@ -56,7 +50,7 @@ class SpectralNearest {
   int dims_ = 0;
   RowMatrix points_;
   std::vector<int> ids_;
-  std::unique_ptr<flann::Index<flann::L2<double>>> index_;  // low dimensions only
+  std::unique_ptr<FlannL2Index> index_;  // low dimensions only
   PackedPoints packed_;  // brute force: the points in single precision, packed for the kernel
 };
 

@@ -30,14 +30,26 @@ LaplaceBasis RefineBasis(const ShapeData& shape, int k, bool* computed) {
   return ComputeLaplaceBasis(shape.surface, options);
 }
 
+// Both shapes' first k eigenpairs, and whether either had to be computed per pair.
+struct PairBases {
+  PairBases(const PairInput& pair, int k)
+      : source(RefineBasis(pair.source, k, &computed)),
+        target(RefineBasis(pair.target, k, &computed)) {}
+
+  // Appended to the stage's status message.
+  std::string Note() const {
+    return computed ? " (basis computed per pair: the shape lacks the stage's needs)" : "";
+  }
+
+  bool computed = false;
+  LaplaceBasis source;
+  LaplaceBasis target;
+};
+
 ShapeNeeds BasisNeeds(int k) {
   ShapeNeeds needs;
   needs.basis = k;
   return needs;
-}
-
-std::string BasisNote(bool computed) {
-  return computed ? " (basis computed per pair: the shape lacks the stage's needs)" : "";
 }
 
 // `count` vertices with area: the prefix of the shape's farthest-point samples when there are
@@ -79,17 +91,15 @@ class ZoomOutRefine : public RefineStage {
   ShapeNeeds Needs() const override { return BasisNeeds(options_.k_end); }
 
   MatchResult Run(const RefineInput& input) const override {
-    const PairInput& pair = input.pair;
-    const std::vector<int>& initial_map = input.initial_map;
-    bool computed = false;
-    const LaplaceBasis source = RefineBasis(pair.source, options_.k_end, &computed);
-    const LaplaceBasis target = RefineBasis(pair.target, options_.k_end, &computed);
-    const std::vector<int> samples = Samples(pair.source, source, sample_count_);
+    const PairBases bases(input.pair, options_.k_end);
+    const std::vector<int> samples = Samples(input.pair.source, bases.source, sample_count_);
     // Target samples only go with source samples (the dense variant maps onto every vertex).
     const std::vector<int> target_samples =
-        samples.empty() ? std::vector<int>{} : Samples(pair.target, target, target_sample_count_);
-    ZoomOutResult z = ZoomOut(source, target, initial_map, samples, options_, target_samples);
-    z.status.message += BasisNote(computed);
+        samples.empty() ? std::vector<int>{}
+                        : Samples(input.pair.target, bases.target, target_sample_count_);
+    ZoomOutResult z =
+        ZoomOut(bases.source, bases.target, input.initial_map, samples, options_, target_samples);
+    z.status.message += bases.Note();
     return MatchResult{std::move(z.map), std::move(z.status)};
   }
 
@@ -106,13 +116,10 @@ class IcpRefine : public RefineStage {
   ShapeNeeds Needs() const override { return BasisNeeds(options_.k); }
 
   MatchResult Run(const RefineInput& input) const override {
-    const PairInput& pair = input.pair;
-    const std::vector<int>& initial_map = input.initial_map;
-    bool computed = false;
-    const LaplaceBasis source = RefineBasis(pair.source, options_.k, &computed);
-    const LaplaceBasis target = RefineBasis(pair.target, options_.k, &computed);
-    FunctionalMapIcpResult r = FunctionalMapIcp(source, target, initial_map, options_);
-    r.status.message += BasisNote(computed);
+    const PairBases bases(input.pair, options_.k);
+    FunctionalMapIcpResult r =
+        FunctionalMapIcp(bases.source, bases.target, input.initial_map, options_);
+    r.status.message += bases.Note();
     return MatchResult{std::move(r.map), std::move(r.status)};
   }
 
@@ -141,14 +148,11 @@ class DiscreteRefine : public RefineStage {
 
   MatchResult Run(const RefineInput& input) const override {
     const PairInput& pair = input.pair;
-    const std::vector<int>& initial_map = input.initial_map;
-    bool computed = false;
-    const LaplaceBasis source = RefineBasis(pair.source, options_.k_end, &computed);
-    const LaplaceBasis target = RefineBasis(pair.target, options_.k_end, &computed);
+    const PairBases bases(pair, options_.k_end);
     std::vector<int> samples, target_samples;
     if (sample_count_ > 0) {
-      samples = SamplesOrAll(pair.source, source);
-      target_samples = SamplesOrAll(pair.target, target);
+      samples = SamplesOrAll(pair.source, bases.source);
+      target_samples = SamplesOrAll(pair.target, bases.target);
     }
     // The embedding term reads the points the matching stage compared; a map refined without
     // them (from elsewhere) goes without the term, and the message says so.
@@ -158,10 +162,10 @@ class DiscreteRefine : public RefineStage {
     if (embedded) points = {input.source_points->Y, input.target_points->Y};
     if (!embedded) options.weights.embedding = 0.0;
     DiscreteOptResult r =
-        DiscreteOpt(source, target, initial_map, samples, target_samples, options,
+        DiscreteOpt(bases.source, bases.target, input.initial_map, samples, target_samples, options,
                     pair.source.products.Find(ProductsKey()),
                     pair.target.products.Find(ProductsKey()), embedded ? &points : nullptr);
-    r.status.message += BasisNote(computed);
+    r.status.message += bases.Note();
     if (!embedded && options_.weights.embedding > 0.0) {
       r.status.message += " (embedding term off: no embedded points)";
     }
