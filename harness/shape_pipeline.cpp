@@ -415,6 +415,12 @@ uint64_t SurfaceMeshKey(const Surface& surface) {
 
 namespace {
 
+// The per-shape kind from which the chain runs again for the second plane hypothesis.
+constexpr const char* kSecondPlaneFrom = "symmetry";
+
+// The key of the second plane's output of a kind: the first plane's key, marked.
+uint64_t SecondPlaneKey(uint64_t key) { return Hasher(key).AddString("second plane").Digest(); }
+
 // What the per-shape chain has computed of one mesh: each kind's step (RunShapeStep) reads what
 // the steps before it wrote and adds its kind's output, cached under the kind's key.
 struct ShapeChain {
@@ -427,35 +433,38 @@ struct ShapeChain {
   ShapeOutcome& out;
   ShapeData& data;
   SamplingResult sampling;
-  SymmetrizeResult symmetrized;
+  std::optional<SymmetrizeResult> symmetrized;
   // The geodesic distances: set by the geodesics step, loaded or computed by the first step that
   // reads them (D), released when the chain is done.
   std::function<Distances()> require_distances;
   std::unique_ptr<Distances> distances;
+  // On the second plane's branch (the kinds from kSecondPlaneFrom on, run again): the chain of
+  // the first plane, whose distances it reads and whose plane its symmetry step proposes an
+  // alternative to. The branch's outputs are named "<kind>_second" and keyed apart.
+  ShapeChain* first = nullptr;
 
   const Eigen::MatrixXd& D() {
+    if (first != nullptr) return first->D();
     if (!distances) distances = std::make_unique<Distances>(require_distances());
     return distances->D;
   }
-  // Loads entry `key` of `name` or computes it with `compute`, timed in out.times.
+  std::string Name(const std::string& kind) const { return first ? kind + "_second" : kind; }
+  uint64_t Key(const std::string& kind) const {
+    return first ? SecondPlaneKey(keys.Of(kind)) : keys.Of(kind);
+  }
+  // Loads entry Key(kind) of Name(kind) or computes it with `compute`, timed in out.times.
   template <typename T, typename Compute>
-  T Cached(const std::string& name, uint64_t key, Compute compute) {
-    return ::symembed::Cached<T>(context, name, key, compute, &out.times);
+  T Cached(const std::string& kind, Compute compute) {
+    return ::symembed::Cached<T>(context, Name(kind), Key(kind), compute, &out.times);
   }
-  // The embedding symmetrized about `symmetry`'s plane by `stage`, cached as `name`.
-  SymmetrizeResult Symmetrized(const SymmetrizeStage& stage, const std::string& name, uint64_t key,
-                               const SymmetryResult& symmetry) {
-    return Cached<SymmetrizeResult>(name, key, [&] {
-      return stage.Run(SymmetryInput{data.surface, data.samples, D(), data.embedding}, symmetry);
-    });
-  }
+  SymmetryInput ForSymmetry() { return {data.surface, data.samples, D(), data.embedding}; }
 };
 
 // One overload per per-shape kind's interface: ComputeMeshOutcome calls them in the order of the
 // stage-kind table, so a per-shape kind without its step does not compile.
 void RunShapeStep(const std::string& kind, const PreprocessStage& stage, ShapeChain& chain) {
-  const PreprocessResult pre = chain.Cached<PreprocessResult>(
-      kind, chain.keys.Of(kind), [&] { return stage.Run(chain.out.input); });
+  const PreprocessResult pre =
+      chain.Cached<PreprocessResult>(kind, [&] { return stage.Run(chain.out.input); });
   chain.data.surface = pre.surface;
   chain.data.input_ids = pre.input_ids;
   chain.data.scale = pre.scale;
@@ -465,15 +474,15 @@ void RunShapeStep(const std::string& kind, const PreprocessStage& stage, ShapeCh
 }
 
 void RunShapeStep(const std::string& kind, const SamplingStage& stage, ShapeChain& chain) {
-  chain.sampling = chain.Cached<SamplingResult>(kind, chain.keys.Of(kind),
-                                                [&] { return stage.Run(chain.data.surface); });
+  chain.sampling =
+      chain.Cached<SamplingResult>(kind, [&] { return stage.Run(chain.data.surface); });
   chain.data.samples = chain.sampling.samples;
 }
 
 // D is loaded or computed only when a stage that reads it has to run.
 void RunShapeStep(const std::string& kind, const GeodesicsStage& stage, ShapeChain& chain) {
   chain.require_distances = [kind, &stage, &chain] {
-    return chain.Cached<Distances>(kind, chain.keys.Of(kind), [&] {
+    return chain.Cached<Distances>(kind, [&] {
       auto solver = stage.Prepare(chain.data.surface);
       Distances d{solver->Distances(chain.data.samples)};
       d.D = d.D.cast<float>().cast<double>();
@@ -483,20 +492,24 @@ void RunShapeStep(const std::string& kind, const GeodesicsStage& stage, ShapeCha
 }
 
 void RunShapeStep(const std::string& kind, const EmbeddingStage& stage, ShapeChain& chain) {
-  chain.data.embedding = chain.Cached<EmbeddingResult>(kind, chain.keys.Of(kind), [&] {
+  chain.data.embedding = chain.Cached<EmbeddingResult>(kind, [&] {
     return stage.Run(EmbeddingInput{chain.data.surface, chain.data.samples, chain.D()});
   });
 }
 
+// On the second plane's branch: the stage's alternative to the first plane (no self map: none).
 void RunShapeStep(const std::string& kind, const SymmetryStage& stage, ShapeChain& chain) {
-  chain.data.symmetry = chain.Cached<SymmetryResult>(kind, chain.keys.Of(kind), [&] {
-    return stage.Run(
-        SymmetryInput{chain.data.surface, chain.data.samples, chain.D(), chain.data.embedding});
+  chain.data.symmetry = chain.Cached<SymmetryResult>(kind, [&] {
+    return chain.first ? stage.RunAlternative(chain.ForSymmetry(), chain.first->data.symmetry)
+                       : stage.Run(chain.ForSymmetry());
   });
 }
 
+// A second plane without a self map is no hypothesis: nothing to symmetrize.
 void RunShapeStep(const std::string& kind, const SymmetrizeStage& stage, ShapeChain& chain) {
-  chain.symmetrized = chain.Symmetrized(stage, kind, chain.keys.Of(kind), chain.data.symmetry);
+  if (chain.first && chain.data.symmetry.sigma.empty()) return;
+  chain.symmetrized = chain.Cached<SymmetrizeResult>(
+      kind, [&] { return stage.Run(chain.ForSymmetry(), chain.data.symmetry); });
 }
 
 }  // namespace
@@ -511,31 +524,26 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
   out.surface_key = keys.Of("preprocess");
   auto data = std::make_shared<ShapeData>();
   ShapeChain chain(context, keys, out, *data);
-  Pipeline::ForEachStage(pipeline, [&](const char* kind, const auto& stage) {
-    using T = typename std::decay_t<decltype(stage)>::element_type;
-    if constexpr (!std::is_base_of_v<PairStage, T>) RunShapeStep(kind, *stage, chain);
-  });
+  // Runs the per-shape kinds on `on`, those before kSecondPlaneFrom only when `all`.
+  auto run_shape_kinds = [&](ShapeChain& on, bool all) {
+    Pipeline::ForEachStage(pipeline, [&](const char* kind, const auto& stage) {
+      using T = typename std::decay_t<decltype(stage)>::element_type;
+      all = all || std::strcmp(kind, kSecondPlaneFrom) == 0;
+      if constexpr (!std::is_base_of_v<PairStage, T>) {
+        if (all) RunShapeStep(kind, *stage, on);
+      }
+    });
+  };
+  run_shape_kinds(chain, true);
   const SamplingResult& sampling = chain.sampling;
-  const SymmetrizeResult& symmetrized = chain.symmetrized;
+  const SymmetrizeResult& symmetrized = *chain.symmetrized;
 
-  // The second plane's outputs are keyed like the first plane's, marked.
-  auto second_plane = [](uint64_t key) { return Hasher(key).AddString("second plane").Digest(); };
   // The second plane is a hypothesis beside a plane that worked: when its search or its
   // symmetrization fails on this shape, the shape goes on with the first plane alone.
-  SymmetryResult second;
-  std::optional<SymmetrizeResult> second_symmetrized;
-  std::string second_failure = FailureOf([&] {
-    second =
-        chain.Cached<SymmetryResult>("symmetry_second", second_plane(keys.Of("symmetry")), [&] {
-          return pipeline.symmetry->RunAlternative(
-              SymmetryInput{data->surface, data->samples, chain.D(), data->embedding},
-              data->symmetry);
-        });
-    if (!second.sigma.empty()) {
-      second_symmetrized = chain.Symmetrized(*pipeline.symmetrize, "symmetrize_second",
-                                             second_plane(keys.Of("symmetrize")), second);
-    }
-  });
+  ShapeData second_data = *data;
+  ShapeChain second(context, keys, out, second_data);
+  second.first = &chain;
+  std::string second_failure = FailureOf([&] { run_shape_kinds(second, false); });
   chain.distances.reset();
 
   const auto start = std::chrono::steady_clock::now();
@@ -548,13 +556,13 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
   const uint64_t pre_key = keys.Of("preprocess"), samp_key = keys.Of("sampling");
   // The canonical embedding follows from every per-shape stage: the last key of the chain.
   out.key = PrepareNeeds(pipeline, context, {pre_key, samp_key, keys.Last()}, data.get(), &out);
-  if (second_symmetrized && second_failure.empty()) {
+  if (second.symmetrized && second_failure.empty()) {
     second_failure = FailureOf([&] {
       auto alternative = std::make_shared<ShapeData>(*data);
-      alternative->symmetry = second;
-      alternative->Y = CanonicalFrame(second_symmetrized->Y, nullptr, nullptr, nullptr);
+      alternative->symmetry = second_data.symmetry;
+      alternative->Y = CanonicalFrame(second.symmetrized->Y, nullptr, nullptr, nullptr);
       const uint64_t alt_key =
-          PrepareNeeds(pipeline, context, {pre_key, samp_key, second_plane(keys.Last())},
+          PrepareNeeds(pipeline, context, {pre_key, samp_key, SecondPlaneKey(keys.Last())},
                        alternative.get(), &out);
       out.key = Hasher(out.key).AddU64(alt_key).Digest();
       out.alternative = std::move(alternative);
