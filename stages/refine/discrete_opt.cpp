@@ -1,6 +1,7 @@
 #include "stages/refine/discrete_opt.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -119,37 +120,49 @@ struct DirectionMaps {
   const Eigen::MatrixXd* Z_y;  // embedding term: points at the candidates
 };
 
-// The stacked embeddings of the terms of positive weight for queries X and candidates Y (basis
-// rows, first k columns).
-TermRows Stacked(const BasisRef& X, const BasisRef& Y, const DirectionMaps& m,
-                 const DiscreteOptWeights& w) {
+// The terms of positive weight for queries X and candidates Y (basis rows, first k columns),
+// reduced to k coordinates and the embedding's (ReduceTerms).
+ReducedTerms Stacked(const BasisRef& X, const BasisRef& Y, const DirectionMaps& m,
+                     const DiscreteOptWeights& w) {
   const int k = static_cast<int>(X.cols());
-  std::vector<TermRows> terms;
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(k, k);
+  std::vector<TermMaps> maps;
   std::vector<double> weights;
   auto add = [&](double weight, auto make) {
     if (weight <= 0.0) return;
-    terms.push_back(make());
+    maps.push_back(make());
     weights.push_back(weight);
   };
-  add(w.orthogonality, [&] { return OrthogonalityRows(X, Y, *m.C_xy); });
-  add(w.bijectivity, [&] { return BijectivityRows(X, Y, *m.C_yx); });
-  add(w.proper, [&] { return ProperRows(X, Y, *m.C_xy); });
-  add(w.laplacian, [&] { return LaplacianRows(X, Y, *m.lambda_x, *m.lambda_y, *m.C_xy); });
-  add(w.descriptor, [&] { return DescriptorRows(X, Y, m.A_x->topRows(k), m.A_y->topRows(k)); });
-  add(w.embedding, [&] { return EmbeddingRows(*m.Z_x, *m.Z_y); });
-  return StackTerms(terms, weights);
+  add(w.orthogonality, [&] { return TermMaps{I, m.C_xy->transpose()}; });
+  add(w.bijectivity, [&] { return TermMaps{I, *m.C_yx}; });
+  add(w.proper, [&] { return TermMaps{*m.C_xy, I}; });
+  add(w.laplacian, [&] {
+    return TermMaps{m.lambda_x->asDiagonal() * I, m.lambda_y->asDiagonal() * m.C_xy->transpose()};
+  });
+  add(w.descriptor, [&] { return TermMaps{m.A_x->topRows(k), m.A_y->topRows(k)}; });
+  const bool embedded = w.embedding > 0.0;
+  return ReduceTerms(X, Y, maps, weights, embedded ? m.Z_x : nullptr, embedded ? m.Z_y : nullptr,
+                     w.embedding);
 }
 
 // The minimiser over maps into `candidates` of the stacked energy: per query row, the nearest
 // candidate. Adds the weighted energy of the result to *energy.
 std::vector<int> Query(const TermRows& rows, const std::vector<int>& candidates,
-                       const Eigen::VectorXd& weights, double* energy) {
+                       const Eigen::VectorXd& weights, double* energy,
+                       const Eigen::VectorXd* offset = nullptr) {
   const SpectralNearest nearest(rows.points, candidates);
   std::vector<int> map;
   std::vector<double> sq;
   nearest.Query(rows.query, &map, &sq);
-  for (size_t r = 0; r < sq.size(); ++r) *energy += weights(r) * sq[r];
+  for (size_t r = 0; r < sq.size(); ++r) {
+    *energy += weights(r) * (sq[r] + (offset ? (*offset)(r) : 0.0));
+  }
   return map;
+}
+
+std::vector<int> Query(const ReducedTerms& terms, const std::vector<int>& candidates,
+                       const Eigen::VectorXd& weights, double* energy) {
+  return Query(terms.rows, candidates, weights, energy, &terms.offset);
 }
 
 // Descriptor coefficients (k_end x count) of both shapes: wave kernel signatures at energies

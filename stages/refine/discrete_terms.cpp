@@ -1,5 +1,6 @@
 #include "stages/refine/discrete_terms.h"
 
+#include <Eigen/QR>
 #include <cmath>
 #include <sstream>
 
@@ -122,6 +123,61 @@ TermRows StackTerms(const std::vector<TermRows>& terms, const std::vector<double
     out.points.middleCols(at, c) = s * terms[t].points;
     at += c;
   }
+  return out;
+}
+
+ReducedTerms ReduceTerms(const BasisRef& X, const BasisRef& Y, const std::vector<TermMaps>& maps,
+                         const std::vector<double>& weights, const Eigen::MatrixXd* Z_x,
+                         const Eigen::MatrixXd* Z_y, double embedding_weight) {
+  const Eigen::Index k = X.cols();
+  SYMEMBED_CHECK(maps.size() == weights.size() && Y.cols() == k,
+                 "reduced terms: " << maps.size() << " terms, " << weights.size()
+                                   << " weights, bases of " << k << " and " << Y.cols()
+                                   << " columns");
+  Eigen::Index cols = 0;
+  for (size_t t = 0; t < maps.size(); ++t) {
+    SYMEMBED_CHECK(weights[t] > 0.0 && maps[t].of_x.rows() == k && maps[t].of_y.rows() == k &&
+                       maps[t].of_x.cols() == maps[t].of_y.cols(),
+                   "reduced terms: term " << t << " has weight " << weights[t] << " or maps "
+                                          << maps[t].of_x.rows() << " x " << maps[t].of_x.cols()
+                                          << " and " << maps[t].of_y.rows() << " x "
+                                          << maps[t].of_y.cols() << " for " << k << " columns");
+    cols += maps[t].of_x.cols();
+  }
+  SYMEMBED_CHECK(cols >= k, "reduced terms: " << cols << " columns for a basis of " << k);
+  Eigen::MatrixXd L_x(k, cols), L_y(k, cols);
+  Eigen::Index at = 0;
+  for (size_t t = 0; t < maps.size(); ++t) {
+    const double s = std::sqrt(weights[t]);
+    const Eigen::Index c = maps[t].of_x.cols();
+    L_x.middleCols(at, c) = s * maps[t].of_x;
+    L_y.middleCols(at, c) = s * maps[t].of_y;
+    at += c;
+  }
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(L_y.transpose());
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(cols, k);
+  const Eigen::MatrixXd R_t = L_y * Q;  // R^T: L_y = R^T Q^T
+  const Eigen::MatrixXd M = L_x * Q;
+  const Eigen::MatrixXd G = L_x * L_x.transpose() - M * M.transpose();
+  const bool embedded = Z_x != nullptr && Z_y != nullptr && embedding_weight > 0.0;
+  const Eigen::Index d = embedded ? Z_x->cols() : 0;
+  if (embedded) {
+    SYMEMBED_CHECK(Z_y->cols() == d && Z_x->rows() == X.rows() && Z_y->rows() == Y.rows(),
+                   "reduced terms: embedding points do not match the basis rows");
+  }
+  ReducedTerms out;
+  out.rows.query.resize(X.rows(), k + d);
+  out.rows.points.resize(Y.rows(), k + d);
+  out.rows.query.leftCols(k).noalias() = X * M;
+  out.rows.points.leftCols(k).noalias() = Y * R_t;
+  if (embedded) {
+    const double s = std::sqrt(embedding_weight);
+    out.rows.query.rightCols(d) = s * *Z_x;
+    out.rows.points.rightCols(d) = s * *Z_y;
+  }
+  // offset(r) = X_r G X_r^T >= 0 with G = L_x L_x^T - M M^T (rounding can leave it just below).
+  const Eigen::MatrixXd XG = X * G;
+  out.offset = (XG.array() * X.array()).rowwise().sum().max(0.0).matrix();
   return out;
 }
 

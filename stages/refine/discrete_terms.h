@@ -74,6 +74,33 @@ double TermEnergy(const TermRows& rows, const std::vector<int>& map, const Eigen
 // and terms have one entry per term, weights >= 0 with at least one positive.
 TermRows StackTerms(const std::vector<TermRows>& terms, const std::vector<double>& weights);
 
+// A term whose rows are linear in the basis rows: query rows X * of_x, point rows Y * of_y
+// (k x d each). Every term above but the embedding's is one: orthogonality (I, C_xy^T),
+// bijectivity (I, C_yx), proper (C_xy, I), Laplacian (L_x, L_y C_xy^T), descriptors (A_x, A_y).
+struct TermMaps {
+  Eigen::MatrixXd of_x;
+  Eigen::MatrixXd of_y;
+};
+
+// Linear terms stacked as StackTerms does (and the embedding term's points Z_x, Z_y appended
+// with embedding_weight when both are given), reduced to k + d coordinates with the same
+// nearest candidate of every query row. With L_x, L_y (k x D) the terms' maps side by side,
+// each scaled by the square root of its weight, and L_y^T = Q R (Q: D x k with orthonormal
+// columns, R: k x k),
+//   || X_r L_x - Y_c L_y ||^2 = || X_r L_x Q - Y_c R^T ||^2 + offset(r),
+//   offset(r) = || X_r L_x ||^2 - || X_r L_x Q ||^2,
+// and offset(r) does not depend on the candidate c. rows.query: X L_x Q (and the embedding);
+// rows.points: Y R^T (and the embedding); a query row's stacked energy is its squared distance
+// plus offset(r) (up to rounding). The maps' of_y side by side must have at least k columns
+// (one of orthogonality, bijectivity, proper, Laplacian) and weights be > 0.
+struct ReducedTerms {
+  TermRows rows;
+  Eigen::VectorXd offset;
+};
+ReducedTerms ReduceTerms(const BasisRef& X, const BasisRef& Y, const std::vector<TermMaps>& maps,
+                         const std::vector<double>& weights, const Eigen::MatrixXd* Z_x,
+                         const Eigen::MatrixXd* Z_y, double embedding_weight);
+
 // The functional forms, per basis size (0 for an exact map): ||C_xy C_yx - I||_F^2 / k and
 // ||C_xy L_y - L_x C_xy||_F^2 / k.
 double BijectivityDefect(const Eigen::MatrixXd& C_xy, const Eigen::MatrixXd& C_yx);

@@ -135,6 +135,43 @@ TEST(DiscreteTerms, StackedQueryIsTheBruteForceMinimiserOfTheWeightedSum) {
   EXPECT_THROW(StackTerms(terms, {0, 0, 0, 0, 0, 0}), InternalError);
 }
 
+// The reduced terms (k + 3 coordinates instead of 3k + 4 + 3) give every query row the same
+// nearest candidate as the stacked rows, and each row's squared distance plus its offset is its
+// stacked energy at that candidate; a term of weight 0 is passed by leaving it out.
+TEST(DiscreteTerms, ReducedTermsKeepTheNearestCandidateAndTheEnergy) {
+  const int k = 6;
+  const TinyCase c = MakeTiny(k);
+  const Eigen::MatrixXd& X = c.x.evecs;
+  const Eigen::MatrixXd& Y = c.y.evecs;
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(k, k);
+  const Eigen::MatrixXd Lx = c.lambda_x.asDiagonal(), Ly = c.lambda_y.asDiagonal();
+  const std::vector<TermMaps> maps = {
+      {I, c.C_xy.transpose()}, {I, c.C_yx}, {Lx, Ly * c.C_xy.transpose()}, {c.A_x, c.A_y}};
+  const std::vector<double> weights = {0.5, 2.0, 1.5, 0.25};
+  const double embedding_weight = 0.75;
+  const ReducedTerms reduced = ReduceTerms(X, Y, maps, weights, &c.Z_x, &c.Z_y, embedding_weight);
+  EXPECT_EQ(reduced.rows.query.cols(), k + 3);
+  const TermRows stacked =
+      StackTerms({OrthogonalityRows(X, Y, c.C_xy), BijectivityRows(X, Y, c.C_yx),
+                  LaplacianRows(X, Y, c.lambda_x, c.lambda_y, c.C_xy),
+                  DescriptorRows(X, Y, c.A_x, c.A_y), EmbeddingRows(c.Z_x, c.Z_y)},
+                 {0.5, 2.0, 1.5, 0.25, embedding_weight});
+  std::vector<int> expected, got;
+  std::vector<double> expected_sq, got_sq;
+  using Method = SpectralNearest::Method;
+  SpectralNearest(stacked.points, {}, Method::kKdTree)
+      .Query(stacked.query, &expected, &expected_sq);
+  SpectralNearest(reduced.rows.points, {}, Method::kKdTree)
+      .Query(reduced.rows.query, &got, &got_sq);
+  EXPECT_EQ(got, expected);
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_NEAR(got_sq[i] + reduced.offset(i), expected_sq[i], 1e-9 * (1.0 + expected_sq[i]))
+        << "row " << i;
+  }
+  // The maps must span the basis: descriptors alone (4 columns for k = 6) do not.
+  EXPECT_THROW(ReduceTerms(X, Y, {{c.A_x, c.A_y}}, {1.0}, nullptr, nullptr, 0.0), InternalError);
+}
+
 TEST(DiscreteTerms, FunctionalDefectsAreZeroForExactMapsAndTheirNormsOtherwise) {
   std::srand(5);
   const int k = 5;
