@@ -148,21 +148,23 @@ ReducedTerms Stacked(const BasisRef& X, const BasisRef& Y, const DirectionMaps& 
 // The minimiser over maps into `candidates` of the stacked energy: per query row, the nearest
 // candidate. Adds the weighted energy of the result to *energy.
 std::vector<int> Query(const TermRows& rows, const std::vector<int>& candidates,
-                       const Eigen::VectorXd& weights, double* energy,
-                       const Eigen::VectorXd* offset = nullptr) {
+                       const Eigen::VectorXd& weights, double* energy) {
   const SpectralNearest nearest(rows.points, candidates);
   std::vector<int> map;
   std::vector<double> sq;
   nearest.Query(rows.query, &map, &sq);
-  for (size_t r = 0; r < sq.size(); ++r) {
-    *energy += weights(r) * (sq[r] + (offset ? (*offset)(r) : 0.0));
-  }
+  for (size_t r = 0; r < sq.size(); ++r) *energy += weights(r) * sq[r];
   return map;
 }
 
+// The same for reduced terms; gram: the weighted Gram matrix of the query rows (at least k x k,
+// its top-left block read), which gives the part of the energy the reduction leaves out.
 std::vector<int> Query(const ReducedTerms& terms, const std::vector<int>& candidates,
-                       const Eigen::VectorXd& weights, double* energy) {
-  return Query(terms.rows, candidates, weights, energy, &terms.offset);
+                       const Eigen::VectorXd& weights, const Eigen::MatrixXd& gram,
+                       double* energy) {
+  const Eigen::Index k = terms.G.rows();
+  *energy += std::max(0.0, terms.G.cwiseProduct(gram.topLeftCorner(k, k)).sum());
+  return Query(terms.rows, candidates, weights, energy);
 }
 
 // Descriptor coefficients (k_end x count) of both shapes: wave kernel signatures at energies
@@ -296,9 +298,9 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
                                  &A_t, &A_s, &T.points, &S.candidate_points};
     double energy = 0.0;
     t12 = Query(Stacked(S.rows.leftCols(k), T.candidate_rows.leftCols(k), forward, w), T.candidates,
-                S.weights, &energy);
+                S.weights, S.gram, &energy);
     t21 = Query(Stacked(T.rows.leftCols(k), S.candidate_rows.leftCols(k), backward, w),
-                S.candidates, T.weights, &energy);
+                S.candidates, T.weights, T.gram, &energy);
     result.energy.push_back(energy / static_cast<double>(S.active.size() + T.active.size()));
   }
 
@@ -312,9 +314,11 @@ DiscreteOptResult DiscreteOpt(const LaplaceBasis& source, const LaplaceBasis& ta
     }
     const DirectionMaps forward{&C12, &C21, &lambda_s, &lambda_t, &A_s, &A_t, &Z_s, &Z_t};
     double energy = 0.0;
-    result.map = Query(Stacked(source.evecs.leftCols(k_end),
-                               BasisRows(target.evecs, all_targets, k_end), forward, w),
-                       all_targets, Eigen::VectorXd::Ones(ns), &energy);
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(ns);
+    result.map =
+        Query(Stacked(source.evecs.leftCols(k_end), BasisRows(target.evecs, all_targets, k_end),
+                      forward, w),
+              all_targets, ones, WeightedGram(source.evecs.leftCols(k_end), ones), &energy);
     result.energy.push_back(energy / ns);
   } else if (sampled) {
     result.map = initial_map;

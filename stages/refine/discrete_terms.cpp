@@ -175,9 +175,7 @@ ReducedTerms ReduceTerms(const BasisRef& X, const BasisRef& Y, const std::vector
     out.rows.query.rightCols(d) = s * *Z_x;
     out.rows.points.rightCols(d) = s * *Z_y;
   }
-  // offset(r) = X_r G X_r^T >= 0 with G = L_x L_x^T - M M^T (rounding can leave it just below).
-  const Eigen::MatrixXd XG = X * G;
-  out.offset = (XG.array() * X.array()).rowwise().sum().max(0.0).matrix();
+  out.G = G;
   return out;
 }
 

@@ -87,15 +87,17 @@ struct TermMaps {
 // nearest candidate of every query row. With L_x, L_y (k x D) the terms' maps side by side,
 // each scaled by the square root of its weight, and L_y^T = Q R (Q: D x k with orthonormal
 // columns, R: k x k),
-//   || X_r L_x - Y_c L_y ||^2 = || X_r L_x Q - Y_c R^T ||^2 + offset(r),
-//   offset(r) = || X_r L_x ||^2 - || X_r L_x Q ||^2,
-// and offset(r) does not depend on the candidate c. rows.query: X L_x Q (and the embedding);
-// rows.points: Y R^T (and the embedding); a query row's stacked energy is its squared distance
-// plus offset(r) (up to rounding). The maps' of_y side by side must have at least k columns
-// (one of orthogonality, bijectivity, proper, Laplacian) and weights be > 0.
+//   || X_r L_x - Y_c L_y ||^2 = || X_r L_x Q - Y_c R^T ||^2 + X_r G X_r^T,
+//   G = L_x L_x^T - L_x Q Q^T L_x^T  (k x k),
+// and the last term does not depend on the candidate c. rows.query: X L_x Q (and the
+// embedding); rows.points: Y R^T (and the embedding). The stacked energy of a map with weights
+// w is the weighted sum of the reduced squared distances plus sum_ij G_ij (X^T W X)_ij (up to
+// rounding), so the Gram matrix of the query rows gives it without a pass over the rows. The
+// maps' of_y side by side must have at least k columns (one of orthogonality, bijectivity,
+// proper, Laplacian) and weights be > 0.
 struct ReducedTerms {
   TermRows rows;
-  Eigen::VectorXd offset;
+  Eigen::MatrixXd G;
 };
 ReducedTerms ReduceTerms(const BasisRef& X, const BasisRef& Y, const std::vector<TermMaps>& maps,
                          const std::vector<double>& weights, const Eigen::MatrixXd* Z_x,

@@ -136,8 +136,9 @@ TEST(DiscreteTerms, StackedQueryIsTheBruteForceMinimiserOfTheWeightedSum) {
 }
 
 // The reduced terms (k + 3 coordinates instead of 3k + 4 + 3) give every query row the same
-// nearest candidate as the stacked rows, and each row's squared distance plus its offset is its
-// stacked energy at that candidate; a term of weight 0 is passed by leaving it out.
+// nearest candidate as the stacked rows, each row's squared distance plus X_r G X_r^T is its
+// stacked energy at that candidate, and the weighted energy follows from the Gram matrix; a term of
+// weight 0 is passed by leaving it out.
 TEST(DiscreteTerms, ReducedTermsKeepTheNearestCandidateAndTheEnergy) {
   const int k = 6;
   const TinyCase c = MakeTiny(k);
@@ -165,9 +166,17 @@ TEST(DiscreteTerms, ReducedTermsKeepTheNearestCandidateAndTheEnergy) {
       .Query(reduced.rows.query, &got, &got_sq);
   EXPECT_EQ(got, expected);
   for (size_t i = 0; i < got.size(); ++i) {
-    EXPECT_NEAR(got_sq[i] + reduced.offset(i), expected_sq[i], 1e-9 * (1.0 + expected_sq[i]))
-        << "row " << i;
+    const double offset = X.row(i) * reduced.G * X.row(i).transpose();
+    EXPECT_NEAR(got_sq[i] + offset, expected_sq[i], 1e-9 * (1.0 + expected_sq[i])) << "row " << i;
   }
+  // The weighted energy from the Gram matrix of the query rows.
+  double expected_energy = 0.0, reduced_energy = 0.0;
+  for (size_t i = 0; i < got.size(); ++i) {
+    expected_energy += c.w(i) * expected_sq[i];
+    reduced_energy += c.w(i) * got_sq[i];
+  }
+  reduced_energy += reduced.G.cwiseProduct(WeightedGram(X, c.w)).sum();
+  EXPECT_NEAR(reduced_energy, expected_energy, 1e-9 * expected_energy);
   // The maps must span the basis: descriptors alone (4 columns for k = 6) do not.
   EXPECT_THROW(ReduceTerms(X, Y, {{c.A_x, c.A_y}}, {1.0}, nullptr, nullptr, 0.0), InternalError);
 }
