@@ -317,7 +317,11 @@ PairOutcome ComputePair(const ShapeOutcome& source, const ShapeOutcome& target,
     // they are the evaluation's, timed apart from the oracle's own work.
     double distance_seconds = 0.0;
     for (int c = 0; c < 4; ++c) {
-      const EmbeddedPoints rotated_target = Rotated(chain.target_points, rotations[c]);
+      // The chosen candidate's rotated target is the matching stage's.
+      EmbeddedPoints other;
+      const EmbeddedPoints& rotated_target =
+          c == out.flip.chosen ? chain.chosen_target
+                               : (other = Rotated(chain.target_points, rotations[c]));
       const EmbeddedPoints& from = chain.Aligned(c, rotated_target);
       EmbeddedPoints points;
       points.Y.resize(ground_truth->source_ids.size(), 3);

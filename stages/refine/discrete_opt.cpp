@@ -121,28 +121,27 @@ struct DirectionMaps {
 };
 
 // The terms of positive weight for queries X and candidates Y (basis rows, first k columns),
-// reduced to k coordinates and the embedding's (ReduceTerms).
+// reduced to k coordinates and the embedding's (ReduceTerms): the linear terms' maps are their
+// rows at identity bases.
 ReducedTerms Stacked(const BasisRef& X, const BasisRef& Y, const DirectionMaps& m,
                      const DiscreteOptWeights& w) {
   const int k = static_cast<int>(X.cols());
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(k, k);
-  std::vector<TermMaps> maps;
+  std::vector<TermRows> terms;
   std::vector<double> weights;
   auto add = [&](double weight, auto make) {
     if (weight <= 0.0) return;
-    maps.push_back(make());
+    terms.push_back(make());
     weights.push_back(weight);
   };
-  add(w.orthogonality, [&] { return TermMaps{I, m.C_xy->transpose()}; });
-  add(w.bijectivity, [&] { return TermMaps{I, *m.C_yx}; });
-  add(w.proper, [&] { return TermMaps{*m.C_xy, I}; });
-  add(w.laplacian, [&] {
-    return TermMaps{m.lambda_x->asDiagonal() * I, m.lambda_y->asDiagonal() * m.C_xy->transpose()};
-  });
-  add(w.descriptor, [&] { return TermMaps{m.A_x->topRows(k), m.A_y->topRows(k)}; });
+  add(w.orthogonality, [&] { return OrthogonalityRows(I, I, *m.C_xy); });
+  add(w.bijectivity, [&] { return BijectivityRows(I, I, *m.C_yx); });
+  add(w.proper, [&] { return ProperRows(I, I, *m.C_xy); });
+  add(w.laplacian, [&] { return LaplacianRows(I, I, *m.lambda_x, *m.lambda_y, *m.C_xy); });
+  add(w.descriptor, [&] { return DescriptorRows(I, I, m.A_x->topRows(k), m.A_y->topRows(k)); });
   const bool embedded = w.embedding > 0.0;
-  return ReduceTerms(X, Y, maps, weights, embedded ? m.Z_x : nullptr, embedded ? m.Z_y : nullptr,
-                     w.embedding);
+  return ReduceTerms(X, Y, StackTerms(terms, weights), embedded ? m.Z_x : nullptr,
+                     embedded ? m.Z_y : nullptr, w.embedding);
 }
 
 // The minimiser over maps into `candidates` of the stacked energy: per query row, the nearest

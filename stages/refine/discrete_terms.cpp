@@ -126,34 +126,18 @@ TermRows StackTerms(const std::vector<TermRows>& terms, const std::vector<double
   return out;
 }
 
-ReducedTerms ReduceTerms(const BasisRef& X, const BasisRef& Y, const std::vector<TermMaps>& maps,
-                         const std::vector<double>& weights, const Eigen::MatrixXd* Z_x,
-                         const Eigen::MatrixXd* Z_y, double embedding_weight) {
+ReducedTerms ReduceTerms(const BasisRef& X, const BasisRef& Y, const TermRows& maps,
+                         const Eigen::MatrixXd* Z_x, const Eigen::MatrixXd* Z_y,
+                         double embedding_weight) {
   const Eigen::Index k = X.cols();
-  SYMEMBED_CHECK(maps.size() == weights.size() && Y.cols() == k,
-                 "reduced terms: " << maps.size() << " terms, " << weights.size()
-                                   << " weights, bases of " << k << " and " << Y.cols()
-                                   << " columns");
-  Eigen::Index cols = 0;
-  for (size_t t = 0; t < maps.size(); ++t) {
-    SYMEMBED_CHECK(weights[t] > 0.0 && maps[t].of_x.rows() == k && maps[t].of_y.rows() == k &&
-                       maps[t].of_x.cols() == maps[t].of_y.cols(),
-                   "reduced terms: term " << t << " has weight " << weights[t] << " or maps "
-                                          << maps[t].of_x.rows() << " x " << maps[t].of_x.cols()
-                                          << " and " << maps[t].of_y.rows() << " x "
-                                          << maps[t].of_y.cols() << " for " << k << " columns");
-    cols += maps[t].of_x.cols();
-  }
-  SYMEMBED_CHECK(cols >= k, "reduced terms: " << cols << " columns for a basis of " << k);
-  Eigen::MatrixXd L_x(k, cols), L_y(k, cols);
-  Eigen::Index at = 0;
-  for (size_t t = 0; t < maps.size(); ++t) {
-    const double s = std::sqrt(weights[t]);
-    const Eigen::Index c = maps[t].of_x.cols();
-    L_x.middleCols(at, c) = s * maps[t].of_x;
-    L_y.middleCols(at, c) = s * maps[t].of_y;
-    at += c;
-  }
+  const Eigen::MatrixXd& L_x = maps.query;
+  const Eigen::MatrixXd& L_y = maps.points;
+  const Eigen::Index cols = L_x.cols();
+  SYMEMBED_CHECK(
+      Y.cols() == k && L_x.rows() == k && L_y.rows() == k && L_y.cols() == cols && cols >= k,
+      "reduced terms: maps " << L_x.rows() << " x " << cols << " and " << L_y.rows() << " x "
+                             << L_y.cols() << " for bases of " << k << " and " << Y.cols()
+                             << " columns");
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(L_y.transpose());
   const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(cols, k);
   const Eigen::MatrixXd R_t = L_y * Q;  // R^T: L_y = R^T Q^T

@@ -74,34 +74,27 @@ double TermEnergy(const TermRows& rows, const std::vector<int>& map, const Eigen
 // and terms have one entry per term, weights >= 0 with at least one positive.
 TermRows StackTerms(const std::vector<TermRows>& terms, const std::vector<double>& weights);
 
-// A term whose rows are linear in the basis rows: query rows X * of_x, point rows Y * of_y
-// (k x d each). Every term above but the embedding's is one: orthogonality (I, C_xy^T),
-// bijectivity (I, C_yx), proper (C_xy, I), Laplacian (L_x, L_y C_xy^T), descriptors (A_x, A_y).
-struct TermMaps {
-  Eigen::MatrixXd of_x;
-  Eigen::MatrixXd of_y;
-};
-
-// Linear terms stacked as StackTerms does (and the embedding term's points Z_x, Z_y appended
-// with embedding_weight when both are given), reduced to k + d coordinates with the same
-// nearest candidate of every query row. With L_x, L_y (k x D) the terms' maps side by side,
-// each scaled by the square root of its weight, and L_y^T = Q R (Q: D x k with orthonormal
-// columns, R: k x k),
+// Every term above but the embedding's is linear in the basis rows: its rows for queries X and
+// candidates Y are X L and Y L' for the rows it gives at identity bases (X = Y = I_k), L and L'
+// (k x d). ReduceTerms takes those terms stacked (`maps`: StackTerms of their rows at identity
+// bases, query side L_x and point side L_y, k x D) and reduces them to k coordinates: with
+// L_y^T = Q R (Q: D x k with orthonormal columns, R: k x k),
 //   || X_r L_x - Y_c L_y ||^2 = || X_r L_x Q - Y_c R^T ||^2 + X_r G X_r^T,
 //   G = L_x L_x^T - L_x Q Q^T L_x^T  (k x k),
-// and the last term does not depend on the candidate c. rows.query: X L_x Q (and the
-// embedding); rows.points: Y R^T (and the embedding). The stacked energy of a map with weights
-// w is the weighted sum of the reduced squared distances plus sum_ij G_ij (X^T W X)_ij (up to
-// rounding), so the Gram matrix of the query rows gives it without a pass over the rows. The
-// maps' of_y side by side must have at least k columns (one of orthogonality, bijectivity,
-// proper, Laplacian) and weights be > 0.
+// and the last term does not depend on the candidate c, so the nearest candidate of each query
+// row is that of the stacked rows. rows.query: X L_x Q, rows.points: Y R^T, each followed by the
+// embedding term's points Z_x, Z_y scaled by sqrt(embedding_weight) when both are given. The
+// stacked energy of a map with weights w is the weighted sum of the reduced squared distances
+// plus sum_ij G_ij (X^T W X)_ij (up to rounding), so the Gram matrix of the query rows gives it
+// without a pass over the rows. D must be at least k (one of orthogonality, bijectivity,
+// proper, Laplacian).
 struct ReducedTerms {
   TermRows rows;
   Eigen::MatrixXd G;
 };
-ReducedTerms ReduceTerms(const BasisRef& X, const BasisRef& Y, const std::vector<TermMaps>& maps,
-                         const std::vector<double>& weights, const Eigen::MatrixXd* Z_x,
-                         const Eigen::MatrixXd* Z_y, double embedding_weight);
+ReducedTerms ReduceTerms(const BasisRef& X, const BasisRef& Y, const TermRows& maps,
+                         const Eigen::MatrixXd* Z_x, const Eigen::MatrixXd* Z_y,
+                         double embedding_weight);
 
 // The functional forms, per basis size (0 for an exact map): ||C_xy C_yx - I||_F^2 / k and
 // ||C_xy L_y - L_x C_xy||_F^2 / k.

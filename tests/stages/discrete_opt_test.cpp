@@ -137,20 +137,20 @@ TEST(DiscreteTerms, StackedQueryIsTheBruteForceMinimiserOfTheWeightedSum) {
 
 // The reduced terms (k + 3 coordinates instead of 3k + 4 + 3) give every query row the same
 // nearest candidate as the stacked rows, each row's squared distance plus X_r G X_r^T is its
-// stacked energy at that candidate, and the weighted energy follows from the Gram matrix; a term of
-// weight 0 is passed by leaving it out.
+// stacked energy at that candidate, and the weighted energy follows from the Gram matrix.
 TEST(DiscreteTerms, ReducedTermsKeepTheNearestCandidateAndTheEnergy) {
   const int k = 6;
   const TinyCase c = MakeTiny(k);
   const Eigen::MatrixXd& X = c.x.evecs;
   const Eigen::MatrixXd& Y = c.y.evecs;
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(k, k);
-  const Eigen::MatrixXd Lx = c.lambda_x.asDiagonal(), Ly = c.lambda_y.asDiagonal();
-  const std::vector<TermMaps> maps = {
-      {I, c.C_xy.transpose()}, {I, c.C_yx}, {Lx, Ly * c.C_xy.transpose()}, {c.A_x, c.A_y}};
   const std::vector<double> weights = {0.5, 2.0, 1.5, 0.25};
   const double embedding_weight = 0.75;
-  const ReducedTerms reduced = ReduceTerms(X, Y, maps, weights, &c.Z_x, &c.Z_y, embedding_weight);
+  const TermRows maps = StackTerms(
+      {OrthogonalityRows(I, I, c.C_xy), BijectivityRows(I, I, c.C_yx),
+       LaplacianRows(I, I, c.lambda_x, c.lambda_y, c.C_xy), DescriptorRows(I, I, c.A_x, c.A_y)},
+      weights);
+  const ReducedTerms reduced = ReduceTerms(X, Y, maps, &c.Z_x, &c.Z_y, embedding_weight);
   EXPECT_EQ(reduced.rows.query.cols(), k + 3);
   const TermRows stacked =
       StackTerms({OrthogonalityRows(X, Y, c.C_xy), BijectivityRows(X, Y, c.C_yx),
@@ -178,7 +178,8 @@ TEST(DiscreteTerms, ReducedTermsKeepTheNearestCandidateAndTheEnergy) {
   reduced_energy += reduced.G.cwiseProduct(WeightedGram(X, c.w)).sum();
   EXPECT_NEAR(reduced_energy, expected_energy, 1e-9 * expected_energy);
   // The maps must span the basis: descriptors alone (4 columns for k = 6) do not.
-  EXPECT_THROW(ReduceTerms(X, Y, {{c.A_x, c.A_y}}, {1.0}, nullptr, nullptr, 0.0), InternalError);
+  EXPECT_THROW(ReduceTerms(X, Y, DescriptorRows(I, I, c.A_x, c.A_y), nullptr, nullptr, 0.0),
+               InternalError);
 }
 
 TEST(DiscreteTerms, FunctionalDefectsAreZeroForExactMapsAndTheirNormsOtherwise) {
