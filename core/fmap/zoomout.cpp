@@ -32,6 +32,15 @@ bool ZoomOutOptions::IsValid(std::string* error) const {
   return false;
 }
 
+void CheckBasesReach(const char* who, const LaplaceBasis& source, const LaplaceBasis& target,
+                     int k_end) {
+  if (source.NumEigenpairs() >= k_end && target.NumEigenpairs() >= k_end) return;
+  std::ostringstream out;
+  out << who << ": k_end = " << k_end << " but the bases have " << source.NumEigenpairs() << " and "
+      << target.NumEigenpairs() << " eigenpairs";
+  throw InvalidInputError(out.str());
+}
+
 namespace {
 
 double Mean(const std::vector<double>& values) {
@@ -66,12 +75,7 @@ ZoomOutSetup::ZoomOutSetup(const LaplaceBasis& source, const LaplaceBasis& targe
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("zoomout: " + error);
   const int ns = source.NumVertices(), nt = target.NumVertices();
-  if (source.NumEigenpairs() < options.k_end || target.NumEigenpairs() < options.k_end) {
-    std::ostringstream out;
-    out << "zoomout: k_end = " << options.k_end << " but the bases have " << source.NumEigenpairs()
-        << " and " << target.NumEigenpairs() << " eigenpairs";
-    throw InvalidInputError(out.str());
-  }
+  CheckBasesReach("zoomout", source, target, options.k_end);
   // The vertices the iterations run on, and their least-squares weights.
   active_ = samples;
   Eigen::VectorXd weights = source.mass;

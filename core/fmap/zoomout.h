@@ -99,4 +99,9 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
                       const std::vector<int>& initial_map, const std::vector<int>& samples,
                       const ZoomOutOptions& options, const std::vector<int>& target_samples = {});
 
+// Throws InvalidInputError "<who>: k_end = K but the bases have A and B eigenpairs" unless
+// both bases have at least k_end eigenpairs (ZoomOut and the refinements that grow a basis).
+void CheckBasesReach(const char* who, const LaplaceBasis& source, const LaplaceBasis& target,
+                     int k_end);
+
 }  // namespace symembed

@@ -10,6 +10,7 @@
 #include "core/fmap/descriptors.h"
 #include "core/fmap/functional_map.h"
 #include "core/fmap/spectral_knn.h"
+#include "core/fmap/zoomout.h"
 #include "stages/refine/discrete_terms.h"
 
 namespace symembed {
@@ -187,13 +188,7 @@ void CheckDiscreteOptInputs(const LaplaceBasis& source, const LaplaceBasis& targ
                             const DiscreteOptOptions& options, const DiscreteOptPoints* points) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("discrete: " + error);
-  const int k_end = options.k_end;
-  if (source.NumEigenpairs() < k_end || target.NumEigenpairs() < k_end) {
-    std::ostringstream out;
-    out << "discrete: k_end = " << k_end << " but the bases have " << source.NumEigenpairs()
-        << " and " << target.NumEigenpairs() << " eigenpairs";
-    throw InvalidInputError(out.str());
-  }
+  CheckBasesReach("discrete", source, target, options.k_end);
   if (samples.empty() != target_samples.empty()) {
     throw InvalidInputError("discrete: give samples of both shapes or of neither");
   }
