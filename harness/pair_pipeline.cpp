@@ -73,7 +73,7 @@ std::vector<int> MapFromGroundTruth(const Surface& source, int target_vertices,
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
                  const InputGroundTruth& ground_truth) {
   Hasher h;
-  h.AddString("symembed-pair-cache-5").AddString(source.name).AddU64(source.key);
+  h.AddString("symembed-pair-cache-6").AddString(source.name).AddU64(source.key);
   h.AddString(target.name).AddU64(target.key);
   // The per-shape kinds' options are in the shapes' keys.
   for (const StageKind& kind : kPipelineStageKinds) {
@@ -259,19 +259,14 @@ void RunPairStep(const std::string& kind, const RefineStage& stage, PairChain& c
     chain.matched.map = MapFromGroundTruth(a.surface, nb, chain.truth_pre);
   }
   const auto start = std::chrono::steady_clock::now();
-  MatchResult refined;
-  if (chain.on_surfaces) {
-    // The refine stages pull a map towards one that covers the whole target, which a part's
-    // map must not; the surfaces' map is refined by its own rounds.
-    refined.map = chain.matched.map;
-    refined.status.message = "not run: the matching stage mapped the surfaces";
-  } else {
-    const int chosen = chain.out.flip.chosen;
-    refined = stage.Run(RefineInput{*chain.input, chain.matched.map,
-                                    &chain.Aligned(chosen, chain.chosen_target),
-                                    &chain.chosen_target});
-    chain.counters->Executed(kind);
-  }
+  // A part's map on the surfaces is refined as a part's; the embeddings' points do not
+  // describe it.
+  const int chosen = chain.out.flip.chosen;
+  const bool part = chain.on_surfaces;
+  MatchResult refined = stage.Run(RefineInput{
+      *chain.input, chain.matched.map, part ? nullptr : &chain.Aligned(chosen, chain.chosen_target),
+      part ? nullptr : &chain.chosen_target, part});
+  chain.counters->Executed(kind);
   chain.out.times.push_back({kind, SecondsSince(start), false});
   CheckMap(refined, a.surface.NumVertices(), nb, kind.c_str());
   chain.out.refine_status = refined.status;

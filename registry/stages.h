@@ -140,12 +140,16 @@ class MatchingStage : public PairStage {
 // What a refine stage starts from: the two shapes, the matching stage's map, and the embedded
 // points it matched (every vertex: the source's as the matching stage's Align moved them, the
 // target's turned by the chosen rotation), in one frame where a vertex and its image lie close.
-// The points are null when the caller has no embedding (a map from elsewhere).
+// The points are null when the caller has no embedding (a map from elsewhere). `part_and_whole`:
+// the matching stage mapped the surfaces of a part and a whole (MatchSurfaces), so the map
+// must not be pulled over the whole; a stage refines it as such (core/fmap/partial_zoomout.h)
+// or returns it unchanged, and never reads the points.
 struct RefineInput {
   const PairInput& pair;
   const std::vector<int>& initial_map;  // #V_source: target vertex of each source vertex
   const EmbeddedPoints* source_points = nullptr;
   const EmbeddedPoints* target_points = nullptr;
+  bool part_and_whole = false;
 };
 
 class RefineStage : public PairStage {

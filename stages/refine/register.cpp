@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/fmap/functional_map.h"
+#include "core/fmap/partial_zoomout.h"
 #include "core/fmap/zoomout.h"
 #include "core/spectral.h"
 #include "stages/products.h"
@@ -69,6 +70,24 @@ std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis, int 
   return EuclideanFarthestPoints(shape.surface.V, count, keep);
 }
 
+// A part and a whole matched on the surfaces: ZoomOut with rectangular maps whose part's
+// size follows the whole's by eigenvalue (core/fmap/partial_zoomout.h), on the stage's schedule
+// of basis sizes, iterating on `samples` onto `target_samples` (empty: every vertex).
+MatchResult RefinePart(const RefineInput& input, const PairBases& bases, int k_start, int k_end,
+                       int step, const std::vector<int>& samples,
+                       const std::vector<int>& target_samples) {
+  ZoomOutOptions options;
+  options.k_start = k_start;
+  options.k_end = k_end;
+  options.step = step;
+  const PairInput& pair = input.pair;
+  ZoomOutResult z =
+      PartialZoomOut(bases.source, 1.0 / pair.source.scale, bases.target, 1.0 / pair.target.scale,
+                     input.initial_map, samples, options, target_samples);
+  z.status.message += bases.Note();
+  return MatchResult{std::move(z.map), std::move(z.status)};
+}
+
 class NoRefine : public RefineStage {
  public:
   MatchResult Run(const RefineInput& input) const override {
@@ -97,6 +116,10 @@ class ZoomOutRefine : public RefineStage {
     const std::vector<int> target_samples =
         samples.empty() ? std::vector<int>{}
                         : Samples(input.pair.target, bases.target, target_sample_count_);
+    if (input.part_and_whole) {
+      return RefinePart(input, bases, options_.k_start, options_.k_end, options_.step, samples,
+                        target_samples);
+    }
     ZoomOutResult z =
         ZoomOut(bases.source, bases.target, input.initial_map, samples, options_, target_samples);
     z.status.message += bases.Note();
@@ -116,6 +139,11 @@ class IcpRefine : public RefineStage {
   ShapeNeeds Needs() const override { return BasisNeeds(options_.k); }
 
   MatchResult Run(const RefineInput& input) const override {
+    if (input.part_and_whole) {
+      MatchResult unchanged{input.initial_map, {}};
+      unchanged.status.message = "not run: the map is between a part and a whole";
+      return unchanged;
+    }
     const PairBases bases(input.pair, options_.k);
     FunctionalMapIcpResult r =
         FunctionalMapIcp(bases.source, bases.target, input.initial_map, options_);
@@ -153,6 +181,11 @@ class DiscreteRefine : public RefineStage {
     if (sample_count_ > 0) {
       samples = SamplesOrAll(pair.source, bases.source);
       target_samples = SamplesOrAll(pair.target, bases.target);
+    }
+    // The discrete terms ask for a bijection, which a part and a whole have not.
+    if (input.part_and_whole) {
+      return RefinePart(input, bases, options_.k_start, options_.k_end, options_.step, samples,
+                        target_samples);
     }
     // The embedding term reads the points the matching stage compared; a map refined without
     // them (from elsewhere) goes without the term, and the message says so.

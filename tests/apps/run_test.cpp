@@ -540,11 +540,10 @@ TEST(RunCommand, UsageErrorsExit2) {
   EXPECT_NE(out.find("--out"), std::string::npos) << out;
 }
 
-
 // A dataset whose poses are all cut by a plane: every pair has a part, which the default
 // matching stage maps on the surfaces as well (where that map is kept, the flip stage's choice
-// is unused and there is no refinement), and `partial_boundary_ratio: 0` sends every pair
-// through the embeddings alone.
+// is unused and the refinement is the part's, core/fmap/partial_zoomout.h), and
+// `partial_boundary_ratio: 0` sends every pair through the embeddings alone.
 TEST(RunCommand, PairsWithAPartAreMatchedOnTheSurfacesUnlessTheRouteIsOff) {
   TempDir tmp;
   std::string out;
@@ -575,10 +574,12 @@ TEST(RunCommand, PairsWithAPartAreMatchedOnTheSurfacesUnlessTheRouteIsOff) {
     return n;
   };
   // Every pair is mapped on the surfaces; the map kept is the one of lower distortion, and a
-  // pair that keeps it is not refined.
+  // pair that keeps it is refined as a part's when the source is the part, else left.
   EXPECT_EQ(count(base, "the matching stage mapped the surfaces (partial: the "), 3) << base;
-  EXPECT_EQ(count(base, "not used: the matching stage mapped the surfaces"),
-            count(base, "not run: the matching stage mapped the surfaces"));
+  EXPECT_EQ(
+      count(base, "not used: the matching stage mapped the surfaces"),
+      count(base, "partial zoomout (area ratio") + count(base, "not run: the source is the whole"));
+  EXPECT_GE(count(base, "partial zoomout (area ratio"), 1) << base;
   EXPECT_GE(count(base, "not used: the matching stage mapped the surfaces"), 1) << base;
   EXPECT_EQ(off.find("mapped the surfaces"), std::string::npos) << off;
 }

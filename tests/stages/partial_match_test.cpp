@@ -1,15 +1,15 @@
-#include "core/matching/partial.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
 
 #include "core/errors.h"
+#include "core/matching/partial.h"
 #include "core/mesh_graph.h"
 #include "core/primitives.h"
 #include "eval/synthetic/synthetic.h"
 #include "stages/sampling/farthest_point.h"
+#include "tests/stages/partial_test_util.h"
 
 namespace symembed {
 namespace {
@@ -43,14 +43,9 @@ struct PartAndWhole {
 };
 
 PartAndWhole CutHumanoid() {
-  SynthOptions o;
-  o.kinds = {FigureKind::kHumanoid};
-  o.poses = 6;
-  o.vertices = 1500;
-  SynthOptions cut_options = o;
-  cut_options.plane_cuts = 0.5;
-  const SynthClass full = GenerateClass(FigureKind::kHumanoid, o);
-  const SynthClass cut = GenerateClass(FigureKind::kHumanoid, cut_options);
+  const testing::CutAndWholeClasses classes = testing::CutHumanoidClasses(1500);
+  const SynthClass& full = classes.whole;
+  const SynthClass& cut = classes.cut;
   for (size_t p = 0; p < cut.shapes.size(); ++p) {
     const TrackedSurface& c = cut.shapes[p].shape;
     if (c.surface.NumVertices() == full.shapes[p].shape.surface.NumVertices()) continue;

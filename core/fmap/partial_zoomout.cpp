@@ -1,0 +1,141 @@
+#include "core/fmap/partial_zoomout.h"
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+#include "core/errors.h"
+#include "core/fmap/functional_map.h"
+
+namespace symembed {
+
+int PartBasisSize(const Eigen::VectorXd& whole_evals, const Eigen::VectorXd& part_evals, int k_w) {
+  if (k_w < 1 || k_w > whole_evals.size() || k_w > part_evals.size()) {
+    throw InvalidInputError("partial zoomout: basis size " + std::to_string(k_w) +
+                            " exceeds the eigenpairs given");
+  }
+  // A relative margin so that an eigenvalue equal to the whole's up to rounding counts.
+  const double limit = whole_evals(k_w - 1) * (1.0 + 1e-9);
+  int count = 0;
+  while (count < k_w && part_evals(count) <= limit) ++count;
+  return std::max(count, std::min(kMinPartSize, k_w));
+}
+
+namespace {
+
+double MeanOf(const std::vector<double>& values) {
+  return values.empty() ? 0.0 : std::accumulate(values.begin(), values.end(), 0.0) / values.size();
+}
+
+}  // namespace
+
+ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
+                             const LaplaceBasis& target, double target_unit,
+                             const std::vector<int>& initial_map, const std::vector<int>& samples,
+                             const ZoomOutOptions& options,
+                             const std::vector<int>& target_samples) {
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("partial zoomout: " + error);
+  const int k_end = options.k_end;
+  CheckBasesReach("partial zoomout", source, target, k_end);
+  if (!(source_unit > 0.0) || !(target_unit > 0.0)) {
+    throw InvalidInputError("partial zoomout: the units must be positive");
+  }
+  const int ns = source.NumVertices(), nt = target.NumVertices();
+  CheckPointMap(initial_map, ns, nt);
+  for (int i : samples) {
+    if (i < 0 || i >= ns) throw InvalidInputError("partial zoomout: sample id out of range");
+  }
+  for (int j : target_samples) {
+    if (j < 0 || j >= nt) throw InvalidInputError("partial zoomout: target sample id out of range");
+  }
+
+  // Eigenvalues scale as 1 / length^2, areas as length^2.
+  const Eigen::VectorXd source_evals = source.evals.head(k_end) / (source_unit * source_unit);
+  const Eigen::VectorXd target_evals = target.evals.head(k_end) / (target_unit * target_unit);
+  const double source_area = source.mass.sum() * source_unit * source_unit;
+  const double target_area = target.mass.sum() * target_unit * target_unit;
+  ZoomOutResult result;
+  result.start = options.k_start;
+  if (source_area > target_area) {
+    // Every source vertex takes part in the fit, and those of the whole that the part lacks
+    // have no true image to pull towards.
+    result.map = initial_map;
+    result.status.message =
+        "not run: the source is the whole (a part's map is refined from "
+        "the part)";
+    return result;
+  }
+
+  // The schedule: the whole's sizes as ZoomOut's, the part's matched by eigenvalue.
+  std::vector<std::pair<int, int>> sizes;  // (source size, target size)
+  for (int k = options.k_start;; k = std::min(k + options.step, k_end)) {
+    sizes.push_back({PartBasisSize(target_evals, source_evals, k), k});
+    if (k == k_end) break;
+  }
+
+  std::vector<int> active = samples;
+  Eigen::VectorXd weights;
+  if (active.empty()) {
+    active.resize(ns);
+    std::iota(active.begin(), active.end(), 0);
+    weights = source.mass;
+  } else {
+    weights = Eigen::VectorXd::Ones(ns);
+  }
+  Eigen::VectorXd active_weights(active.size());
+  for (size_t r = 0; r < active.size(); ++r) active_weights(r) = weights(active[r]);
+  const Eigen::MatrixXd source_rows = BasisRows(source.evecs, active, k_end);
+  const Eigen::MatrixXd gram = WeightedGram(source_rows, active_weights);
+  const std::vector<int> targets =
+      MatchableTargets(target.mass, samples.empty() ? std::vector<int>{} : target_samples);
+  const Eigen::MatrixXd target_rows = BasisRows(target.evecs, targets, k_end);
+
+  // The bases are M-orthonormal on each surface in its own units, so a function's values scale
+  // as 1 / length: in the common unit the source's rows are these over source_unit, the
+  // target's over target_unit. The least-squares map absorbs that factor; the query, which
+  // compares the source's rows with the target's under C^T, must not, or a part's rows would be
+  // compared with the whole's at another scale. So C is queried as (source_unit /
+  // target_unit)^2 C, the query of the maps in the common unit.
+  const double query_scale = (source_unit / target_unit) * (source_unit / target_unit);
+  std::vector<int> active_map(active.size());
+  for (size_t r = 0; r < active.size(); ++r) active_map[r] = initial_map[active[r]];
+  Eigen::MatrixXd C;
+  std::ostringstream trace;
+  trace.precision(3);
+  for (size_t it = 0; it < sizes.size(); ++it) {
+    const auto [ks, kt] = sizes[it];
+    C = FitFunctionalMapFromRows(source_rows.leftCols(ks), BasisRows(target.evecs, active_map, kt),
+                                 active_weights, &gram);
+    std::vector<double> sq;
+    if (it + 1 < sizes.size()) {
+      active_map = NearestUnderMap(source_rows.leftCols(ks), target_rows.leftCols(kt), targets,
+                                   query_scale * C, &sq);
+    } else {
+      // The last query maps every source vertex onto every target vertex.
+      std::vector<int> all(ns);
+      std::iota(all.begin(), all.end(), 0);
+      result.map = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass,
+                                             query_scale * C, all, &sq);
+    }
+    result.k.push_back(kt);
+    result.spectral_residual.push_back(MeanOf(sq));
+    trace << " " << ks << "x" << kt << ":" << result.spectral_residual.back();
+  }
+  for (int i = 0; i < ns; ++i) result.changed += result.map[i] != initial_map[i];
+  result.status.converged = true;
+  result.status.iterations = static_cast<int>(sizes.size());
+  result.status.residual = result.spectral_residual.back();
+  std::ostringstream message;
+  message.precision(3);
+  message << "partial zoomout (area ratio " << source_area / target_area << "), whole's k "
+          << options.k_start << ".." << k_end << " step " << options.step
+          << (samples.empty() ? "" : " on " + std::to_string(active.size()) + " samples")
+          << "; changed " << result.changed << "/" << ns
+          << "; per size (source x target: mean NN spectral residual):" << trace.str();
+  result.status.message = message.str();
+  return result;
+}
+
+}  // namespace symembed
