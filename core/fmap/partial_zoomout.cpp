@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "core/fmap/functional_map.h"
+#include "core/fmap/spectral_knn.h"
 
 namespace symembed {
 
@@ -28,19 +29,43 @@ double MeanOf(const std::vector<double>& values) {
   return values.empty() ? 0.0 : std::accumulate(values.begin(), values.end(), 0.0) / values.size();
 }
 
+// For each query (its basis row in Q, its initial image in `images`), the entry of `targets`
+// (basis rows P) whose row under C is nearest, with the anchor's points side by side when it
+// has weight.
+std::vector<int> Query(const BasisRef& Q, const BasisRef& P, const std::vector<int>& targets,
+                       const Eigen::MatrixXd& C, const PartialAnchor& anchor,
+                       const std::vector<int>& images, std::vector<double>* sq) {
+  if (anchor.weight <= 0.0) return NearestUnderMap(Q, P, targets, C, sq);
+  const double w = std::sqrt(anchor.weight);
+  const Eigen::MatrixX3d& X = *anchor.target_points;
+  Eigen::MatrixXd points(P.rows(), C.rows() + 3), queries(Q.rows(), C.rows() + 3);
+  points.leftCols(C.rows()) = P * C.transpose();
+  for (size_t r = 0; r < targets.size(); ++r) points.row(r).tail<3>() = w * X.row(targets[r]);
+  queries.leftCols(C.rows()) = Q;
+  for (size_t r = 0; r < images.size(); ++r) queries.row(r).tail<3>() = w * X.row(images[r]);
+  const SpectralNearest nearest(points, targets);
+  std::vector<int> out;
+  nearest.Query(queries, &out, sq);
+  return out;
+}
+
 }  // namespace
 
 ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
                              const LaplaceBasis& target, double target_unit,
                              const std::vector<int>& initial_map, const std::vector<int>& samples,
-                             const ZoomOutOptions& options,
-                             const std::vector<int>& target_samples) {
+                             const ZoomOutOptions& options, const std::vector<int>& target_samples,
+                             const PartialAnchor& anchor) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("partial zoomout: " + error);
   const int k_end = options.k_end;
   CheckBasesReach("partial zoomout", source, target, k_end);
   if (!(source_unit > 0.0) || !(target_unit > 0.0)) {
     throw InvalidInputError("partial zoomout: the units must be positive");
+  }
+  if (anchor.weight > 0.0 &&
+      (anchor.target_points == nullptr || anchor.target_points->rows() != target.NumVertices())) {
+    throw InvalidInputError("partial zoomout: the anchor needs one point per target vertex");
   }
   const int ns = source.NumVertices(), nt = target.NumVertices();
   CheckPointMap(initial_map, ns, nt);
@@ -101,6 +126,7 @@ ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
   const double query_scale = (source_unit / target_unit) * (source_unit / target_unit);
   std::vector<int> active_map(active.size());
   for (size_t r = 0; r < active.size(); ++r) active_map[r] = initial_map[active[r]];
+  const std::vector<int> active_initial = active_map;
   Eigen::MatrixXd C;
   std::ostringstream trace;
   trace.precision(3);
@@ -110,14 +136,13 @@ ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
                                  active_weights, &gram);
     std::vector<double> sq;
     if (it + 1 < sizes.size()) {
-      active_map = NearestUnderMap(source_rows.leftCols(ks), target_rows.leftCols(kt), targets,
-                                   query_scale * C, &sq);
+      active_map = Query(source_rows.leftCols(ks), target_rows.leftCols(kt), targets,
+                         query_scale * C, anchor, active_initial, &sq);
     } else {
       // The last query maps every source vertex onto every target vertex.
-      std::vector<int> all(ns);
-      std::iota(all.begin(), all.end(), 0);
-      result.map = PointMapFromFunctionalMap(source.evecs, target.evecs, target.mass,
-                                             query_scale * C, all, &sq);
+      const std::vector<int> all_targets = MatchableTargets(target.mass);
+      result.map = Query(source.evecs.leftCols(ks), BasisRows(target.evecs, all_targets, kt),
+                         all_targets, query_scale * C, anchor, initial_map, &sq);
     }
     result.k.push_back(kt);
     result.spectral_residual.push_back(MeanOf(sq));
@@ -132,6 +157,9 @@ ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
   message << "partial zoomout (area ratio " << source_area / target_area << "), whole's k "
           << options.k_start << ".." << k_end << " step " << options.step
           << (samples.empty() ? "" : " on " + std::to_string(active.size()) + " samples")
+          << (anchor.weight > 0.0
+                  ? ", anchored to the initial map with weight " + std::to_string(anchor.weight)
+                  : std::string())
           << "; changed " << result.changed << "/" << ns
           << "; per size (source x target: mean NN spectral residual):" << trace.str();
   result.status.message = message.str();

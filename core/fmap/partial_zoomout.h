@@ -19,10 +19,12 @@
 // shape's lengths to the common unit (the input units, 1 / ShapeData::scale). The iterations run on
 // the samples (source vertex ids; empty: every vertex), mapping onto target_samples (empty: every
 // target vertex), and the last query maps every source vertex onto every target vertex. Single
-// start (options.extra_k_starts and dense_result are not read). Deterministic.
+// start (options.extra_k_starts and dense_result are not read). With an anchor (PartialAnchor),
+// each query also pays for straying from its initial image. Deterministic.
 //
 // Throws ConfigError for invalid options, InvalidInputError when a basis has fewer than k_end
-// eigenpairs, a unit is not positive, or an id is out of range.
+// eigenpairs, a unit is not positive, an id is out of range, or an anchor with weight lacks one
+// point per target vertex.
 #pragma once
 
 #include <vector>
@@ -39,10 +41,20 @@ namespace symembed {
 constexpr int kMinPartSize = 4;
 int PartBasisSize(const Eigen::VectorXd& whole_evals, const Eigen::VectorXd& part_evals, int k_w);
 
+// An anchor to the initial map: each query also pays `weight` times the squared distance
+// between its candidate's point and its initial image's (`target_points`, #Vt x 3, in any one
+// unit), so a region moves where the spectral terms agree but is not carried off wholesale (as
+// onto a mirror image, which a part's low frequencies cannot tell apart). Weight 0: none.
+struct PartialAnchor {
+  const Eigen::MatrixX3d* target_points = nullptr;
+  double weight = 0.0;
+};
+
 ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
                              const LaplaceBasis& target, double target_unit,
                              const std::vector<int>& initial_map, const std::vector<int>& samples,
                              const ZoomOutOptions& options,
-                             const std::vector<int>& target_samples = {});
+                             const std::vector<int>& target_samples = {},
+                             const PartialAnchor& anchor = {});
 
 }  // namespace symembed

@@ -72,18 +72,20 @@ std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis, int 
 
 // A part and a whole matched on the surfaces: ZoomOut with rectangular maps whose part's
 // size follows the whole's by eigenvalue (core/fmap/partial_zoomout.h), on the stage's schedule
-// of basis sizes, iterating on `samples` onto `target_samples` (empty: every vertex).
+// of basis sizes, iterating on `samples` onto `target_samples` (empty: every vertex), each point
+// anchored to its start's image on the whole's surface with `anchor_weight` (0: free).
 MatchResult RefinePart(const RefineInput& input, const PairBases& bases, int k_start, int k_end,
                        int step, const std::vector<int>& samples,
-                       const std::vector<int>& target_samples) {
+                       const std::vector<int>& target_samples, double anchor_weight = 0.0) {
   ZoomOutOptions options;
   options.k_start = k_start;
   options.k_end = k_end;
   options.step = step;
   const PairInput& pair = input.pair;
+  const PartialAnchor anchor{&pair.target.surface.V, anchor_weight};
   ZoomOutResult z =
       PartialZoomOut(bases.source, 1.0 / pair.source.scale, bases.target, 1.0 / pair.target.scale,
-                     input.initial_map, samples, options, target_samples);
+                     input.initial_map, samples, options, target_samples, anchor);
   z.status.message += bases.Note();
   return MatchResult{std::move(z.map), std::move(z.status)};
 }
@@ -185,7 +187,7 @@ class DiscreteRefine : public RefineStage {
     // The discrete terms ask for a bijection, which a part and a whole have not.
     if (input.part_and_whole) {
       return RefinePart(input, bases, options_.k_start, options_.k_end, options_.step, samples,
-                        target_samples);
+                        target_samples, options_.weights.embedding);
     }
     // The embedding term reads the points the matching stage compared; a map refined without
     // them (from elsewhere) goes without the term, and the message says so.

@@ -162,6 +162,31 @@ TEST(PartialZoomOut, RefinesOnSamplesAndLeavesAMapFromTheWhole) {
   EXPECT_NE(w.status.message.find("not run: the source is the whole"), std::string::npos);
 }
 
+TEST(PartialZoomOut, AnAnchorHoldsTheMapNearItsStart) {
+  const CutPair& c = Cut();
+  const Eigen::MatrixX3d& X = c.whole.surface.V;
+  const ZoomOutResult free =
+      PartialZoomOut(c.part_basis, 1.0, c.whole_basis, 1.0, c.noisy, {}, Schedule());
+  // Weight 0 is no anchor.
+  EXPECT_EQ(PartialZoomOut(c.part_basis, 1.0, c.whole_basis, 1.0, c.noisy, {}, Schedule(), {},
+                           PartialAnchor{&X, 0.0})
+                .map,
+            free.map);
+  // A moderate anchor still smooths the start; an overwhelming one keeps it.
+  const ZoomOutResult held = PartialZoomOut(c.part_basis, 1.0, c.whole_basis, 1.0, c.noisy, {},
+                                            Schedule(), {}, PartialAnchor{&X, 1.0});
+  EXPECT_LT(MeanError(c.whole.surface, held.map, c.truth),
+            0.75 * MeanError(c.whole.surface, c.noisy, c.truth))
+      << held.status.message;
+  EXPECT_NE(held.status.message.find("anchored to the initial map"), std::string::npos);
+  const ZoomOutResult kept = PartialZoomOut(c.part_basis, 1.0, c.whole_basis, 1.0, c.noisy, {},
+                                            Schedule(), {}, PartialAnchor{&X, 1e12});
+  EXPECT_EQ(kept.map, c.noisy);
+  EXPECT_THROW(PartialZoomOut(c.part_basis, 1.0, c.whole_basis, 1.0, c.noisy, {}, Schedule(), {},
+                              PartialAnchor{nullptr, 1.0}),
+               InvalidInputError);
+}
+
 TEST(PartialZoomOut, RejectsBadInput) {
   const CutPair& c = Cut();
   ZoomOutOptions o = Schedule();
@@ -197,6 +222,10 @@ TEST(PartialZoomOut, RefineStagesRefineAPartAsAPart) {
         registry.CreateAs<RefineStage>("refine", YAML::Load(yaml), "test.yaml", "pipeline.refine");
     const MatchResult r = stage->Run(RefineInput{pair, c.noisy, nullptr, nullptr, true});
     EXPECT_NE(r.status.message.find("partial zoomout"), std::string::npos) << yaml;
+    // The discrete stage anchors the part to its start as it anchors a whole to the embedding.
+    EXPECT_EQ(r.status.message.find("anchored") != std::string::npos,
+              std::string(yaml).find("discrete") != std::string::npos)
+        << r.status.message;
     EXPECT_LT(MeanError(c.whole.surface, r.map, c.truth),
               0.6 * MeanError(c.whole.surface, c.noisy, c.truth))
         << yaml;
