@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <numeric>
 #include <sstream>
-#include <utility>
 
 #include "core/errors.h"
 #include "core/fmap/functional_map.h"
@@ -24,10 +23,6 @@ int PartBasisSize(const Eigen::VectorXd& whole_evals, const Eigen::VectorXd& par
 }
 
 namespace {
-
-double MeanOf(const std::vector<double>& values) {
-  return values.empty() ? 0.0 : std::accumulate(values.begin(), values.end(), 0.0) / values.size();
-}
 
 // For each query (its basis row in Q, its initial image in `images`), the entry of `targets`
 // (basis rows P) whose row under C is nearest, with the anchor's points side by side when it
@@ -69,9 +64,7 @@ ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
   }
   const int ns = source.NumVertices(), nt = target.NumVertices();
   CheckPointMap(initial_map, ns, nt);
-  for (int i : samples) {
-    if (i < 0 || i >= ns) throw InvalidInputError("partial zoomout: sample id out of range");
-  }
+  const ZoomOutActive active = ZoomOutActivePoints("partial zoomout", source, samples);
   for (int j : target_samples) {
     if (j < 0 || j >= nt) throw InvalidInputError("partial zoomout: target sample id out of range");
   }
@@ -94,25 +87,9 @@ ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
   }
 
   // The schedule: the whole's sizes as ZoomOut's, the part's matched by eigenvalue.
-  std::vector<std::pair<int, int>> sizes;  // (source size, target size)
-  for (int k = options.k_start;; k = std::min(k + options.step, k_end)) {
-    sizes.push_back({PartBasisSize(target_evals, source_evals, k), k});
-    if (k == k_end) break;
-  }
-
-  std::vector<int> active = samples;
-  Eigen::VectorXd weights;
-  if (active.empty()) {
-    active.resize(ns);
-    std::iota(active.begin(), active.end(), 0);
-    weights = source.mass;
-  } else {
-    weights = Eigen::VectorXd::Ones(ns);
-  }
-  Eigen::VectorXd active_weights(active.size());
-  for (size_t r = 0; r < active.size(); ++r) active_weights(r) = weights(active[r]);
-  const Eigen::MatrixXd source_rows = BasisRows(source.evecs, active, k_end);
-  const Eigen::MatrixXd gram = WeightedGram(source_rows, active_weights);
+  const std::vector<int> sizes = ZoomOutBasisSizes(options.k_start, options);
+  const Eigen::MatrixXd source_rows = BasisRows(source.evecs, active.ids, k_end);
+  const Eigen::MatrixXd gram = WeightedGram(source_rows, active.weights);
   const std::vector<int> targets =
       MatchableTargets(target.mass, samples.empty() ? std::vector<int>{} : target_samples);
   const Eigen::MatrixXd target_rows = BasisRows(target.evecs, targets, k_end);
@@ -124,16 +101,17 @@ ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
   // compared with the whole's at another scale. So C is queried as (source_unit /
   // target_unit)^2 C, the query of the maps in the common unit.
   const double query_scale = (source_unit / target_unit) * (source_unit / target_unit);
-  std::vector<int> active_map(active.size());
-  for (size_t r = 0; r < active.size(); ++r) active_map[r] = initial_map[active[r]];
+  std::vector<int> active_map(active.ids.size());
+  for (size_t r = 0; r < active_map.size(); ++r) active_map[r] = initial_map[active.ids[r]];
   const std::vector<int> active_initial = active_map;
   Eigen::MatrixXd C;
   std::ostringstream trace;
   trace.precision(3);
   for (size_t it = 0; it < sizes.size(); ++it) {
-    const auto [ks, kt] = sizes[it];
+    const int kt = sizes[it];
+    const int ks = PartBasisSize(target_evals, source_evals, kt);
     C = FitFunctionalMapFromRows(source_rows.leftCols(ks), BasisRows(target.evecs, active_map, kt),
-                                 active_weights, &gram);
+                                 active.weights, &gram);
     std::vector<double> sq;
     if (it + 1 < sizes.size()) {
       active_map = Query(source_rows.leftCols(ks), target_rows.leftCols(kt), targets,
@@ -145,7 +123,7 @@ ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
                          all_targets, query_scale * C, anchor, initial_map, &sq);
     }
     result.k.push_back(kt);
-    result.spectral_residual.push_back(MeanOf(sq));
+    result.spectral_residual.push_back(std::accumulate(sq.begin(), sq.end(), 0.0) / sq.size());
     trace << " " << ks << "x" << kt << ":" << result.spectral_residual.back();
   }
   for (int i = 0; i < ns; ++i) result.changed += result.map[i] != initial_map[i];
@@ -156,7 +134,7 @@ ZoomOutResult PartialZoomOut(const LaplaceBasis& source, double source_unit,
   message.precision(3);
   message << "partial zoomout (area ratio " << source_area / target_area << "), whole's k "
           << options.k_start << ".." << k_end << " step " << options.step
-          << (samples.empty() ? "" : " on " + std::to_string(active.size()) + " samples")
+          << (samples.empty() ? "" : " on " + std::to_string(active.ids.size()) + " samples")
           << (anchor.weight > 0.0
                   ? ", anchored to the initial map with weight " + std::to_string(anchor.weight)
                   : std::string())

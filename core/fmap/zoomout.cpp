@@ -32,6 +32,30 @@ bool ZoomOutOptions::IsValid(std::string* error) const {
   return false;
 }
 
+std::vector<int> ZoomOutBasisSizes(int start, const ZoomOutOptions& options) {
+  std::vector<int> sizes;
+  for (int k = start; k < options.k_end; k += options.step) sizes.push_back(k);
+  sizes.push_back(options.k_end);
+  return sizes;
+}
+
+ZoomOutActive ZoomOutActivePoints(const char* who, const LaplaceBasis& source,
+                                  const std::vector<int>& samples) {
+  const int ns = source.NumVertices();
+  ZoomOutActive active{samples, {}};
+  if (active.ids.empty()) {
+    active.ids.resize(ns);
+    std::iota(active.ids.begin(), active.ids.end(), 0);
+    active.weights = source.mass;
+    return active;
+  }
+  for (int i : active.ids) {
+    if (i < 0 || i >= ns) throw InvalidInputError(std::string(who) + ": sample id out of range");
+  }
+  active.weights = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(active.ids.size()));
+  return active;
+}
+
 void CheckBasesReach(const char* who, const LaplaceBasis& source, const LaplaceBasis& target,
                      int k_end) {
   if (source.NumEigenpairs() >= k_end && target.NumEigenpairs() >= k_end) return;
@@ -46,14 +70,6 @@ namespace {
 double Mean(const std::vector<double>& values) {
   return values.empty() ? 0.0
                         : std::accumulate(values.begin(), values.end(), 0.0) / values.size();
-}
-
-// The basis sizes of one run: start, start + step, ... below k_end, then k_end.
-std::vector<int> BasisSizes(int start, const ZoomOutOptions& options) {
-  std::vector<int> sizes;
-  for (int k = start; k < options.k_end; k += options.step) sizes.push_back(k);
-  sizes.push_back(options.k_end);
-  return sizes;
 }
 
 // One ZoomOut run from one start on the active points: its trace and the functional map at k_end.
@@ -77,19 +93,13 @@ ZoomOutSetup::ZoomOutSetup(const LaplaceBasis& source, const LaplaceBasis& targe
   const int ns = source.NumVertices(), nt = target.NumVertices();
   CheckBasesReach("zoomout", source, target, options.k_end);
   // The vertices the iterations run on, and their least-squares weights.
-  active_ = samples;
-  Eigen::VectorXd weights = source.mass;
-  if (active_.empty()) {
-    active_.resize(ns);
-    std::iota(active_.begin(), active_.end(), 0);
-  } else {
-    for (int i : active_) {
-      if (i < 0 || i >= ns) throw InvalidInputError("zoomout: sample id out of range");
-    }
+  ZoomOutActive active = ZoomOutActivePoints("zoomout", source, samples);
+  active_ = std::move(active.ids);
+  active_weights_ = std::move(active.weights);
+  if (!samples.empty()) {
     for (int j : target_samples) {
       if (j < 0 || j >= nt) throw InvalidInputError("zoomout: target sample id out of range");
     }
-    weights.setOnes();
   }
   // A query on the samples lands on the target samples; a query on every source vertex (the
   // dense variant, and the last query of the sampled one) on every target vertex.
@@ -98,8 +108,6 @@ ZoomOutSetup::ZoomOutSetup(const LaplaceBasis& source, const LaplaceBasis& targe
   // The same points and weights at every basis size: A^T W A once, at the largest, and the basis
   // rows of the active points and of the targets they may land on gathered once; each basis size
   // uses their first columns.
-  active_weights_.resize(active_.size());
-  for (size_t r = 0; r < active_.size(); ++r) active_weights_(r) = weights(active_[r]);
   source_rows_ = BasisRows(source.evecs, active_, options.k_end);
   gram_ = WeightedGram(source_rows_, active_weights_);
   targets_ = MatchableTargets(target.mass, active_targets);
@@ -179,7 +187,7 @@ ZoomOutResult ZoomOutSetup::Run(const std::vector<int>& initial_map) const {
     run.start = starts[s];
     run.active_map.resize(active_.size());
     for (size_t r = 0; r < active_.size(); ++r) run.active_map[r] = initial_map[active_[r]];
-    const std::vector<int> sizes = BasisSizes(run.start, options_);
+    const std::vector<int> sizes = ZoomOutBasisSizes(run.start, options_);
     for (size_t it = 0; it < sizes.size(); ++it) {
       const int k = sizes[it];
       run.C = FitFunctionalMapFromRows(source_rows_.leftCols(k), TargetRows(run.active_map, k),

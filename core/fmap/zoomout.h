@@ -99,6 +99,20 @@ ZoomOutResult ZoomOut(const LaplaceBasis& source, const LaplaceBasis& target,
                       const std::vector<int>& initial_map, const std::vector<int>& samples,
                       const ZoomOutOptions& options, const std::vector<int>& target_samples = {});
 
+// The basis sizes of one ZoomOut run from `start`: start, start + step, ... below k_end, then
+// k_end.
+std::vector<int> ZoomOutBasisSizes(int start, const ZoomOutOptions& options);
+
+// The source vertices ZoomOut iterates on and their least-squares weights: `samples` with unit
+// weights, or every vertex with its lumped mass when `samples` is empty. Throws
+// InvalidInputError "<who>: sample id out of range".
+struct ZoomOutActive {
+  std::vector<int> ids;
+  Eigen::VectorXd weights;  // per entry of ids
+};
+ZoomOutActive ZoomOutActivePoints(const char* who, const LaplaceBasis& source,
+                                  const std::vector<int>& samples);
+
 // Throws InvalidInputError "<who>: k_end = K but the bases have A and B eigenpairs" unless
 // both bases have at least k_end eigenpairs (ZoomOut and the refinements that grow a basis).
 void CheckBasesReach(const char* who, const LaplaceBasis& source, const LaplaceBasis& target,

@@ -72,15 +72,17 @@ std::vector<int> Samples(const ShapeData& shape, const LaplaceBasis& basis, int 
 
 // A part and a whole matched on the surfaces: ZoomOut with rectangular maps whose part's
 // size follows the whole's by eigenvalue (core/fmap/partial_zoomout.h), on the stage's schedule
-// of basis sizes, iterating on `samples` onto `target_samples` (empty: every vertex), each point
-// anchored to its start's image on the whole's surface with `anchor_weight` (0: free).
-MatchResult RefinePart(const RefineInput& input, const PairBases& bases, int k_start, int k_end,
-                       int step, const std::vector<int>& samples,
-                       const std::vector<int>& target_samples, double anchor_weight = 0.0) {
+// of basis sizes (`schedule`'s k_start, k_end, step), iterating on `samples` onto
+// `target_samples` (empty: every vertex), each point anchored to its start's image on the
+// whole's surface with `anchor_weight` (0: free).
+template <typename Schedule>
+MatchResult RefinePart(const RefineInput& input, const PairBases& bases, const Schedule& schedule,
+                       const std::vector<int>& samples, const std::vector<int>& target_samples,
+                       double anchor_weight = 0.0) {
   ZoomOutOptions options;
-  options.k_start = k_start;
-  options.k_end = k_end;
-  options.step = step;
+  options.k_start = schedule.k_start;
+  options.k_end = schedule.k_end;
+  options.step = schedule.step;
   const PairInput& pair = input.pair;
   const PartialAnchor anchor{&pair.target.surface.V, anchor_weight};
   ZoomOutResult z =
@@ -119,8 +121,7 @@ class ZoomOutRefine : public RefineStage {
         samples.empty() ? std::vector<int>{}
                         : Samples(input.pair.target, bases.target, target_sample_count_);
     if (input.part_and_whole) {
-      return RefinePart(input, bases, options_.k_start, options_.k_end, options_.step, samples,
-                        target_samples);
+      return RefinePart(input, bases, options_, samples, target_samples);
     }
     ZoomOutResult z =
         ZoomOut(bases.source, bases.target, input.initial_map, samples, options_, target_samples);
@@ -186,8 +187,8 @@ class DiscreteRefine : public RefineStage {
     }
     // The discrete terms ask for a bijection, which a part and a whole have not.
     if (input.part_and_whole) {
-      return RefinePart(input, bases, options_.k_start, options_.k_end, options_.step, samples,
-                        target_samples, options_.weights.embedding);
+      return RefinePart(input, bases, options_, samples, target_samples,
+                        options_.weights.embedding);
     }
     // The embedding term reads the points the matching stage compared; a map refined without
     // them (from elsewhere) goes without the term, and the message says so.
