@@ -73,7 +73,7 @@ std::vector<int> MapFromGroundTruth(const Surface& source, int target_vertices,
 uint64_t PairKey(const ShapeOutcome& source, const ShapeOutcome& target, const Pipeline& pipeline,
                  const InputGroundTruth& ground_truth) {
   Hasher h;
-  h.AddString("symembed-pair-cache-6").AddString(source.name).AddU64(source.key);
+  h.AddString("symembed-pair-cache-7").AddString(source.name).AddU64(source.key);
   h.AddString(target.name).AddU64(target.key);
   // The per-shape kinds' options are in the shapes' keys.
   for (const StageKind& kind : kPipelineStageKinds) {

@@ -23,6 +23,8 @@ constexpr double kSeedResidualSlack = 1.5;
 // less (below this times the chosen map's) replaces it: a body turned front to back keeps
 // distances and orientation, but not where it bulges and where it hollows.
 constexpr double kShapeClearlyLess = 0.75;
+// Mirror images added at most (of the maps that turn the orientation, the lowest residual first).
+constexpr int kMirroredMaps = 3;
 // The shape index is smoothed over this radius times the square root of the whole's area.
 constexpr double kShapeRadius = 0.05;
 
@@ -279,6 +281,30 @@ double OrientationAgreement(const PartialSide& part, const PartialSide& whole,
   return total > 0 ? static_cast<double>(agree) / total : 0.5;
 }
 
+// The whole's left-right self map on its vertices from the one on its samples (`sigma` over
+// `samples`): each vertex goes where its nearest sample along the edges goes.
+std::vector<int> MirrorOfVertices(const PartialSide& side, const std::vector<int>& samples,
+                                  const std::vector<int>& sigma, const char* which) {
+  if (sigma.size() != samples.size()) {
+    throw InvalidInputError(std::string("partial matching: the ") + which + "'s mirror map has " +
+                            std::to_string(sigma.size()) + " entries for " +
+                            std::to_string(samples.size()) + " samples");
+  }
+  for (int s : sigma) {
+    if (s < 0 || s >= static_cast<int>(samples.size())) {
+      throw InvalidInputError(std::string("partial matching: the ") + which +
+                              "'s mirror map names sample " + std::to_string(s) + " of " +
+                              std::to_string(samples.size()));
+    }
+  }
+  const std::vector<int> nearest = NearestSeeds(side.graph, samples);
+  std::vector<int> mirror(nearest.size());
+  for (size_t v = 0; v < nearest.size(); ++v) {
+    mirror[v] = nearest[v] < 0 ? static_cast<int>(v) : samples[sigma[nearest[v]]];
+  }
+  return mirror;
+}
+
 // Maps every vertex of `from` to a vertex of `to` by its distances to the landmarks (rows
 // from_rows, to_rows: k x #V), searching near the image of its nearest anchor: anchors_from[i]
 // (a vertex of `from`) has image anchors_to[i].
@@ -416,7 +442,7 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
                          double source_unit, const Surface& target,
                          const std::vector<int>& target_samples, double target_unit,
                          const PartialMatchOptions& options, const std::vector<int>* seed,
-                         const PartialRows& cached) {
+                         const PartialRows& cached, const PartialMirrors& mirrors) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("partial matching: " + error);
   EdgeDistanceCache own(kCallRowBytes);
@@ -493,6 +519,26 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
   // Each distinct start gets one round of refinement; the two best get the rest.
   std::vector<Refined> refined;
   std::vector<std::vector<int>> starts;
+  // Refines `start` (the landmarks' images) one round and adds the map unless it is near one
+  // already refined; returns whether it was added. A start near an earlier start, or near a
+  // map already refined, would refine to that map and is skipped.
+  auto add_start = [&](std::vector<int> start) {
+    bool seen = false;
+    for (const auto& s : starts) seen = seen || mean_gap(s, start) < distinct;
+    for (const Refined& r : refined) seen = seen || mean_gap(r.images, start) < distinct;
+    if (seen) return false;
+    starts.push_back(start);
+    Refined r;
+    r.whole_rows = whole.Distances(start);
+    r.images = RefineLandmarks(whole, landmarks, part_rows, std::move(start),
+                               std::min(options.iterations, 1), &r.whole_rows);
+    evaluate(&r);
+    for (const Refined& other : refined) {
+      if (mean_gap(other.sample_images, r.sample_images) < distinct) return false;
+    }
+    refined.push_back(std::move(r));
+    return true;
+  };
   for (const TripleHypothesis& h : triples) {
     if (static_cast<int>(refined.size()) >= options.hypotheses) break;
     // The landmarks' first images: by their distances to the triple, over every vertex.
@@ -504,27 +550,40 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
     part3.row(0) = part.D.row(h.a);
     part3.row(1) = part.D.row(h.b);
     part3.row(2) = part.D.row(h.c);
-    std::vector<int> start = MapVerticesBrute(part3, whole3, landmarks, nullptr);
-    // A start near an earlier start, or near a map already refined, would refine to that map.
-    bool seen = false;
-    for (const auto& s : starts) seen = seen || mean_gap(s, start) < distinct;
-    for (const Refined& r : refined) seen = seen || mean_gap(r.images, start) < distinct;
-    if (seen) continue;
-    starts.push_back(start);
-    Refined r;
-    r.whole_rows = whole.Distances(start);
-    r.images = RefineLandmarks(whole, landmarks, part_rows, start,
-                               std::min(options.iterations, 1), &r.whole_rows);
-    evaluate(&r);
-    bool duplicate = false;
-    for (const Refined& other : refined) {
-      duplicate = duplicate || mean_gap(other.sample_images, r.sample_images) < distinct;
-    }
-    if (!duplicate) refined.push_back(std::move(r));
+    add_start(MapVerticesBrute(part3, whole3, landmarks, nullptr));
   }
   if (refined.empty()) {
     throw SolverError("partial matching found no triple of the whole's samples whose distances "
                       "agree with the part's within the tolerance");
+  }
+  // The mirror images of the maps that turn the orientation but keep the distances about as
+  // well as the best map that keeps it: the triples may have reached a right map's mirror
+  // image only.
+  int mirrored = 0;
+  const std::vector<int>* whole_sigma =
+      source_is_part ? mirrors.target_sigma : mirrors.source_sigma;
+  if (whole_sigma != nullptr && !whole_sigma->empty()) {
+    const std::vector<int>& whole_samples = source_is_part ? target_samples : source_samples;
+    const std::vector<int> mirror =
+        MirrorOfVertices(whole, whole_samples, *whole_sigma, source_is_part ? "target" : "source");
+    double least_kept = std::numeric_limits<double>::infinity();
+    for (const Refined& r : refined) {
+      if (r.orientation > 0.5) least_kept = std::min(least_kept, r.residual);
+    }
+    std::vector<int> turned;
+    for (size_t i = 0; i < refined.size(); ++i) {
+      if (refined[i].orientation <= 0.5 && refined[i].residual <= kSeedResidualSlack * least_kept) {
+        turned.push_back(static_cast<int>(i));
+      }
+    }
+    std::stable_sort(turned.begin(), turned.end(),
+                     [&](int a, int b) { return refined[a].residual < refined[b].residual; });
+    for (int i : turned) {
+      if (mirrored >= kMirroredMaps) break;
+      std::vector<int> start(landmarks.size());
+      for (size_t k = 0; k < landmarks.size(); ++k) start[k] = mirror[refined[i].images[k]];
+      mirrored += add_start(std::move(start));
+    }
   }
   // The seed's map of the landmarks, refined in full: kept where the distances and the
   // orientation cannot tell it from the map chosen above.
@@ -599,7 +658,10 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
           << "% of the whole's area); map by geodesic landmarks, residual " << best.residual
           << ", orientation kept by " << best.orientation << " of the samples; " << refined.size()
           << " distinct maps from " << triples.size() << " triple hypotheses"
-          << (seeded < 0 ? "" : chosen == seeded ? ", the seed's kept" : ", not the seed's")
+          << (mirrored > 0 ? " and " + std::to_string(mirrored) + " mirror images" : "")
+          << (seeded < 0         ? ""
+              : chosen == seeded ? ", the seed's kept"
+                                 : ", not the seed's")
           << ", shape disagreement " << best.shape << (shape_decided ? ", chosen by shape" : "");
   result.status.residual = best.residual;
   result.status.iterations = static_cast<int>(refined.size());

@@ -18,18 +18,22 @@
 //   4. of the distinct refined maps, the one of lowest residual among those that keep the
 //      surface's orientation is chosen. Mirror images under an intrinsic left-right symmetry
 //      keep every distance but turn the orientation (the sign of a small triangle of samples
-//      against the vertex normal), so the orientation tells them apart. A body turned front to
-//      back keeps both; of the maps whose residual is within 1.5 times the least, one whose
-//      samples' shape index (core/curvature.h, smoothed over 0.05 sqrt(area of the whole))
-//      disagrees with their images' clearly less (below 0.75 times) than the chosen map's is
-//      taken instead: where a body bulges and where it hollows tells front from back.
+//      against the vertex normal), so the orientation tells them apart. A map that turns it and
+//      keeps the distances as well as the best map that does not (within 1.5 times its
+//      residual) is the mirror image of a right map the triples may have missed: with the
+//      whole's left-right self map known, that map's mirror image joins the maps compared. A body
+//      turned front to back keeps both; of the maps whose residual is within 1.5 times the least,
+//      one whose samples' shape index (core/curvature.h, smoothed over 0.05 sqrt(area of the
+//      whole)) disagrees with their images' clearly less (below 0.75 times) than the chosen map's
+//      is taken instead: where a body bulges and where it hollows tells front from back.
 // Every vertex of the source is then mapped by its distances to the landmarks, searched near
 // the image of its nearest sample. Distances are along mesh edges (core/mesh_graph.h).
 //
 // Units: the two surfaces' coordinates times their `unit` (e.g. 1 / ShapeData::scale, the
 // input units) must be in one unit; the part is the one of smaller area in that unit (either
 // the source or the target). Deterministic. Throws InvalidInputError for a surface without
-// faces or with fewer samples than `landmarks`.
+// faces or with fewer samples than `landmarks`, and for a whole's mirror map (PartialMirrors)
+// whose size is not its samples' or with an index out of their range.
 //
 // Related: generalized MDS, which embeds a part into a whole's geodesic metric [Bronstein,
 // Bronstein & Kimmel 2006, PNAS]; RANSAC [Fischler & Bolles 1981].
@@ -125,6 +129,15 @@ struct PartialRows {
   ShapeIndexCache* shape_index = nullptr;
 };
 
+// The left-right self maps of the two surfaces on the samples given to MatchPartial (sigma[i]:
+// the index of sample i's mirror image among the same samples, as SymmetryResult::sigma), each
+// null when unknown. Only the whole's is read; a vertex goes where its nearest sample along the
+// edges goes.
+struct PartialMirrors {
+  const std::vector<int>* source_sigma = nullptr;
+  const std::vector<int>* target_sigma = nullptr;
+};
+
 // map[v]: the target vertex of source vertex v. samples: farthest-point samples of each
 // surface in sampling order (the first spread widest). status.residual: the chosen map's mean
 // L1 disagreement of distances to the landmarks per landmark, over the whole's square root of
@@ -133,7 +146,8 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
                          double source_unit, const Surface& target,
                          const std::vector<int>& target_samples, double target_unit,
                          const PartialMatchOptions& options = {},
-                         const std::vector<int>* seed = nullptr, const PartialRows& rows = {});
+                         const std::vector<int>* seed = nullptr, const PartialRows& rows = {},
+                         const PartialMirrors& mirrors = {});
 
 // How well `map` (source vertex -> target vertex) keeps geodesic distances on the part (the
 // shape of smaller area in the common unit): the median over pairs of `count` landmarks of

@@ -26,7 +26,8 @@ class PartialAwareMatchingStage : public MatchingStage {
                            shape_index_.get()};
     const double source_unit = 1.0 / pair.source.scale, target_unit = 1.0 / pair.target.scale;
     out->result = MatchPartial(source, pair.source.samples, source_unit, target,
-                               pair.target.samples, target_unit, partial_, &seed, rows);
+                               pair.target.samples, target_unit, partial_, &seed, rows,
+                               {&pair.source.symmetry.sigma, &pair.target.symmetry.sigma});
     auto distortion = [&](const std::vector<int>& map) {
       return LandmarkDistortion(source, pair.source.samples, source_unit, target,
                                 pair.target.samples, target_unit, map, 40, rows);

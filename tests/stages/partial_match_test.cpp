@@ -268,6 +268,46 @@ TEST(PartialMatch, ASeedDecidesWhatDistancesAndOrientationCannot) {
   EXPECT_NE(seeded.status.message.find("the seed's kept"), std::string::npos);
 }
 
+// With one triple hypothesis, the triples reach a map or its mirror image by chance; the
+// whole's left-right self map turns a mirror image into the right map. The whole's sample
+// self map: each sample goes to the sample nearest to its rest vertex's mirror image.
+TEST(PartialMatch, TheWholesSelfMapTurnsAMirrorImageIntoTheRightMap) {
+  const testing::CutAndWholeClasses classes = testing::CutHumanoidClasses(1500);
+  const std::vector<int>& rest_mirror = classes.whole.rest.mirror;
+  PartialMatchOptions o;
+  o.hypotheses = 1;
+  int turned = 0;
+  for (size_t p = 0; p < classes.cut.shapes.size(); ++p) {
+    const TrackedSurface& part = classes.cut.shapes[p].shape;
+    if (part.surface.NumVertices() == classes.whole.shapes[p].shape.surface.NumVertices()) continue;
+    for (size_t q = 0; q < classes.whole.shapes.size(); ++q) {
+      if (q == p) continue;
+      const TrackedSurface& whole = classes.whole.shapes[q].shape;
+      const std::map<int, int> whole_of_rest = ByRestId(whole);
+      std::vector<int> truth(part.surface.NumVertices()), mirrored(truth.size());
+      for (size_t v = 0; v < truth.size(); ++v) {
+        truth[v] = whole_of_rest.at(part.rest_ids[v]);
+        mirrored[v] = whole_of_rest.at(rest_mirror[part.rest_ids[v]]);
+      }
+      const std::vector<int> ps = Samples(part.surface, 300), ws = Samples(whole.surface, 300);
+      const std::vector<int> nearest = NearestSeeds(BuildMeshGraph(whole.surface), ws);
+      std::vector<int> sigma(ws.size());
+      for (size_t i = 0; i < ws.size(); ++i) {
+        sigma[i] = nearest[whole_of_rest.at(rest_mirror[whole.rest_ids[ws[i]]])];
+      }
+      const MatchResult alone = MatchPartial(part.surface, ps, 1.0, whole.surface, ws, 1.0, o);
+      if (MeanError(whole.surface, alone.map, mirrored) > 0.05) continue;
+      ++turned;
+      const MatchResult with = MatchPartial(part.surface, ps, 1.0, whole.surface, ws, 1.0, o,
+                                            nullptr, {}, {nullptr, &sigma});
+      EXPECT_LT(MeanError(whole.surface, with.map, truth), 0.05)
+          << p << " -> " << q << ": " << with.status.message;
+      EXPECT_NE(with.status.message.find("mirror images"), std::string::npos);
+    }
+  }
+  EXPECT_GE(turned, 1);
+}
+
 TEST(PartialMatch, RejectsBadOptionsAndSurfacesWithoutFaces) {
   PartialMatchOptions o;
   o.landmarks = 200;
