@@ -27,7 +27,7 @@ using ::symembed::Read;
 using ::symembed::Write;
 
 // Part of every key: bump when a stage's cached layout or the key scheme changes.
-constexpr char kCacheScheme[] = "symembed-shape-cache-1";
+constexpr char kCacheScheme[] = "symembed-shape-cache-2";
 
 // A cached stage output together with the seconds it took to compute.
 template <typename T>

@@ -106,6 +106,7 @@ void Write(ArchiveWriter& out, const SymmetryResult& result) {
   out.Ints(result.sigma);
   out.Matrix(result.confidence);
   out.F64(result.score);
+  out.F64(result.tie_displacement);
   Write(out, result.status);
 }
 
@@ -119,6 +120,7 @@ void Read(ArchiveReader& in, SymmetryResult* result) {
   if (confidence.cols() > 1) throw ArchiveError("expected a vector");
   result->confidence = confidence.size() ? Eigen::VectorXd(confidence) : Eigen::VectorXd();
   result->score = in.F64();
+  result->tie_displacement = in.F64();
   Read(in, &result->status);
 }
 

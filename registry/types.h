@@ -47,6 +47,9 @@ struct SymmetryResult {
   std::vector<int> sigma;      // #S: sample index -> index of its mirror sample
   Eigen::VectorXd confidence;  // #S in [0, 1]
   double score = 0.0;          // symmetry quality, lower is better (relative to size)
+  // > 0: a candidate whose self map moves the samples at least this much (the measure of
+  // `self_map_displacement`) nearly tied with this one; the stage's RunAlternative proposes it.
+  double tie_displacement = 0.0;
   StageStatus status;
 };
 

@@ -31,6 +31,7 @@ bool Plane2dOptions::IsValid(std::string* error) const {
          {"threads", kThreads, threads},
          {"min_self_map_displacement", kMinSelfMapDisplacement, min_self_map_displacement},
          {"second_plane_below", kSecondPlaneBelow, second_plane_below},
+         {"second_plane_tie", kSecondPlaneTie, second_plane_tie},
          {"distance_confidence", kDistanceConfidence, distance_confidence}});
   if (error) *error = out.str();
   return out.str().empty();
@@ -50,6 +51,10 @@ Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations
 }
 
 namespace {
+
+// A near tie is looked for among the candidates whose self map moves the samples at least this
+// many times as much as the chosen one's: another symmetry, not a variant of the same.
+constexpr double kClearlyMore = 1.5;
 
 // One candidate symmetry: plane in the 3D embedding, self map, confidence, and its criterion.
 struct Candidate {
@@ -197,6 +202,21 @@ class Plane2dSearch {
             << ", intrinsic distortion " << best.intrinsic;
     if (G_.size() > 0) message << ", spectral consistency " << best.consistency;
     message << ", self map displacement " << best.displacement;
+    // A near tie with a candidate that moves the samples clearly more: RunAlternative proposes
+    // it as the second plane.
+    const double moves_more = kClearlyMore * best.displacement;
+    if (options_.second_plane_below > 0.0 && options_.second_plane_tie > 1.0 &&
+        best.displacement >= options_.second_plane_below) {
+      const Candidate* tied = nullptr;
+      for (const Candidate& c : candidates_) {
+        if (c.displacement >= moves_more && (tied == nullptr || c.total < tied->total)) tied = &c;
+      }
+      if (tied != nullptr && tied->total <= options_.second_plane_tie * best.total) {
+        result.tie_displacement = moves_more;
+        message << "; near tie (" << tied->total << ") with a self map moving the samples "
+                << tied->displacement;
+      }
+    }
     result.status.message = message.str();
     return result;
   }

@@ -81,6 +81,13 @@ struct Plane2dOptions {
   // 0: off. Unlike min_self_map_displacement it decides nothing for the shape alone.
   double second_plane_below = 0.4;
   static constexpr Range kSecondPlaneBelow = Range::Closed(0.0, 10.0);
+  // When the chosen self map moves the samples at least second_plane_below, the candidate of
+  // the lowest criterion among those that move them at least 1.5 times as much is proposed as
+  // the second plane hypothesis when its criterion is at most this factor times the chosen
+  // one's: a near tie (a human's front-back self map keeps each limb on itself and can keep
+  // distances as well as the left-right one, which swaps them). 1, or second_plane_below 0: off.
+  double second_plane_tie = 1.25;
+  static constexpr Range kSecondPlaneTie = Range::AtLeast(1.0);
   // > 0: each sample's confidence (the weight of its symmetry term in the symmetrize stage) is
   // multiplied by how well its self map keeps geodesic distances (DistanceConsistencyWeights
   // with this scale) and rescaled to the mean it had; 0: off.

@@ -26,16 +26,19 @@ class Plane2dStage : public SymmetryStage {
   explicit Plane2dStage(Plane2dOptions options) : options_(options) {}
   SymmetryResult Run(const SymmetryInput& in) const override { return Detect(in, options_); }
 
-  // Below second_plane_below, the best candidate that moves the samples at least that much.
+  // Below second_plane_below, the best candidate that moves the samples at least that much;
+  // above it, the nearly tied candidate that moves them clearly more (tie_displacement).
   SymmetryResult RunAlternative(const SymmetryInput& in,
                                 const SymmetryResult& chosen) const override {
     const double bound = options_.second_plane_below;
-    if (!(bound > 0.0) || chosen.sigma.empty() ||
-        SampleSelfMapDisplacement(in.embedding.Y, in.samples, chosen.sigma) >= bound) {
-      return SymmetryResult{};
+    if (!(bound > 0.0) || chosen.sigma.empty()) return SymmetryResult{};
+    double moves_at_least = chosen.tie_displacement;
+    if (SampleSelfMapDisplacement(in.embedding.Y, in.samples, chosen.sigma) < bound) {
+      moves_at_least = bound;
     }
+    if (!(moves_at_least > 0.0)) return SymmetryResult{};
     Plane2dOptions options = options_;
-    options.min_self_map_displacement = std::max(options.min_self_map_displacement, bound);
+    options.min_self_map_displacement = std::max(options.min_self_map_displacement, moves_at_least);
     SymmetryResult second = Detect(in, options);
     if (second.sigma == chosen.sigma) return SymmetryResult{};
     second.status.message = "second plane: " + second.status.message;
@@ -89,6 +92,8 @@ void RegisterSymmetryStages(Registry& registry) {
             "min_self_map_displacement", p.min_self_map_displacement, P::kMinSelfMapDisplacement);
         p.second_plane_below =
             o.GetDouble("second_plane_below", p.second_plane_below, P::kSecondPlaneBelow);
+        p.second_plane_tie =
+            o.GetDouble("second_plane_tie", p.second_plane_tie, P::kSecondPlaneTie);
         p.refine_3d_iterations =
             o.GetInt("refine_3d_iterations", p.refine_3d_iterations, P::kRefine3dIterations);
         p.candidates_3d = o.GetBool("candidates_3d", p.candidates_3d);

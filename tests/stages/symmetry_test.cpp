@@ -311,26 +311,42 @@ TEST(Plane3d, RegisteredStageRunsAndRejectsBadOptions) {
                ConfigError);
 }
 
+// The figure with one arm removed, pressed flat (z * 0.02), every vertex a sample, as the
+// registered plane2d stage reads it; Make builds the stage from its YAML.
+struct FlatFigure {
+  FlatFigure() {
+    RegisterBuiltinStages(registry);
+    embedding.Y = figure.V;
+  }
+  FlatFigure(const FlatFigure&) = delete;
+  FlatFigure& operator=(const FlatFigure&) = delete;
+  auto Make(const std::string& yaml) const {
+    return registry.CreateAs<SymmetryStage>("symmetry", YAML::Load(yaml), "t.yaml",
+                                            "pipeline.symmetry");
+  }
+  static Surface Flattened(Surface s) {
+    s.V.col(2) *= 0.02;
+    return s;
+  }
+  Registry registry;
+  Surface figure = Flattened(testing::SymmetricFigure(1, false));
+  std::vector<int> samples = AllVertices(figure.NumVertices());
+  EmbeddingResult embedding;
+  Eigen::MatrixXd D = EuclideanDistances(figure.V, samples);
+  SymmetryInput input{figure, samples, D, embedding};
+};
+
 // The registered plane2d stage on the figure with one arm removed, pressed flat (z * 0.02): its
 // choice is the plane across the thickness, whose self map moves the samples little; with
 // second_plane_below (default 0.4) it also proposes the left-right plane as a second hypothesis
 // (the pair then chooses), and with the option off, or for a choice that moves the samples
 // enough, none.
 TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
-  Registry registry;
-  RegisterBuiltinStages(registry);
-  auto make = [&](const std::string& yaml) {
-    return registry.CreateAs<SymmetryStage>("symmetry", YAML::Load(yaml), "t.yaml",
-                                            "pipeline.symmetry");
-  };
-  std::vector<int> mirror;
-  Surface figure = testing::SymmetricFigure(1, false, &mirror);
-  figure.V.col(2) *= 0.02;
-  const std::vector<int> samples = AllVertices(figure.NumVertices());
-  EmbeddingResult embedding;
-  embedding.Y = figure.V;
-  const Eigen::MatrixXd D = EuclideanDistances(figure.V, samples);
-  const SymmetryInput input{figure, samples, D, embedding};
+  const FlatFigure flat;
+  const Surface& figure = flat.figure;
+  const std::vector<int>& samples = flat.samples;
+  const SymmetryInput& input = flat.input;
+  auto make = [&](const std::string& yaml) { return flat.Make(yaml); };
   const auto stage = make("{type: plane2d, second_plane_below: 0.3}");
   const SymmetryResult first = stage->Run(input);
   EXPECT_LT(AngleDeg(first.normal, Eigen::Vector3d::UnitZ()), 1.0) << first.status.message;
@@ -347,6 +363,41 @@ TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
       make("{type: plane2d, second_plane_below: 0}")->RunAlternative(input, first).sigma.empty());
   EXPECT_TRUE(stage->RunAlternative(input, second).sigma.empty());
   EXPECT_THROW(make("{type: plane2d, second_plane_below: -1}"), ConfigError);
+}
+
+// The same figure: the plane across the thickness moves the samples a little, every other
+// candidate clearly more. With the bound below the first's displacement, such a candidate is
+// proposed only as a near tie: its criterion within second_plane_tie times the first's. Here
+// the thickness plane fits almost exactly and the others hundreds of times worse, so the
+// default factor proposes nothing and a factor of 1000 proposes the best of them.
+TEST(Plane2d, ProposesANearlyTiedPlaneThatMovesTheSamplesClearlyMore) {
+  const FlatFigure flat;
+  const Surface& figure = flat.figure;
+  const std::vector<int>& samples = flat.samples;
+  const SymmetryInput& input = flat.input;
+  auto make = [&](const std::string& yaml) { return flat.Make(yaml); };
+  const double moved =
+      SampleSelfMapDisplacement(figure.V, samples, make("{type: plane2d}")->Run(input).sigma);
+  ASSERT_GT(moved, 0.0);
+  const std::string below = "second_plane_below: " + std::to_string(0.5 * moved);
+
+  const auto generous = make("{type: plane2d, " + below + ", second_plane_tie: 1000}");
+  const SymmetryResult first = generous->Run(input);
+  EXPECT_LT(AngleDeg(first.normal, Eigen::Vector3d::UnitZ()), 1.0) << first.status.message;
+  EXPECT_NEAR(first.tie_displacement, 1.5 * moved, 1e-9) << first.status.message;
+  EXPECT_NE(first.status.message.find("near tie"), std::string::npos);
+  const SymmetryResult second = generous->RunAlternative(input, first);
+  ASSERT_EQ(second.sigma.size(), samples.size()) << second.status.message;
+  EXPECT_GE(SampleSelfMapDisplacement(figure.V, samples, second.sigma), 1.5 * moved);
+  EXPECT_EQ(second.status.message.rfind("second plane: ", 0), 0u) << second.status.message;
+
+  for (const std::string tie : {"", ", second_plane_tie: 1"}) {
+    const auto stage = make("{type: plane2d, " + below + tie + "}");
+    const SymmetryResult alone = stage->Run(input);
+    EXPECT_EQ(alone.tie_displacement, 0.0) << tie << ": " << alone.status.message;
+    EXPECT_TRUE(stage->RunAlternative(input, alone).sigma.empty()) << tie;
+  }
+  EXPECT_THROW(make("{type: plane2d, second_plane_tie: 0.5}"), ConfigError);
 }
 
 }  // namespace
