@@ -312,7 +312,8 @@ TEST(Plane3d, RegisteredStageRunsAndRejectsBadOptions) {
 }
 
 // The figure with one arm removed, pressed flat (z * 0.02), every vertex a sample, as the
-// registered plane2d stage reads it; Make builds the stage from its YAML.
+// registered plane2d stage reads it; Make builds the stage from its YAML, Moved says how far a
+// self map moves the samples.
 struct FlatFigure {
   FlatFigure() {
     RegisterBuiltinStages(registry);
@@ -323,6 +324,9 @@ struct FlatFigure {
   auto Make(const std::string& yaml) const {
     return registry.CreateAs<SymmetryStage>("symmetry", YAML::Load(yaml), "t.yaml",
                                             "pipeline.symmetry");
+  }
+  double Moved(const std::vector<int>& sigma) const {
+    return SampleSelfMapDisplacement(figure.V, samples, sigma);
   }
   static Surface Flattened(Surface s) {
     s.V.col(2) *= 0.02;
@@ -343,18 +347,16 @@ struct FlatFigure {
 // enough, none.
 TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
   const FlatFigure flat;
-  const Surface& figure = flat.figure;
-  const std::vector<int>& samples = flat.samples;
   const SymmetryInput& input = flat.input;
   auto make = [&](const std::string& yaml) { return flat.Make(yaml); };
   const auto stage = make("{type: plane2d, second_plane_below: 0.3}");
   const SymmetryResult first = stage->Run(input);
   EXPECT_LT(AngleDeg(first.normal, Eigen::Vector3d::UnitZ()), 1.0) << first.status.message;
-  EXPECT_LT(SampleSelfMapDisplacement(figure.V, samples, first.sigma), 0.3);
+  EXPECT_LT(flat.Moved(first.sigma), 0.3);
   const SymmetryResult second = stage->RunAlternative(input, first);
-  ASSERT_EQ(second.sigma.size(), samples.size()) << second.status.message;
+  ASSERT_EQ(second.sigma.size(), flat.samples.size()) << second.status.message;
   EXPECT_LT(AngleDeg(second.normal, Eigen::Vector3d::UnitX()), 1.0) << second.status.message;
-  EXPECT_GE(SampleSelfMapDisplacement(figure.V, samples, second.sigma), 0.3);
+  EXPECT_GE(flat.Moved(second.sigma), 0.3);
   EXPECT_EQ(second.status.message.rfind("second plane: ", 0), 0u) << second.status.message;
   // The default bound (0.4) proposes it too; the option off, or a chosen plane that moves the
   // samples enough: none.
@@ -372,12 +374,9 @@ TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
 // default factor proposes nothing and a factor of 1000 proposes the best of them.
 TEST(Plane2d, ProposesANearlyTiedPlaneThatMovesTheSamplesClearlyMore) {
   const FlatFigure flat;
-  const Surface& figure = flat.figure;
-  const std::vector<int>& samples = flat.samples;
   const SymmetryInput& input = flat.input;
   auto make = [&](const std::string& yaml) { return flat.Make(yaml); };
-  const double moved =
-      SampleSelfMapDisplacement(figure.V, samples, make("{type: plane2d}")->Run(input).sigma);
+  const double moved = flat.Moved(make("{type: plane2d}")->Run(input).sigma);
   ASSERT_GT(moved, 0.0);
   const std::string below = "second_plane_below: " + std::to_string(0.5 * moved);
 
@@ -387,8 +386,8 @@ TEST(Plane2d, ProposesANearlyTiedPlaneThatMovesTheSamplesClearlyMore) {
   EXPECT_NEAR(first.tie_displacement, 1.5 * moved, 1e-9) << first.status.message;
   EXPECT_NE(first.status.message.find("near tie"), std::string::npos);
   const SymmetryResult second = generous->RunAlternative(input, first);
-  ASSERT_EQ(second.sigma.size(), samples.size()) << second.status.message;
-  EXPECT_GE(SampleSelfMapDisplacement(figure.V, samples, second.sigma), 1.5 * moved);
+  ASSERT_EQ(second.sigma.size(), flat.samples.size()) << second.status.message;
+  EXPECT_GE(flat.Moved(second.sigma), 1.5 * moved);
   EXPECT_EQ(second.status.message.rfind("second plane: ", 0), 0u) << second.status.message;
 
   for (const std::string tie : {"", ", second_plane_tie: 1"}) {
