@@ -172,17 +172,34 @@ std::vector<int> MatchableTargets(const Eigen::VectorXd& mass_t,
 
 std::vector<int> NearestUnderMap(const BasisRef& Q, const BasisRef& P,
                                  const std::vector<int>& targets, const Eigen::MatrixXd& C,
-                                 std::vector<double>* sq_dist) {
+                                 std::vector<double>* sq_dist, const BasisRef& target_side,
+                                 const BasisRef& query_side) {
   SYMEMBED_CHECK(Q.cols() == C.rows() && P.cols() == C.cols() &&
                      P.rows() == static_cast<Eigen::Index>(targets.size()),
                  "nearest under a map: C is " << C.rows() << " x " << C.cols() << ", queries "
                                               << Q.cols() << " columns, " << P.rows() << " x "
-                                              << P.cols() << " target rows for "
-                                              << targets.size() << " targets");
-  const Eigen::MatrixXd points = P * C.transpose();
-  const SpectralNearest tree(points, targets);
+                                              << P.cols() << " target rows for " << targets.size()
+                                              << " targets");
   std::vector<int> nearest;
-  tree.Query(Q, &nearest, sq_dist);
+  const Eigen::Index m = target_side.cols();
+  if (m == 0 && query_side.cols() == 0) {
+    const Eigen::MatrixXd points = P * C.transpose();
+    const SpectralNearest tree(points, targets);
+    tree.Query(Q, &nearest, sq_dist);
+    return nearest;
+  }
+  SYMEMBED_CHECK(
+      query_side.cols() == m && target_side.rows() == P.rows() && query_side.rows() == Q.rows(),
+      "nearest under a map: side columns " << target_side.rows() << " x " << m
+                                           << " for the targets, " << query_side.rows() << " x "
+                                           << query_side.cols() << " for the queries");
+  Eigen::MatrixXd points(P.rows(), C.rows() + m), queries(Q.rows(), C.rows() + m);
+  points.leftCols(C.rows()) = P * C.transpose();
+  points.rightCols(m) = target_side;
+  queries.leftCols(C.rows()) = Q;
+  queries.rightCols(m) = query_side;
+  const SpectralNearest tree(points, targets);
+  tree.Query(queries, &nearest, sq_dist);
   return nearest;
 }
 

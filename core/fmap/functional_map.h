@@ -78,10 +78,14 @@ std::vector<int> MatchableTargets(const Eigen::VectorXd& mass_t,
 
 // PointMapFromFunctionalMap from rows already gathered: for each row of Q (queries x ks, the
 // source basis at the query points), the entry of `targets` whose row of P (targets x kt, the
-// target basis at those vertices) times C^T is nearest.
+// target basis at those vertices) times C^T is nearest. Side columns (optional, m of them:
+// target_side targets x m, query_side queries x m) are appended to both sides, so that a query
+// also pays the squared distance between its side row and the target's.
 std::vector<int> NearestUnderMap(const BasisRef& Q, const BasisRef& P,
                                  const std::vector<int>& targets, const Eigen::MatrixXd& C,
-                                 std::vector<double>* sq_dist = nullptr);
+                                 std::vector<double>* sq_dist = nullptr,
+                                 const BasisRef& target_side = Eigen::MatrixXd(),
+                                 const BasisRef& query_side = Eigen::MatrixXd());
 
 // ||C^T C - I||_F^2 / k for a k x k functional map: the per-scale term of the ZoomOut energy,
 // 0 for an area-preserving (orthogonal) map.

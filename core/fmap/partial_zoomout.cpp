@@ -24,24 +24,18 @@ int PartBasisSize(const Eigen::VectorXd& whole_evals, const Eigen::VectorXd& par
 
 namespace {
 
-// For each query (its basis row in Q, its initial image in `images`), the entry of `targets`
-// (basis rows P) whose row under C is nearest, with the anchor's points side by side when it
-// has weight.
+// NearestUnderMap with the anchor's points side by side when it has weight: each query's side
+// row is its initial image's point, each target's its own.
 std::vector<int> Query(const BasisRef& Q, const BasisRef& P, const std::vector<int>& targets,
                        const Eigen::MatrixXd& C, const PartialAnchor& anchor,
                        const std::vector<int>& images, std::vector<double>* sq) {
   if (anchor.weight <= 0.0) return NearestUnderMap(Q, P, targets, C, sq);
   const double w = std::sqrt(anchor.weight);
   const Eigen::MatrixX3d& X = *anchor.target_points;
-  Eigen::MatrixXd points(P.rows(), C.rows() + 3), queries(Q.rows(), C.rows() + 3);
-  points.leftCols(C.rows()) = P * C.transpose();
-  for (size_t r = 0; r < targets.size(); ++r) points.row(r).tail<3>() = w * X.row(targets[r]);
-  queries.leftCols(C.rows()) = Q;
-  for (size_t r = 0; r < images.size(); ++r) queries.row(r).tail<3>() = w * X.row(images[r]);
-  const SpectralNearest nearest(points, targets);
-  std::vector<int> out;
-  nearest.Query(queries, &out, sq);
-  return out;
+  Eigen::MatrixXd target_side(targets.size(), 3), query_side(images.size(), 3);
+  for (size_t r = 0; r < targets.size(); ++r) target_side.row(r) = w * X.row(targets[r]);
+  for (size_t r = 0; r < images.size(); ++r) query_side.row(r) = w * X.row(images[r]);
+  return NearestUnderMap(Q, P, targets, C, sq, target_side, query_side);
 }
 
 }  // namespace

@@ -90,7 +90,7 @@ ZoomOutSetup::ZoomOutSetup(const LaplaceBasis& source, const LaplaceBasis& targe
       target_sample_count_(samples.empty() ? 0 : static_cast<int>(target_samples.size())) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("zoomout: " + error);
-  const int ns = source.NumVertices(), nt = target.NumVertices();
+  const int nt = target.NumVertices();
   CheckBasesReach("zoomout", source, target, options.k_end);
   // The vertices the iterations run on, and their least-squares weights.
   ZoomOutActive active = ZoomOutActivePoints("zoomout", source, samples);
