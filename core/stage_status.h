@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <tuple>
 
 namespace symembed {
 
@@ -11,6 +12,11 @@ struct StageStatus {
   int iterations = 0;
   double residual = 0.0;
   std::string message;
+  // Its members in the order of its cache entries (registry/serialize.h).
+  static constexpr auto Members() {
+    return std::make_tuple(&StageStatus::converged, &StageStatus::iterations,
+                           &StageStatus::residual, &StageStatus::message);
+  }
 };
 
 }  // namespace symembed

@@ -1,6 +1,6 @@
 // A small versioned binary archive for cache entries: scalars, strings, int/double vectors,
 // Eigen matrices (double, int, or double stored as float), and the per-shape results of
-// registry/types.h.
+// registry/types.h, each stored as the members it lists.
 //
 // Frame: "SYMARCH1" magic, format version (u32), tag (string), payload size (u64), FNV-1a
 // checksum of the payload (u64), payload. A reader rejects a frame whose magic, version, tag,
@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/errors.h"
@@ -74,26 +75,59 @@ class ArchiveReader {
   size_t pos_ = 0;
 };
 
-// Results of registry/types.h. Read* throws ArchiveError on malformed data.
-void Write(ArchiveWriter& out, const StageStatus& status);
-void Read(ArchiveReader& in, StageStatus* status);
+// One member of a result, by its type. ReadMember throws ArchiveError on malformed data (a
+// matrix of the wrong shape).
+void WriteMember(ArchiveWriter& out, bool value);
+void WriteMember(ArchiveWriter& out, int value);
+void WriteMember(ArchiveWriter& out, double value);
+void WriteMember(ArchiveWriter& out, const std::string& value);
+void WriteMember(ArchiveWriter& out, const std::vector<int>& values);
+void WriteMember(ArchiveWriter& out, const std::vector<double>& values);
+void WriteMember(ArchiveWriter& out, const Eigen::MatrixXd& M);
+void WriteMember(ArchiveWriter& out, const Eigen::MatrixX3d& M);
+void WriteMember(ArchiveWriter& out, const Eigen::VectorXd& v);
+void WriteMember(ArchiveWriter& out, const Eigen::Vector3d& v);
+void ReadMember(ArchiveReader& in, bool* value);
+void ReadMember(ArchiveReader& in, int* value);
+void ReadMember(ArchiveReader& in, double* value);
+void ReadMember(ArchiveReader& in, std::string* value);
+void ReadMember(ArchiveReader& in, std::vector<int>* values);
+void ReadMember(ArchiveReader& in, std::vector<double>* values);
+void ReadMember(ArchiveReader& in, Eigen::MatrixXd* M);
+void ReadMember(ArchiveReader& in, Eigen::MatrixX3d* M);
+void ReadMember(ArchiveReader& in, Eigen::VectorXd* v);
+void ReadMember(ArchiveReader& in, Eigen::Vector3d* v);
+
+// Types that are not a list of members. Read throws ArchiveError on malformed data.
 void Write(ArchiveWriter& out, const Report& report);
 void Read(ArchiveReader& in, Report* report);
 void Write(ArchiveWriter& out, const Surface& surface);
 void Read(ArchiveReader& in, Surface* surface);
-void Write(ArchiveWriter& out, const PreprocessResult& result);
-void Read(ArchiveReader& in, PreprocessResult* result);
-void Write(ArchiveWriter& out, const SamplingResult& result);
-void Read(ArchiveReader& in, SamplingResult* result);
-void Write(ArchiveWriter& out, const EmbeddingResult& result);
-void Read(ArchiveReader& in, EmbeddingResult* result);
-void Write(ArchiveWriter& out, const SymmetryResult& result);
-void Read(ArchiveReader& in, SymmetryResult* result);
-void Write(ArchiveWriter& out, const SymmetrizeResult& result);
-void Read(ArchiveReader& in, SymmetrizeResult* result);
 void Write(ArchiveWriter& out, const Eigen::MatrixXd& M);
 void Read(ArchiveReader& in, Eigen::MatrixXd* M);
 void Write(ArchiveWriter& out, const LaplaceBasis& basis);
 void Read(ArchiveReader& in, LaplaceBasis* basis);
+
+// A member of another type: its own Write and Read.
+template <typename T>
+void WriteMember(ArchiveWriter& out, const T& value) {
+  Write(out, value);
+}
+template <typename T>
+void ReadMember(ArchiveReader& in, T* value) {
+  Read(in, value);
+}
+
+// A type that lists its members (`static constexpr auto Members()`, a tuple of pointers to
+// members: the stage results of registry/types.h, StageStatus) is stored as its members in
+// that order, so its layout is declared once, beside its fields.
+template <typename T, typename = decltype(T::Members())>
+void Write(ArchiveWriter& out, const T& value) {
+  std::apply([&](auto... member) { (WriteMember(out, value.*member), ...); }, T::Members());
+}
+template <typename T, typename = decltype(T::Members())>
+void Read(ArchiveReader& in, T* value) {
+  std::apply([&](auto... member) { (ReadMember(in, &(value->*member)), ...); }, T::Members());
+}
 
 }  // namespace symembed

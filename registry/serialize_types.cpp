@@ -1,30 +1,43 @@
-// Archive layout of the per-shape results (registry/types.h). Changing a layout here requires
-// bumping kArchiveVersion so that old cache entries become misses.
+// Archive layout of each member type of the per-shape results (registry/types.h) and of the
+// types that are not lists of members. Changing a layout here, or a result's Members(),
+// requires bumping kArchiveVersion so that old cache entries become misses.
 #include "registry/serialize.h"
 
 namespace symembed {
-namespace {
+void WriteMember(ArchiveWriter& out, bool value) { out.Bool(value); }
+void WriteMember(ArchiveWriter& out, int value) { out.I64(value); }
+void WriteMember(ArchiveWriter& out, double value) { out.F64(value); }
+void WriteMember(ArchiveWriter& out, const std::string& value) { out.String(value); }
+void WriteMember(ArchiveWriter& out, const std::vector<int>& values) { out.Ints(values); }
+void WriteMember(ArchiveWriter& out, const std::vector<double>& values) { out.Doubles(values); }
+void WriteMember(ArchiveWriter& out, const Eigen::MatrixXd& M) { out.Matrix(M); }
+void WriteMember(ArchiveWriter& out, const Eigen::MatrixX3d& M) { out.Matrix(M); }
+void WriteMember(ArchiveWriter& out, const Eigen::VectorXd& v) { out.Matrix(v); }
+void WriteMember(ArchiveWriter& out, const Eigen::Vector3d& v) { out.Matrix(v); }
 
-Eigen::MatrixX3d ReadN3(ArchiveReader& in) {
-  Eigen::MatrixXd M = in.Matrix();
-  if (M.cols() != 3 && M.size() != 0) throw ArchiveError("expected an N x 3 matrix");
-  return M.size() == 0 ? Eigen::MatrixX3d() : Eigen::MatrixX3d(M);
+void ReadMember(ArchiveReader& in, bool* value) { *value = in.Bool(); }
+void ReadMember(ArchiveReader& in, int* value) { *value = static_cast<int>(in.I64()); }
+void ReadMember(ArchiveReader& in, double* value) { *value = in.F64(); }
+void ReadMember(ArchiveReader& in, std::string* value) { *value = in.String(); }
+void ReadMember(ArchiveReader& in, std::vector<int>* values) { *values = in.Ints(); }
+void ReadMember(ArchiveReader& in, std::vector<double>* values) { *values = in.Doubles(); }
+void ReadMember(ArchiveReader& in, Eigen::MatrixXd* M) { *M = in.Matrix(); }
+void ReadMember(ArchiveReader& in, Eigen::MatrixX3d* M) {
+  const Eigen::MatrixXd N = in.Matrix();
+  if (N.cols() != 3 && N.size() != 0) throw ArchiveError("expected an N x 3 matrix");
+  *M = N.size() == 0 ? Eigen::MatrixX3d() : Eigen::MatrixX3d(N);
 }
 
-}  // namespace
-
-void Write(ArchiveWriter& out, const StageStatus& status) {
-  out.Bool(status.converged);
-  out.I64(status.iterations);
-  out.F64(status.residual);
-  out.String(status.message);
+void ReadMember(ArchiveReader& in, Eigen::VectorXd* v) {
+  const Eigen::MatrixXd M = in.Matrix();
+  if (M.cols() > 1) throw ArchiveError("expected a vector");
+  *v = M.size() ? Eigen::VectorXd(M) : Eigen::VectorXd();
 }
 
-void Read(ArchiveReader& in, StageStatus* status) {
-  status->converged = in.Bool();
-  status->iterations = static_cast<int>(in.I64());
-  status->residual = in.F64();
-  status->message = in.String();
+void ReadMember(ArchiveReader& in, Eigen::Vector3d* v) {
+  const Eigen::MatrixXd M = in.Matrix();
+  if (M.rows() != 3 || M.cols() != 1) throw ArchiveError("expected a 3-vector");
+  *v = M;
 }
 
 void Write(ArchiveWriter& out, const Report& report) {
@@ -50,92 +63,10 @@ void Write(ArchiveWriter& out, const Surface& surface) {
 }
 
 void Read(ArchiveReader& in, Surface* surface) {
-  surface->V = ReadN3(in);
+  ReadMember(in, &surface->V);
   Eigen::MatrixXi F = in.IntMatrix();
   if (F.cols() != 3 && F.size() != 0) throw ArchiveError("expected an F x 3 face matrix");
   surface->F = F.size() == 0 ? Eigen::MatrixX3i() : Eigen::MatrixX3i(F);
-}
-
-void Write(ArchiveWriter& out, const PreprocessResult& result) {
-  Write(out, result.surface);
-  out.Ints(result.input_ids);
-  out.F64(result.scale);
-  Write(out, result.report);
-  Write(out, result.status);
-}
-
-void Read(ArchiveReader& in, PreprocessResult* result) {
-  Read(in, &result->surface);
-  result->input_ids = in.Ints();
-  result->scale = in.F64();
-  Read(in, &result->report);
-  Read(in, &result->status);
-}
-
-void Write(ArchiveWriter& out, const SamplingResult& result) {
-  out.Ints(result.samples);
-  out.F64(result.coverage_radius);
-  Write(out, result.status);
-}
-
-void Read(ArchiveReader& in, SamplingResult* result) {
-  result->samples = in.Ints();
-  result->coverage_radius = in.F64();
-  Read(in, &result->status);
-}
-
-void Write(ArchiveWriter& out, const EmbeddingResult& result) {
-  out.Matrix(result.Y);
-  out.F64(result.normalized_stress);
-  out.I64(result.reflection);
-  out.Doubles(result.stress_history);
-  Write(out, result.status);
-}
-
-void Read(ArchiveReader& in, EmbeddingResult* result) {
-  result->Y = in.Matrix();
-  result->normalized_stress = in.F64();
-  result->reflection = static_cast<int>(in.I64());
-  result->stress_history = in.Doubles();
-  Read(in, &result->status);
-}
-
-void Write(ArchiveWriter& out, const SymmetryResult& result) {
-  out.Matrix(result.normal);
-  out.F64(result.offset);
-  out.Ints(result.sigma);
-  out.Matrix(result.confidence);
-  out.F64(result.score);
-  out.F64(result.tie_displacement);
-  Write(out, result.status);
-}
-
-void Read(ArchiveReader& in, SymmetryResult* result) {
-  Eigen::MatrixXd normal = in.Matrix();
-  if (normal.rows() != 3 || normal.cols() != 1) throw ArchiveError("expected a 3-vector");
-  result->normal = normal;
-  result->offset = in.F64();
-  result->sigma = in.Ints();
-  Eigen::MatrixXd confidence = in.Matrix();
-  if (confidence.cols() > 1) throw ArchiveError("expected a vector");
-  result->confidence = confidence.size() ? Eigen::VectorXd(confidence) : Eigen::VectorXd();
-  result->score = in.F64();
-  result->tie_displacement = in.F64();
-  Read(in, &result->status);
-}
-
-void Write(ArchiveWriter& out, const SymmetrizeResult& result) {
-  out.Matrix(result.Y);
-  out.F64(result.asymmetry_before);
-  out.F64(result.asymmetry_after);
-  Write(out, result.status);
-}
-
-void Read(ArchiveReader& in, SymmetrizeResult* result) {
-  result->Y = ReadN3(in);
-  result->asymmetry_before = in.F64();
-  result->asymmetry_after = in.F64();
-  Read(in, &result->status);
 }
 
 void Write(ArchiveWriter& out, const Eigen::MatrixXd& M) { out.Matrix(M); }

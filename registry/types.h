@@ -5,6 +5,7 @@
 #include <array>
 #include <map>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -25,12 +26,23 @@ struct PreprocessResult {
   double scale = 1.0;          // output coordinates = input coordinates * scale (after centring)
   Report report;               // every change counted
   StageStatus status;
+  // Its members in the order of its cache entries (registry/serialize.h).
+  static constexpr auto Members() {
+    return std::make_tuple(&PreprocessResult::surface, &PreprocessResult::input_ids,
+                           &PreprocessResult::scale, &PreprocessResult::report,
+                           &PreprocessResult::status);
+  }
 };
 
 struct SamplingResult {
   std::vector<int> samples;      // #S vertex ids, in sampling order
   double coverage_radius = 0.0;  // max over vertices of the distance to the nearest sample
   StageStatus status;
+  // Its members in the order of its cache entries (registry/serialize.h).
+  static constexpr auto Members() {
+    return std::make_tuple(&SamplingResult::samples, &SamplingResult::coverage_radius,
+                           &SamplingResult::status);
+  }
 };
 
 struct EmbeddingResult {
@@ -39,6 +51,12 @@ struct EmbeddingResult {
   int reflection = 1;                  // sign of det of the Procrustes fit input -> embedding
   std::vector<double> stress_history;  // per iteration (lsmds), empty otherwise
   StageStatus status;
+  // Its members in the order of its cache entries (registry/serialize.h).
+  static constexpr auto Members() {
+    return std::make_tuple(&EmbeddingResult::Y, &EmbeddingResult::normalized_stress,
+                           &EmbeddingResult::reflection, &EmbeddingResult::stress_history,
+                           &EmbeddingResult::status);
+  }
 };
 
 struct SymmetryResult {
@@ -51,6 +69,12 @@ struct SymmetryResult {
   // `self_map_displacement`) nearly tied with this one; the stage's RunAlternative proposes it.
   double tie_displacement = 0.0;
   StageStatus status;
+  // Its members in the order of its cache entries (registry/serialize.h).
+  static constexpr auto Members() {
+    return std::make_tuple(&SymmetryResult::normal, &SymmetryResult::offset, &SymmetryResult::sigma,
+                           &SymmetryResult::confidence, &SymmetryResult::score,
+                           &SymmetryResult::tie_displacement, &SymmetryResult::status);
+  }
 };
 
 struct SymmetrizeResult {
@@ -58,6 +82,11 @@ struct SymmetrizeResult {
   double asymmetry_before = 0.0;  // mean ||M y_i - y_sigma(i)|| / size, M = diag(-1,1,1)
   double asymmetry_after = 0.0;
   StageStatus status;
+  // Its members in the order of its cache entries (registry/serialize.h).
+  static constexpr auto Members() {
+    return std::make_tuple(&SymmetrizeResult::Y, &SymmetrizeResult::asymmetry_before,
+                           &SymmetrizeResult::asymmetry_after, &SymmetrizeResult::status);
+  }
 };
 
 // Everything the per-pair stages need about one shape. Built once per shape and shared by

@@ -136,5 +136,38 @@ TEST(Archive, RoundTripsShapeResults) {
   EXPECT_EQ(basis2.mass, basis.mass);
 }
 
+// A result is stored as the members its Members() lists, in that order: the same bytes as its
+// fields written one by one (the layout the cache's entries have), and a member of the wrong
+// shape is refused.
+TEST(Archive, AResultIsStoredAsItsMembersInOrder) {
+  SymmetrizeResult result;
+  result.Y = Eigen::MatrixX3d::Random(5, 3);
+  result.asymmetry_before = 0.25;
+  result.asymmetry_after = 0.125;
+  result.status.iterations = 7;
+  result.status.message = "done";
+  ArchiveWriter by_members, by_hand;
+  Write(by_members, result);
+  by_hand.Matrix(result.Y);
+  by_hand.F64(0.25);
+  by_hand.F64(0.125);
+  by_hand.Bool(true);
+  by_hand.I64(7);
+  by_hand.F64(0.0);
+  by_hand.String("done");
+  EXPECT_EQ(by_members.Finish("r"), by_hand.Finish("r"));
+
+  ArchiveWriter two_columns;
+  two_columns.Matrix(Eigen::MatrixXd::Zero(5, 2));
+  ArchiveReader y_in(two_columns.Finish("r"), "r");
+  SymmetrizeResult read;
+  EXPECT_THROW(Read(y_in, &read), ArchiveError);
+  ArchiveWriter short_normal;
+  short_normal.Matrix(Eigen::Vector2d(1.0, 0.0));
+  ArchiveReader normal_in(short_normal.Finish("r"), "r");
+  SymmetryResult symmetry;
+  EXPECT_THROW(Read(normal_in, &symmetry), ArchiveError);
+}
+
 }  // namespace
 }  // namespace symembed
