@@ -37,15 +37,10 @@ namespace symembed {
 // The instantiated stages of one variant.
 struct Pipeline {
   std::unique_ptr<Dataset> dataset;
-  std::unique_ptr<PreprocessStage> preprocess;
-  std::unique_ptr<SamplingStage> sampling;
-  std::unique_ptr<GeodesicsStage> geodesics;
-  std::unique_ptr<EmbeddingStage> embedding;
-  std::unique_ptr<SymmetryStage> symmetry;
-  std::unique_ptr<SymmetrizeStage> symmetrize;
-  std::unique_ptr<FlipStage> flip;
-  std::unique_ptr<MatchingStage> matching;
-  std::unique_ptr<RefineStage> refine;
+  // One member per stage kind, named by it: `std::unique_ptr<SymmetryStage> symmetry;`.
+#define SYMEMBED_PIPELINE_MEMBER(name, Name, scope, default_type) std::unique_ptr<Name##Stage> name;
+  SYMEMBED_STAGE_KINDS(SYMEMBED_PIPELINE_MEMBER)
+#undef SYMEMBED_PIPELINE_MEMBER
   std::unique_ptr<GeodesicsStage> evaluation_geodesics;
   EvaluationOptions evaluation;
 
@@ -53,19 +48,12 @@ struct Pipeline {
   const Stage& StageOf(const std::string& kind) const;
 
   // Calls f(kind name, unique_ptr member) for each stage of pipeline (a Pipeline or a const
-  // Pipeline), in the order of kPipelineStageKinds (registry/stage_kinds.h): the one binding of
-  // the kinds to the members (tests/harness/config_test.cpp checks it against the table).
+  // Pipeline), in the order of the stage kinds (registry/stage_kinds.h).
   template <typename P, typename F>
   static void ForEachStage(P& pipeline, F&& f) {
-    f("preprocess", pipeline.preprocess);
-    f("sampling", pipeline.sampling);
-    f("geodesics", pipeline.geodesics);
-    f("embedding", pipeline.embedding);
-    f("symmetry", pipeline.symmetry);
-    f("symmetrize", pipeline.symmetrize);
-    f("flip", pipeline.flip);
-    f("matching", pipeline.matching);
-    f("refine", pipeline.refine);
+#define SYMEMBED_VISIT_STAGE(name, Name, scope, default_type) f(#name, pipeline.name);
+    SYMEMBED_STAGE_KINDS(SYMEMBED_VISIT_STAGE)
+#undef SYMEMBED_VISIT_STAGE
   }
 };
 

@@ -1,10 +1,11 @@
-// The stage kinds: one table of their names, in pipeline order, with whether each runs per
-// shape or per pair and its default type. The registry (which kinds may be registered), the
-// config parser (which `pipeline` keys exist, the defaults of kinds a config leaves out), the
-// resolved config, the pipeline builder and the cache keys (the per-shape rows in
+// The stage kinds: one row each (SYMEMBED_STAGE_KINDS), in pipeline order, with whether each
+// runs per shape or per pair and its default type. The registry (which kinds may be
+// registered), the config parser (which `pipeline` keys exist, the defaults of kinds a config
+// leaves out), the resolved config, the pipeline builder, the cache keys (the per-shape rows in
 // ShapeStageKeys, harness/shape_pipeline.h; the per-pair rows in PairKey,
-// harness/pair_pipeline.h) all read it; the interface of each kind is in registry/stages.h and
-// its member in Pipeline (harness/config.h), bound to the table by Pipeline::ForEachStage.
+// harness/pair_pipeline.h), the members of Pipeline and Pipeline::ForEachStage
+// (harness/config.h), and the registration of the built-in stages (stages/register.h) all
+// follow from the rows.
 #pragma once
 
 #include <string>
@@ -20,17 +21,28 @@ struct StageKind {
   const char* default_type;  // the built-in type used when a config does not name one
 };
 
-// Pipeline order: the per-shape chain, then the per-pair chain.
+// The stage kinds, one row each, in pipeline order (the per-shape chain, then the per-pair
+// chain): X(name, Name, scope, default type). `name` is the kind's key under `pipeline:`, its
+// member of Pipeline (harness/config.h) and its folder stages/<name>/; `Name` names its
+// interface <Name>Stage (registry/stages.h) and its registration function
+// Register<Name>Stages (stages/register.h); the default type is the built-in type used when a
+// config does not name one. Every list of the kinds in the code is expanded from these rows.
+#define SYMEMBED_STAGE_KINDS(X)                   \
+  X(preprocess, Preprocess, kShape, "standard")   \
+  X(sampling, Sampling, kShape, "farthest_point") \
+  X(geodesics, Geodesics, kShape, "dijkstra")     \
+  X(embedding, Embedding, kShape, "lsmds")        \
+  X(symmetry, Symmetry, kShape, "plane2d")        \
+  X(symmetrize, Symmetrize, kShape, "ceres")      \
+  X(flip, Flip, kPair, "extrinsic")               \
+  X(matching, Matching, kPair, "deformed")        \
+  X(refine, Refine, kPair, "none")
+
 inline constexpr StageKind kPipelineStageKinds[] = {
-    {"preprocess", StageScope::kShape, "standard"},
-    {"sampling", StageScope::kShape, "farthest_point"},
-    {"geodesics", StageScope::kShape, "dijkstra"},
-    {"embedding", StageScope::kShape, "lsmds"},
-    {"symmetry", StageScope::kShape, "plane2d"},
-    {"symmetrize", StageScope::kShape, "ceres"},
-    {"flip", StageScope::kPair, "extrinsic"},
-    {"matching", StageScope::kPair, "deformed"},
-    {"refine", StageScope::kPair, "none"},
+#define SYMEMBED_STAGE_KIND_ROW(name, Name, scope, default_type) \
+  {#name, StageScope::scope, default_type},
+    SYMEMBED_STAGE_KINDS(SYMEMBED_STAGE_KIND_ROW)
+#undef SYMEMBED_STAGE_KIND_ROW
 };
 
 // The kind of the dataset loaders, registered like stages but not part of the pipeline chain.

@@ -2,17 +2,14 @@
 #pragma once
 
 #include "registry/registry.h"
+#include "registry/stage_kinds.h"
 
 namespace symembed {
 
-void RegisterPreprocessStages(Registry& registry);
-void RegisterSamplingStages(Registry& registry);
-void RegisterGeodesicsStages(Registry& registry);
-void RegisterEmbeddingStages(Registry& registry);
-void RegisterSymmetryStages(Registry& registry);
-void RegisterSymmetrizeStages(Registry& registry);
-void RegisterFlipStages(Registry& registry);
-void RegisterMatchingStages(Registry& registry);
-void RegisterRefineStages(Registry& registry);
+// void Register<Name>Stages(Registry& registry), one per row of SYMEMBED_STAGE_KINDS.
+#define SYMEMBED_DECLARE_REGISTER(name, Name, scope, default_type) \
+  void Register##Name##Stages(Registry& registry);
+SYMEMBED_STAGE_KINDS(SYMEMBED_DECLARE_REGISTER)
+#undef SYMEMBED_DECLARE_REGISTER
 
 }  // namespace symembed
