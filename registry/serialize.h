@@ -75,15 +75,15 @@ class ArchiveReader {
   size_t pos_ = 0;
 };
 
-// One member of a result, by its type. ReadMember throws ArchiveError on malformed data (a
-// matrix of the wrong shape).
+// One member of a result, by its type (a type with its own Write and Read below, such as
+// Eigen::MatrixXd or Surface, goes through them). ReadMember throws ArchiveError on malformed
+// data (a matrix of the wrong shape).
 void WriteMember(ArchiveWriter& out, bool value);
 void WriteMember(ArchiveWriter& out, int value);
 void WriteMember(ArchiveWriter& out, double value);
 void WriteMember(ArchiveWriter& out, const std::string& value);
 void WriteMember(ArchiveWriter& out, const std::vector<int>& values);
 void WriteMember(ArchiveWriter& out, const std::vector<double>& values);
-void WriteMember(ArchiveWriter& out, const Eigen::MatrixXd& M);
 void WriteMember(ArchiveWriter& out, const Eigen::MatrixX3d& M);
 void WriteMember(ArchiveWriter& out, const Eigen::VectorXd& v);
 void WriteMember(ArchiveWriter& out, const Eigen::Vector3d& v);
@@ -93,7 +93,6 @@ void ReadMember(ArchiveReader& in, double* value);
 void ReadMember(ArchiveReader& in, std::string* value);
 void ReadMember(ArchiveReader& in, std::vector<int>* values);
 void ReadMember(ArchiveReader& in, std::vector<double>* values);
-void ReadMember(ArchiveReader& in, Eigen::MatrixXd* M);
 void ReadMember(ArchiveReader& in, Eigen::MatrixX3d* M);
 void ReadMember(ArchiveReader& in, Eigen::VectorXd* v);
 void ReadMember(ArchiveReader& in, Eigen::Vector3d* v);

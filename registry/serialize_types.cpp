@@ -10,7 +10,6 @@ void WriteMember(ArchiveWriter& out, double value) { out.F64(value); }
 void WriteMember(ArchiveWriter& out, const std::string& value) { out.String(value); }
 void WriteMember(ArchiveWriter& out, const std::vector<int>& values) { out.Ints(values); }
 void WriteMember(ArchiveWriter& out, const std::vector<double>& values) { out.Doubles(values); }
-void WriteMember(ArchiveWriter& out, const Eigen::MatrixXd& M) { out.Matrix(M); }
 void WriteMember(ArchiveWriter& out, const Eigen::MatrixX3d& M) { out.Matrix(M); }
 void WriteMember(ArchiveWriter& out, const Eigen::VectorXd& v) { out.Matrix(v); }
 void WriteMember(ArchiveWriter& out, const Eigen::Vector3d& v) { out.Matrix(v); }
@@ -21,7 +20,6 @@ void ReadMember(ArchiveReader& in, double* value) { *value = in.F64(); }
 void ReadMember(ArchiveReader& in, std::string* value) { *value = in.String(); }
 void ReadMember(ArchiveReader& in, std::vector<int>* values) { *values = in.Ints(); }
 void ReadMember(ArchiveReader& in, std::vector<double>* values) { *values = in.Doubles(); }
-void ReadMember(ArchiveReader& in, Eigen::MatrixXd* M) { *M = in.Matrix(); }
 void ReadMember(ArchiveReader& in, Eigen::MatrixX3d* M) {
   const Eigen::MatrixXd N = in.Matrix();
   if (N.cols() != 3 && N.size() != 0) throw ArchiveError("expected an N x 3 matrix");

@@ -89,6 +89,13 @@ TEST_P(GeodesicsTest, FlatGridMatchesEuclidean) {
   }
 }
 
+// The angle between the directions of a and b from the origin: their great-circle distance on
+// the unit sphere.
+double GreatCircleAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d p = a.normalized(), q = b.normalized();
+  return std::atan2(p.cross(q).norm(), p.dot(q));
+}
+
 TEST_P(GeodesicsTest, SphereMatchesGreatCircleAndConverges) {
   const SolverCase& c = GetParam();
   const double radius = 2.0;
@@ -98,10 +105,8 @@ TEST_P(GeodesicsTest, SphereMatchesGreatCircleAndConverges) {
     const auto solver = MakeSolver(c.name, sphere);
     const Eigen::MatrixXd D = solver->Distances({0});
     Eigen::VectorXd exact(sphere.NumVertices());
-    const Eigen::Vector3d p0 = sphere.V.row(0).normalized();
     for (int v = 0; v < sphere.NumVertices(); ++v) {
-      const Eigen::Vector3d p = sphere.V.row(v).normalized();
-      exact(v) = radius * std::atan2(p0.cross(p).norm(), p0.dot(p));
+      exact(v) = radius * GreatCircleAngle(sphere.V.row(0), sphere.V.row(v));
     }
     const auto [mean, max] = RelativeErrors(D.row(0), exact, 0.2 * radius);
     std::printf("%s icosphere level %d (%d vertices): mean rel %.4f max rel %.4f\n",
@@ -187,7 +192,7 @@ double DirectionalBias(const std::string& solver_name, const Surface& sphere,
     const Eigen::Vector3d p0 = sphere.V.row(sources[i]).normalized();
     for (int v = 0; v < sphere.NumVertices(); ++v) {
       const Eigen::Vector3d p = sphere.V.row(v).normalized();
-      const double exact = std::atan2(p0.cross(p).norm(), p0.dot(p));
+      const double exact = GreatCircleAngle(p0, p);
       if (exact < 0.3 || exact > 1.2) continue;
       const double cosine = std::abs((p - p.dot(p0) * p0).normalized().dot(direction));
       if (cosine > 0.9) {
