@@ -102,6 +102,18 @@ std::array<double, 2> FeatureScales(const Eigen::MatrixXd& Fs, const Eigen::Matr
   return scales;
 }
 
+namespace {
+
+// sum_f |Fs(v, f) - Ft(t, f)| / scales[f] over the shape index and curvedness.
+double FeatureDifference(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft, int v, int t,
+                         const std::array<double, 2>& scales) {
+  double diff = 0.0;
+  for (int f : {kShapeIndex, kCurvedness}) diff += std::abs(Fs(v, f) - Ft(t, f)) / scales[f];
+  return diff;
+}
+
+}  // namespace
+
 double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                            const std::vector<int>& map, const std::array<double, 2>& scales,
                            const std::vector<int>& vertices) {
@@ -109,13 +121,24 @@ double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
   double sum = 0.0, area = 0.0;
   for (int i = 0; i < n; ++i) {
     const int v = vertices.empty() ? i : vertices[i];
-    const int t = map[v];
-    double diff = 0.0;
-    for (int f : {kShapeIndex, kCurvedness}) diff += std::abs(Fs(v, f) - Ft(t, f)) / scales[f];
-    sum += Fs(v, kArea) * diff / 2.0;
+    sum += Fs(v, kArea) * FeatureDifference(Fs, Ft, v, map[v], scales) / 2.0;
     area += Fs(v, kArea);
   }
   return sum / std::max(area, 1e-300);
+}
+
+double FeatureVote(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft, const std::vector<int>& a,
+                   const std::vector<int>& b, const std::array<double, 2>& scales,
+                   const std::vector<int>& vertices) {
+  if (vertices.empty()) throw InvalidInputError("flip: a feature vote over no vertices");
+  double votes = 0.0, area = 0.0;
+  for (const int v : vertices) {
+    const double ea = FeatureDifference(Fs, Ft, v, a[v], scales);
+    const double eb = FeatureDifference(Fs, Ft, v, b[v], scales);
+    votes += Fs(v, kArea) * ((ea < eb) - (eb < ea));
+    area += Fs(v, kArea);
+  }
+  return votes / std::max(area, 1e-300);
 }
 
 ExtrinsicScores ExtrinsicFlipScores(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,

@@ -88,6 +88,16 @@ double FeatureDisagreement(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft,
                            const std::vector<int>& map, const std::array<double, 2>& scales,
                            const std::vector<int>& vertices = {});
 
+// The vote of the source `vertices` between two maps (#Vs target vertex ids each): each vertex
+// votes for the map under which its features differ less from its image's (the per-vertex
+// quantity FeatureDisagreement averages), with its area a_v; returns
+// sum_v a_v sign(e_b(v) - e_a(v)) / sum_v a_v in [-1, 1], positive when `a` wins. A median-like
+// comparison: a few vertices whose curvature an uneven meshing has made noisy move the mean
+// disagreement of a map but not the vote. Throws InvalidInputError when `vertices` is empty.
+double FeatureVote(const Eigen::MatrixXd& Fs, const Eigen::MatrixXd& Ft, const std::vector<int>& a,
+                   const std::vector<int>& b, const std::array<double, 2>& scales,
+                   const std::vector<int>& vertices);
+
 // The curvature features of `surface`, #V x 3 columns [shape index in [-1, 1],
 // log(1 + curvedness * sqrt(area)), vertex area / total area], from core/curvature.h with
 // curvatures averaged and fitted over the neighbourhoods of `smoothing`. Curvedness

@@ -44,6 +44,7 @@ bool RefinedMapsTermOptions::IsValid(std::string* error) const {
     out << FirstViolation({{"distortion_weight", kWeight, distortion_weight},
                            {"disagreement_weight", kWeight, disagreement_weight},
                            {"orientation_weight", kWeight, orientation_weight},
+                           {"front_back_vote", kWeight, front_back_vote},
                            {"long_axis_weight", kWeight, long_axis_weight},
                            {"long_axis_time", kLongAxisTime, long_axis_time}});
   if (out.str().empty() && !smoothing.IsValid(&feature_error)) out << feature_error;
@@ -145,11 +146,12 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
     Ct = &ProductOf(target, key);
     long_axis_scales = FeatureScales(*Cs, *Ct);
   }
-  std::array<double, 4> distortion{}, disagreement{}, orientation{}, diffused{};
+  std::array<double, 4> distortion{}, disagreement{}, orientation{}, diffused{}, vote{};
+  std::array<std::vector<int>, 4> maps;
   // The target's edge graph once for the four candidates' distances.
   const MeshGraph target_graph = BuildMeshGraph(target.surface);
   for (int k = 0; k < 4; ++k) {
-    const ZoomOutResult refined = candidates.Refine(k);
+    ZoomOutResult refined = candidates.Refine(k);
     distortion[k] =
         GeodesicDistortion(source_distances, target_graph, prefix, targets, refined.map);
     disagreement[k] = FeatureDisagreement(Fs, Ft, refined.map, scales, prefix);
@@ -157,13 +159,22 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
     if (long_axis) {
       diffused[k] = FeatureDisagreement(*Cs, *Ct, refined.map, long_axis_scales, prefix);
     }
+    maps[k] = std::move(refined.map);
+  }
+  const bool voting = options_.front_back_vote > 0.0;
+  if (voting) {
+    for (int k = 0; k < 4; ++k) {
+      vote[k] = FeatureVote(Fs, Ft, maps[k], maps[FrontBackPartner(k)], scales, prefix);
+    }
   }
   for (int k = 0; k < 4; ++k) {
     const int partner = FrontBackPartner(k);
     const double g = options_.distortion_front_back ? distortion[k]
                                                     : std::min(distortion[k], distortion[partner]);
-    (*total)[k] += weight() * (options_.distortion_weight * g +
-                               options_.disagreement_weight * disagreement[k] +
+    const double c = voting ? std::min(disagreement[k], disagreement[partner]) +
+                                  options_.front_back_vote * std::max(0.0, -vote[k])
+                            : disagreement[k];
+    (*total)[k] += weight() * (options_.distortion_weight * g + options_.disagreement_weight * c +
                                options_.orientation_weight * (1.0 - orientation[k]));
     if (long_axis) {
       (*total)[k] +=
@@ -180,6 +191,10 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
     *detail << "; long_axis";
     for (int k = 0; k < 4; ++k) *detail << " " << diffused[k];
   }
+  if (voting) {
+    *detail << "; front_back_vote";
+    for (int k = 0; k < 4; ++k) *detail << " " << vote[k];
+  }
 }
 
 std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
@@ -192,6 +207,7 @@ std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
   r.distortion_front_back = o.GetBool("distortion_front_back", r.distortion_front_back);
   r.disagreement_weight = o.GetDouble("disagreement_weight", r.disagreement_weight, R::kWeight);
   r.orientation_weight = o.GetDouble("orientation_weight", r.orientation_weight, R::kWeight);
+  r.front_back_vote = o.GetDouble("front_back_vote", r.front_back_vote, R::kWeight);
   r.long_axis_weight = o.GetDouble("long_axis_weight", r.long_axis_weight, R::kWeight);
   r.long_axis_time = o.GetDouble("long_axis_time", r.long_axis_time, R::kLongAxisTime);
   r.smoothing = ReadFeatureSmoothing(o, r.smoothing);

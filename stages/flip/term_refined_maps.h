@@ -40,7 +40,19 @@
 // two maps (how well that direction of the long axis can be mapped: a quadruped's back-belly swap
 // would otherwise count against its right direction), and leaves the choice between them to the
 // other measures.
-// It adds weight * (distortion_weight g'_k + disagreement_weight c_k
+// Between k and its partner p the curvature decides by a vote of the samples:
+//   front-back vote v_k = FeatureVote (extrinsic.h) of k's refined map against p's, in [-1, 1]:
+//                      the share of the samples' area at which k's map puts each sample on a
+//                      point of more alike curvature than p's, less the share where p's does.
+// Where the two meshings differ (independent, uneven decimation) the per-vertex curvature has
+// outliers of either sign, and c_k's mean moves with a few of them, while a human's front and
+// back differ by details over many samples: the vote counts them and not how far off each is.
+// With front_back_vote > 0 the curvature enters as c'_k = min(c_k, c_p)
+// + front_back_vote max(0, -v_k): the partners share their lower mean disagreement (which, like
+// g'_k, speaks to the long axis and the plane), and the one the samples vote against pays the
+// margin it lost by. The winner's c'_k does not depend on the vote, so the vote decides between
+// the partners and nothing else: not the direction of the long axis, not the plane hypotheses.
+// It adds weight * (distortion_weight g'_k + disagreement_weight c'_k
 // + orientation_weight (1 - o_k) + long_axis_weight a_k) to candidate k's total, where g'_k is
 // min(g_k, g_p), or g_k with distortion_front_back: a human's partner is the right map reflected
 // front to back, which preserves distances about as well, so there g_k's difference between the
@@ -84,6 +96,8 @@ struct RefinedMapsTermOptions {
   bool distortion_front_back = false;
   double disagreement_weight = 1.0;
   double orientation_weight = 0.025;
+  // The weight of the front-back vote v_k in c'_k (0: c_k itself, each candidate alone).
+  double front_back_vote = 0.5;
   // Of the long-axis measure, and the heat diffusion time of its features (relative to the
   // area; an extent of about a third of sqrt(area) at 0.03: the body's scale).
   double long_axis_weight = 1.0;
@@ -128,9 +142,9 @@ class RefinedMapsTerm : public FlipTerm {
 };
 
 // The term of weight `weight` from its YAML map {zoomout, sources, targets, distortion_weight,
-// distortion_front_back, disagreement_weight, orientation_weight, long_axis_weight, long_axis_time,
-// normal_weight, smoothing_rings, smoothing_radius} (defaults: RefinedMapsTermOptions). Throws
-// ConfigError.
+// distortion_front_back, disagreement_weight, orientation_weight, front_back_vote,
+// long_axis_weight, long_axis_time, normal_weight, smoothing_rings, smoothing_radius} (defaults:
+// RefinedMapsTermOptions). Throws ConfigError.
 std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& options, double weight);
 
 }  // namespace symembed

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -55,13 +56,32 @@ inline PreprocessedGroundTruth IdentityGroundTruth(int n) {
   return gt;
 }
 
-// The candidate of the oracle flip stage for a pair on one vertex set (identity ground truth).
-inline int OracleChoice(const ShapeData& source, const ShapeData& target) {
+// The ground truth between two generated shapes: the rest vertices both kept.
+inline PreprocessedGroundTruth RestGroundTruth(const TrackedSurface& a, const TrackedSurface& b) {
+  std::map<int, int> of_rest;
+  for (size_t j = 0; j < b.rest_ids.size(); ++j) of_rest[b.rest_ids[j]] = static_cast<int>(j);
+  PreprocessedGroundTruth gt;
+  for (size_t i = 0; i < a.rest_ids.size(); ++i) {
+    const auto it = of_rest.find(a.rest_ids[i]);
+    if (it == of_rest.end()) continue;
+    gt.source_ids.push_back(static_cast<int>(i));
+    gt.target_ids.push_back(it->second);
+  }
+  return gt;
+}
+
+// The candidate of the oracle flip stage for a pair with ground truth `gt`.
+inline int OracleChoice(const ShapeData& source, const ShapeData& target,
+                        const PreprocessedGroundTruth& gt) {
   Registry registry;
   RegisterBuiltinStages(registry);
   auto oracle = registry.CreateAs<FlipStage>("flip", YAML::Load("{type: oracle}"), "t.yaml", "f");
-  const PreprocessedGroundTruth gt = IdentityGroundTruth(source.surface.NumVertices());
   return oracle->Run(PairInput{source, target, &gt}).chosen;
+}
+
+// The same for a pair on one vertex set (identity ground truth).
+inline int OracleChoice(const ShapeData& source, const ShapeData& target) {
+  return OracleChoice(source, target, IdentityGroundTruth(source.surface.NumVertices()));
 }
 
 // Two poses of the synthetic humanoid (connected, one vertex set: identity ground truth).
