@@ -163,8 +163,10 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
   }
   const bool voting = options_.front_back_vote > 0.0;
   if (voting) {
-    for (int k = 0; k < 4; ++k) {
+    // The partner's vote is the candidate's, negated (exactly: the same terms summed).
+    for (const int k : {0, 1}) {
       vote[k] = FeatureVote(Fs, Ft, maps[k], maps[FrontBackPartner(k)], scales, prefix);
+      vote[FrontBackPartner(k)] = -vote[k];
     }
   }
   for (int k = 0; k < 4; ++k) {

@@ -51,4 +51,18 @@ inline std::vector<int> VertexOfRest(const TrackedSurface& shape, int rest_verti
   return of_rest;
 }
 
+// The ground truth from a to b, two generated shapes of a class of rest_vertices vertices: the
+// rest vertices both kept.
+inline PreprocessedGroundTruth RestGroundTruth(const TrackedSurface& a, const TrackedSurface& b,
+                                               int rest_vertices) {
+  const std::vector<int> of_rest = VertexOfRest(b, rest_vertices);
+  PreprocessedGroundTruth gt;
+  for (size_t v = 0; v < a.rest_ids.size(); ++v) {
+    if (of_rest[a.rest_ids[v]] < 0) continue;
+    gt.source_ids.push_back(static_cast<int>(v));
+    gt.target_ids.push_back(of_rest[a.rest_ids[v]]);
+  }
+  return gt;
+}
+
 }  // namespace symembed::testing

@@ -31,15 +31,8 @@ TEST(FlipDefault, RefinedMapsKeepTheFrontOfAStretchedHumanoidWhereTheFormerTerms
   ShapeData target = testing::RunDefaultShapeStages("humanoid8", cls.shapes[8].shape.surface,
                                                      "{type: plane2d}", kSymmetrize);
   // Ground truth: the generator's rest vertex ids.
-  const std::vector<int> of_rest =
-      testing::VertexOfRest(cls.shapes[8].shape, cls.rest.surface.NumVertices());
-  PreprocessedGroundTruth gt;
-  const std::vector<int>& source_rest = cls.shapes[0].shape.rest_ids;
-  for (size_t v = 0; v < source_rest.size(); ++v) {
-    if (of_rest[source_rest[v]] < 0) continue;
-    gt.source_ids.push_back(static_cast<int>(v));
-    gt.target_ids.push_back(of_rest[source_rest[v]]);
-  }
+  const PreprocessedGroundTruth gt = testing::RestGroundTruth(
+      cls.shapes[0].shape, cls.shapes[8].shape, cls.rest.surface.NumVertices());
   Registry r;
   RegisterBuiltinStages(r);
   const auto chosen_by = [&](const std::string& yaml) {

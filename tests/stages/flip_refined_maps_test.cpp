@@ -19,6 +19,7 @@
 #include "stages/flip/refined_agreement.h"
 #include "stages/flip/term_refined_maps.h"
 #include "stages/geodesics/dijkstra.h"
+#include "tests/stages/chain_test_util.h"
 #include "tests/stages/flip_test_util.h"
 #include "tests/test_util.h"
 
@@ -336,8 +337,10 @@ TEST(RefinedMapsFlip, TheSamplesVoteForTheFrontWhereUnevenMeshingsTurnTheMean) {
   std::ostringstream log;
   for (size_t a = 0; a < shapes.size(); ++a) {
     for (size_t b = a + 1; b < shapes.size(); ++b) {
-      const int right = OracleChoice(
-          shapes[a], shapes[b], RestGroundTruth(figures.shapes[a].shape, figures.shapes[b].shape));
+      const int right =
+          OracleChoice(shapes[a], shapes[b],
+                       RestGroundTruth(figures.shapes[a].shape, figures.shapes[b].shape,
+                                       figures.rest.surface.NumVertices()));
       const int partner = FrontBackPartner(right);
       const CandidateMaps maps = ComputeCandidateMaps(shapes[a].Y, shapes[b].Y);
       const PairInput pair{shapes[a], shapes[b]};

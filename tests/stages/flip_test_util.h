@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <sstream>
 #include <string>
 
@@ -52,20 +51,6 @@ inline PreprocessedGroundTruth IdentityGroundTruth(int n) {
   for (int i = 0; i < n; ++i) {
     gt.source_ids.push_back(i);
     gt.target_ids.push_back(i);
-  }
-  return gt;
-}
-
-// The ground truth between two generated shapes: the rest vertices both kept.
-inline PreprocessedGroundTruth RestGroundTruth(const TrackedSurface& a, const TrackedSurface& b) {
-  std::map<int, int> of_rest;
-  for (size_t j = 0; j < b.rest_ids.size(); ++j) of_rest[b.rest_ids[j]] = static_cast<int>(j);
-  PreprocessedGroundTruth gt;
-  for (size_t i = 0; i < a.rest_ids.size(); ++i) {
-    const auto it = of_rest.find(a.rest_ids[i]);
-    if (it == of_rest.end()) continue;
-    gt.source_ids.push_back(static_cast<int>(i));
-    gt.target_ids.push_back(it->second);
   }
   return gt;
 }
