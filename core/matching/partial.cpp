@@ -19,6 +19,10 @@ namespace {
 // The seed's map is kept over the best of the triples' when its residual is at most this
 // times theirs: distances alone do not tell apart two maps of a nearly symmetric body.
 constexpr double kSeedResidualSlack = 1.5;
+// Two maps whose landmarks' images lie on average within this times the square root of the
+// whole's area of each other turn the body the same way; turned front to back, a body's
+// landmarks move by about half its girth.
+constexpr double kSameTurn = 0.25;
 // Of the maps within that slack that keep the orientation, one whose shape disagrees clearly
 // less (below this times the chosen map's) replaces it: a body turned front to back keeps
 // distances and orientation, but not where it bulges and where it hollows.
@@ -628,6 +632,22 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
        refined[seeded].residual <= kSeedResidualSlack * refined[chosen].residual)) {
     chosen = seeded;
   }
+  // The seed tells which way the body is turned, not where each landmark lies: of the maps that
+  // keep the orientation with a lower residual than the seed's kept one, the lowest within
+  // kSameTurn of it is the seed's turn placed better.
+  bool seed_turn = false;
+  if (seeded >= 0 && chosen == seeded) {
+    const double reach = kSameTurn * std::sqrt(whole.area) * static_cast<double>(landmarks.size());
+    for (size_t i = 0; i < refined.size(); ++i) {
+      const Refined& r = refined[i];
+      if (r.orientation <= 0.5 || r.residual >= refined[chosen].residual) continue;
+      double apart = 0.0;
+      for (size_t k = 0; k < landmarks.size(); ++k) {
+        apart += refined[seeded].whole_rows(k, r.images[k]);
+      }
+      if (apart <= reach) chosen = static_cast<int>(i), seed_turn = true;
+    }
+  }
   // Distances and orientation cannot tell maps within the slack apart; the shape can.
   double least_residual = std::numeric_limits<double>::infinity();
   for (const Refined& r : refined) {
@@ -659,9 +679,10 @@ MatchResult MatchPartial(const Surface& source, const std::vector<int>& source_s
           << ", orientation kept by " << best.orientation << " of the samples; " << refined.size()
           << " distinct maps from " << triples.size() << " triple hypotheses"
           << (mirrored > 0 ? " and " + std::to_string(mirrored) + " mirror images" : "")
-          << (seeded < 0         ? ""
-              : chosen == seeded ? ", the seed's kept"
-                                 : ", not the seed's")
+          << (seeded < 0                    ? ""
+              : chosen == seeded            ? ", the seed's kept"
+              : seed_turn && !shape_decided ? ", the seed's turn kept"
+                                            : ", not the seed's")
           << ", shape disagreement " << best.shape << (shape_decided ? ", chosen by shape" : "");
   result.status.residual = best.residual;
   result.status.iterations = static_cast<int>(refined.size());

@@ -26,6 +26,11 @@
 //      one whose samples' shape index (core/curvature.h, smoothed over 0.05 sqrt(area of the
 //      whole)) disagrees with their images' clearly less (below 0.75 times) than the chosen map's
 //      is taken instead: where a body bulges and where it hollows tells front from back.
+// A seed (the pair's map from elsewhere, e.g. the embeddings') adds one more map, refined in
+// full, kept over the triples' when it keeps the orientation with a residual within 1.5 times
+// theirs: it tells which way a nearly front-back symmetric body is turned. Where it is kept, the
+// lowest-residual map below its residual that keeps the orientation and turns the body the same
+// way (landmarks' images within 0.25 sqrt(area) of the seed's on average) replaces it.
 // Every vertex of the source is then mapped by its distances to the landmarks, searched near
 // the image of its nearest sample. Distances are along mesh edges (core/mesh_graph.h).
 //
