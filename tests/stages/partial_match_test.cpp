@@ -268,9 +268,9 @@ TEST(PartialMatch, ASeedDecidesWhatDistancesAndOrientationCannot) {
   EXPECT_LT(MeanError(b.surface, seeded.map, truth), 0.05) << seeded.status.message;
   EXPECT_NE(seeded.status.message.find("the seed's kept"), std::string::npos);
   // A seed of the right turn whose images all lie 0.05 sqrt(area) up the body, as the
-  // embeddings' map of a poorly embedded part: the triples' map of the seed's turn places the
-  // landmarks better than the seed's (its own refinement keeps it 0.04 off); without it, the
-  // shape index took the map turned front to back (0.64 off).
+  // embeddings' map of a poorly embedded part: the triples' map of the seed's turn, of lower
+  // residual, takes the seed's place; where the seed's own map was kept, the shape index took
+  // the map turned front to back (0.64 off).
   int up = 0;
   (b.surface.V.colwise().maxCoeff() - b.surface.V.colwise().minCoeff()).maxCoeff(&up);
   Eigen::RowVector3d lift = Eigen::RowVector3d::Zero();
