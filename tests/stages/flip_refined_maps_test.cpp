@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "core/canonical_frame.h"
@@ -38,6 +39,42 @@ RefinedMapsTermOptions SmallOptions() {
   options.sources = 20;
   options.targets = 150;
   return options;
+}
+
+// Two poses of a generated figure of 1,500 vertices as the flip stage's shapes.
+std::pair<ShapeData, ShapeData> TwoPoses(FigureKind kind, double nonisometric = 0.0) {
+  SynthOptions synth;
+  synth.poses = 2;
+  synth.vertices = 1500;
+  synth.nonisometric = nonisometric;
+  const SynthClass figures = GenerateClass(kind, synth);
+  return {FlipShape("pose0", figures.shapes.at(0).shape.surface),
+          FlipShape("pose1", figures.shapes.at(1).shape.surface)};
+}
+
+// Computes into `shape` the products `term` needs and returns its basis of the term's size.
+LaplaceBasis PrepareForTerm(const RefinedMapsTerm& term, ShapeData* shape) {
+  ShapeNeeds needs;
+  term.AddNeeds(term.BasisSize(), &needs);
+  ComputeNeeds(needs, shape);
+  LaplaceBasisOptions basis_options;
+  basis_options.k = term.BasisSize();
+  return ComputeLaplaceBasis(shape->surface, basis_options);
+}
+
+// `term`'s scores of the four candidate rotations between the two shapes' embeddings; its
+// message through *detail.
+std::array<double, 4> ScoreTerm(const RefinedMapsTerm& term, const ShapeData& source,
+                                const ShapeData& target, const LaplaceBasis& source_basis,
+                                const LaplaceBasis& target_basis, std::string* detail) {
+  const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
+  const PairInput pair{source, target};
+  const FlipTermContext context{pair, maps, source_basis, target_basis, nullptr, nullptr, 1};
+  std::array<double, 4> total{};
+  std::ostringstream out;
+  term.Score(context, &total, &out);
+  *detail = out.str();
+  return total;
 }
 
 TEST(RefinedMapsFlip, DistortionMatchesABruteForceSum) {
@@ -85,38 +122,21 @@ TEST(RefinedMapsFlip, DistortionMatchesABruteForceSum) {
 // rotation's refined map distorts the geodesics and the curvature least. With each candidate's
 // distortion and with the lower one of front-back partners.
 void ExpectTermFindsTheOracle(FigureKind kind, bool distortion_front_back) {
-  SynthOptions synth;
-  synth.poses = 2;
-  synth.vertices = 1500;
-  synth.nonisometric = 0.3;
-  const SynthClass figures = GenerateClass(kind, synth);
-  ASSERT_EQ(figures.shapes.size(), 2u);
-  ShapeData source = FlipShape("pose0", figures.shapes[0].shape.surface);
-  ShapeData posed = FlipShape("pose1", figures.shapes[1].shape.surface);
+  auto [source, posed] = TwoPoses(kind, 0.3);
   RefinedMapsTermOptions options = SmallOptions();
   options.distortion_front_back = distortion_front_back;
   const RefinedMapsTerm term(1.0, options);
-  ShapeNeeds needs;
-  term.AddNeeds(term.BasisSize(), &needs);
-  ComputeNeeds(needs, &source);
-  ComputeNeeds(needs, &posed);
-  LaplaceBasisOptions basis_options;
-  basis_options.k = term.BasisSize();
-  const LaplaceBasis source_basis = ComputeLaplaceBasis(source.surface, basis_options);
-  const LaplaceBasis target_basis = ComputeLaplaceBasis(posed.surface, basis_options);
+  const LaplaceBasis source_basis = PrepareForTerm(term, &source);
+  const LaplaceBasis target_basis = PrepareForTerm(term, &posed);
   const auto rotations = CandidateRotations();
   for (int j = 0; j < 4; ++j) {
     ShapeData target = posed;
     target.Y = posed.Y * rotations[j];
     const int right = OracleChoice(source, target);
-    const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
-    const PairInput pair{source, target};
-    const FlipTermContext context{pair, maps, source_basis, target_basis, nullptr, nullptr, 1};
-    std::array<double, 4> total{};
-    std::ostringstream detail;
-    term.Score(context, &total, &detail);
-    EXPECT_EQ(CandidateOrder(total)[0], right) << "turn " << j << detail.str();
-    EXPECT_NE(detail.str().find("; refined_maps"), std::string::npos);
+    std::string detail;
+    const auto total = ScoreTerm(term, source, target, source_basis, target_basis, &detail);
+    EXPECT_EQ(CandidateOrder(total)[0], right) << "turn " << j << detail;
+    EXPECT_NE(detail.find("; refined_maps"), std::string::npos);
   }
 }
 
@@ -147,35 +167,22 @@ std::array<std::array<double, 3>, 4> RefinedMapsMeasures(const std::string& deta
 // are unchanged, and the partners' totals then differ by their disagreement and orientation
 // alone.
 TEST(RefinedMapsFlip, PartnersShareTheirLowerDistortionAndCurvatureDecidesBetweenThem) {
-  SynthOptions synth;
-  synth.poses = 2;
-  synth.vertices = 1500;
-  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
-  ShapeData source = FlipShape("pose0", figures.shapes[0].shape.surface);
-  ShapeData target = FlipShape("pose1", figures.shapes[1].shape.surface);
+  auto [source, target] = TwoPoses(FigureKind::kHumanoid);
   RefinedMapsTermOptions alone = SmallOptions();
   alone.distortion_front_back = true;
   alone.front_back_vote = 0.0;
   RefinedMapsTermOptions shared = alone;
   shared.distortion_front_back = false;
   const RefinedMapsTerm per_candidate(1.0, alone), per_axis(1.0, shared);
-  ShapeNeeds needs;
-  per_axis.AddNeeds(per_axis.BasisSize(), &needs);
-  ComputeNeeds(needs, &source);
-  ComputeNeeds(needs, &target);
-  LaplaceBasisOptions basis_options;
-  basis_options.k = per_axis.BasisSize();
-  const LaplaceBasis source_basis = ComputeLaplaceBasis(source.surface, basis_options);
-  const LaplaceBasis target_basis = ComputeLaplaceBasis(target.surface, basis_options);
-  const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
-  const PairInput pair{source, target};
-  const FlipTermContext context{pair, maps, source_basis, target_basis, nullptr, nullptr, 1};
-  std::array<double, 4> total_alone{}, total_shared{};
-  std::ostringstream detail_alone, detail_shared;
-  per_candidate.Score(context, &total_alone, &detail_alone);
-  per_axis.Score(context, &total_shared, &detail_shared);
-  EXPECT_EQ(detail_alone.str(), detail_shared.str());
-  const auto m = RefinedMapsMeasures(detail_alone.str());
+  const LaplaceBasis source_basis = PrepareForTerm(per_axis, &source);
+  const LaplaceBasis target_basis = PrepareForTerm(per_axis, &target);
+  std::string detail_alone, detail_shared;
+  const auto total_alone =
+      ScoreTerm(per_candidate, source, target, source_basis, target_basis, &detail_alone);
+  const auto total_shared =
+      ScoreTerm(per_axis, source, target, source_basis, target_basis, &detail_shared);
+  EXPECT_EQ(detail_alone, detail_shared);
+  const auto m = RefinedMapsMeasures(detail_alone);
   // The printed values are rounded to 6 significant digits.
   const double tolerance = 1e-5;
   for (int k = 0; k < 4; ++k) {
@@ -183,14 +190,14 @@ TEST(RefinedMapsFlip, PartnersShareTheirLowerDistortionAndCurvatureDecidesBetwee
     EXPECT_GT(m[k][0], 0.0) << k;
     EXPECT_NEAR(total_shared[k] - total_alone[k],
                 alone.distortion_weight * (std::min(m[k][0], m[partner][0]) - m[k][0]), tolerance)
-        << k << detail_alone.str();
+        << k << detail_alone;
     const double between_partners = total_shared[k] - total_shared[partner];
     const double expected = alone.disagreement_weight * (m[k][1] - m[partner][1]) +
                             alone.orientation_weight * (m[partner][2] - m[k][2]);
-    EXPECT_NEAR(between_partners, expected, tolerance) << k << detail_alone.str();
+    EXPECT_NEAR(between_partners, expected, tolerance) << k << detail_alone;
   }
   // The right candidate still scores lowest.
-  EXPECT_EQ(CandidateOrder(total_shared)[0], OracleChoice(source, target)) << detail_shared.str();
+  EXPECT_EQ(CandidateOrder(total_shared)[0], OracleChoice(source, target)) << detail_shared;
 }
 
 // The long-axis measure scores a candidate and its front-back partner (the same direction of the
@@ -199,38 +206,23 @@ TEST(RefinedMapsFlip, PartnersShareTheirLowerDistortionAndCurvatureDecidesBetwee
 // at the scale of the body, it separates the two directions, and the totals without it are those of
 // the other three measures.
 TEST(RefinedMapsFlip, LongAxisMeasureScoresFrontBackPartnersAlike) {
-  SynthOptions synth;
-  synth.poses = 2;
-  synth.vertices = 1500;
-  const SynthClass figures = GenerateClass(FigureKind::kQuadruped, synth);
-  ShapeData source = FlipShape("pose0", figures.shapes[0].shape.surface);
-  ShapeData target = FlipShape("pose1", figures.shapes[1].shape.surface);
+  auto [source, target] = TwoPoses(FigureKind::kQuadruped);
   RefinedMapsTermOptions off = SmallOptions();
   off.long_axis_weight = 0.0;
   RefinedMapsTermOptions on = SmallOptions();
   on.long_axis_weight = 2.0;
   const RefinedMapsTerm without(1.0, off), with(1.0, on);
-  ShapeNeeds needs;
-  with.AddNeeds(with.BasisSize(), &needs);
-  ComputeNeeds(needs, &source);
-  ComputeNeeds(needs, &target);
-  LaplaceBasisOptions basis_options;
-  basis_options.k = with.BasisSize();
-  const LaplaceBasis source_basis = ComputeLaplaceBasis(source.surface, basis_options);
-  const LaplaceBasis target_basis = ComputeLaplaceBasis(target.surface, basis_options);
-  const CandidateMaps maps = ComputeCandidateMaps(source.Y, target.Y);
-  const PairInput pair{source, target};
-  const FlipTermContext context{pair, maps, source_basis, target_basis, nullptr, nullptr, 1};
-  std::array<double, 4> total_without{}, total_with{};
-  std::ostringstream detail_without, detail_with;
-  without.Score(context, &total_without, &detail_without);
-  with.Score(context, &total_with, &detail_with);
-  EXPECT_EQ(detail_without.str().find("long_axis"), std::string::npos);
-  ASSERT_NE(detail_with.str().find("; long_axis "), std::string::npos) << detail_with.str();
+  const LaplaceBasis source_basis = PrepareForTerm(with, &source);
+  const LaplaceBasis target_basis = PrepareForTerm(with, &target);
+  std::string detail_without, detail_with;
+  const auto total_without =
+      ScoreTerm(without, source, target, source_basis, target_basis, &detail_without);
+  const auto total_with = ScoreTerm(with, source, target, source_basis, target_basis, &detail_with);
+  EXPECT_EQ(detail_without.find("long_axis"), std::string::npos);
+  ASSERT_NE(detail_with.find("; long_axis "), std::string::npos) << detail_with;
   std::array<double, 4> added{};
   for (int k = 0; k < 4; ++k) added[k] = total_with[k] - total_without[k];
-  std::istringstream values_in(
-      detail_with.str().substr(detail_with.str().find("; long_axis ") + 12));
+  std::istringstream values_in(detail_with.substr(detail_with.find("; long_axis ") + 12));
   std::array<double, 4> diffused{};
   for (double& c : diffused) values_in >> c;
   for (int k = 0; k < 4; ++k) {
@@ -239,17 +231,17 @@ TEST(RefinedMapsFlip, LongAxisMeasureScoresFrontBackPartnersAlike) {
     // The better of the two maps (printed to 6 digits).
     EXPECT_NEAR(added[k],
                 on.long_axis_weight * std::min(diffused[k], diffused[FrontBackPartner(k)]), 1e-5)
-        << k << detail_with.str();
+        << k << detail_with;
   }
   // The right direction of the long axis (the oracle's candidate and its partner) adds least.
   const int right = OracleChoice(source, target);
   const int other = right ^ 1;
-  EXPECT_LT(added[right], added[other]) << detail_with.str();
+  EXPECT_LT(added[right], added[other]) << detail_with;
   // Only the long-axis measure differs: the other three are those of the run without it.
-  std::string values = detail_with.str();
+  std::string values = detail_with;
   const size_t section = values.find("; long_axis");
   values.erase(section, values.find(';', section + 1) - section);
-  EXPECT_EQ(values, detail_without.str());
+  EXPECT_EQ(values, detail_without);
 }
 
 // Mean distance on the surface (in units of sqrt(area)) between each sample and its image, for a
@@ -320,18 +312,13 @@ TEST(RefinedMapsFlip, TheSamplesVoteForTheFrontWhereUnevenMeshingsTurnTheMean) {
   mean_options.front_back_vote = 0.0;
   const RefinedMapsTermOptions vote_options;
   const RefinedMapsTerm by_mean(1.0, mean_options), by_vote(1.0, vote_options);
-  ShapeNeeds needs;
-  by_vote.AddNeeds(by_vote.BasisSize(), &needs);
-  LaplaceBasisOptions basis_options;
-  basis_options.k = by_vote.BasisSize();
   std::vector<ShapeData> shapes;
   std::vector<LaplaceBasis> bases;
   for (const SynthShape& s : figures.shapes) {
     shapes.push_back(FlipShape(s.name, s.shape.surface));
     shapes.back().samples =
         EuclideanFarthestPoints(s.shape.surface.V, vote_options.zoomout.samples);
-    ComputeNeeds(needs, &shapes.back());
-    bases.push_back(ComputeLaplaceBasis(shapes.back().surface, basis_options));
+    bases.push_back(PrepareForTerm(by_vote, &shapes.back()));
   }
   int pairs = 0, mean_turned = 0, vote_turned = 0;
   std::ostringstream log;
@@ -342,20 +329,17 @@ TEST(RefinedMapsFlip, TheSamplesVoteForTheFrontWhereUnevenMeshingsTurnTheMean) {
                        RestGroundTruth(figures.shapes[a].shape, figures.shapes[b].shape,
                                        figures.rest.surface.NumVertices()));
       const int partner = FrontBackPartner(right);
-      const CandidateMaps maps = ComputeCandidateMaps(shapes[a].Y, shapes[b].Y);
-      const PairInput pair{shapes[a], shapes[b]};
-      const FlipTermContext context{pair, maps, bases[a], bases[b], nullptr, nullptr, 1};
-      std::array<double, 4> mean_total{}, vote_total{};
-      std::ostringstream mean_detail, vote_detail;
-      by_mean.Score(context, &mean_total, &mean_detail);
-      by_vote.Score(context, &vote_total, &vote_detail);
+      std::string mean_detail, vote_detail;
+      const auto mean_total =
+          ScoreTerm(by_mean, shapes[a], shapes[b], bases[a], bases[b], &mean_detail);
+      const auto vote_total =
+          ScoreTerm(by_vote, shapes[a], shapes[b], bases[a], bases[b], &vote_detail);
       ++pairs;
       mean_turned += mean_total[partner] < mean_total[right];
       vote_turned += vote_total[partner] < vote_total[right];
       // The vote moves only the front-back decision: the rest of the measures are the mean's.
-      EXPECT_EQ(vote_detail.str().substr(0, vote_detail.str().find("; front_back_vote")),
-                mean_detail.str());
-      log << a << "-" << b << " right " << right << vote_detail.str() << "\n";
+      EXPECT_EQ(vote_detail.substr(0, vote_detail.find("; front_back_vote")), mean_detail);
+      log << a << "-" << b << " right " << right << vote_detail << "\n";
     }
   }
   EXPECT_EQ(pairs, 28);
