@@ -30,6 +30,7 @@ namespace {
 using testing::FlipShape;
 using testing::OracleChoice;
 using testing::RestGroundTruth;
+using testing::TwoPoses;
 
 // Options for shapes with 300 samples.
 RefinedMapsTermOptions SmallOptions() {
@@ -39,17 +40,6 @@ RefinedMapsTermOptions SmallOptions() {
   options.sources = 20;
   options.targets = 150;
   return options;
-}
-
-// Two poses of a generated figure of 1,500 vertices as the flip stage's shapes.
-std::pair<ShapeData, ShapeData> TwoPoses(FigureKind kind, double nonisometric = 0.0) {
-  SynthOptions synth;
-  synth.poses = 2;
-  synth.vertices = 1500;
-  synth.nonisometric = nonisometric;
-  const SynthClass figures = GenerateClass(kind, synth);
-  return {FlipShape("pose0", figures.shapes.at(0).shape.surface),
-          FlipShape("pose1", figures.shapes.at(1).shape.surface)};
 }
 
 // Computes into `shape` the products `term` needs and returns its basis of the term's size.
@@ -122,7 +112,7 @@ TEST(RefinedMapsFlip, DistortionMatchesABruteForceSum) {
 // rotation's refined map distorts the geodesics and the curvature least. With each candidate's
 // distortion and with the lower one of front-back partners.
 void ExpectTermFindsTheOracle(FigureKind kind, bool distortion_front_back) {
-  auto [source, posed] = TwoPoses(kind, 0.3);
+  auto [source, posed] = TwoPoses(kind, 1500, 0.3);
   RefinedMapsTermOptions options = SmallOptions();
   options.distortion_front_back = distortion_front_back;
   const RefinedMapsTerm term(1.0, options);
@@ -167,7 +157,7 @@ std::array<std::array<double, 3>, 4> RefinedMapsMeasures(const std::string& deta
 // are unchanged, and the partners' totals then differ by their disagreement and orientation
 // alone.
 TEST(RefinedMapsFlip, PartnersShareTheirLowerDistortionAndCurvatureDecidesBetweenThem) {
-  auto [source, target] = TwoPoses(FigureKind::kHumanoid);
+  auto [source, target] = TwoPoses(FigureKind::kHumanoid, 1500);
   RefinedMapsTermOptions alone = SmallOptions();
   alone.distortion_front_back = true;
   alone.front_back_vote = 0.0;
@@ -206,7 +196,7 @@ TEST(RefinedMapsFlip, PartnersShareTheirLowerDistortionAndCurvatureDecidesBetwee
 // at the scale of the body, it separates the two directions, and the totals without it are those of
 // the other three measures.
 TEST(RefinedMapsFlip, LongAxisMeasureScoresFrontBackPartnersAlike) {
-  auto [source, target] = TwoPoses(FigureKind::kQuadruped);
+  auto [source, target] = TwoPoses(FigureKind::kQuadruped, 1500);
   RefinedMapsTermOptions off = SmallOptions();
   off.long_axis_weight = 0.0;
   RefinedMapsTermOptions on = SmallOptions();

@@ -69,15 +69,22 @@ inline int OracleChoice(const ShapeData& source, const ShapeData& target) {
   return OracleChoice(source, target, IdentityGroundTruth(source.surface.NumVertices()));
 }
 
-// Two poses of the synthetic humanoid (connected, one vertex set: identity ground truth).
-inline std::array<ShapeData, 2> HumanoidPoses(int vertices) {
+// Two poses of a generated figure (connected, one vertex set: identity ground truth);
+// `nonisometric` as SynthOptions'.
+inline std::array<ShapeData, 2> TwoPoses(FigureKind kind, int vertices, double nonisometric = 0.0) {
   SynthOptions synth;
   synth.poses = 2;
   synth.vertices = vertices;
-  const SynthClass figures = GenerateClass(FigureKind::kHumanoid, synth);
+  synth.nonisometric = nonisometric;
+  const SynthClass figures = GenerateClass(kind, synth);
   SYMEMBED_CHECK(figures.shapes.size() == 2u, "the generator made " << figures.shapes.size());
   return {FlipShape("pose0", figures.shapes[0].shape.surface),
           FlipShape("pose1", figures.shapes[1].shape.surface)};
+}
+
+// Two poses of the synthetic humanoid.
+inline std::array<ShapeData, 2> HumanoidPoses(int vertices) {
+  return TwoPoses(FigureKind::kHumanoid, vertices);
 }
 
 // The first k Laplace-Beltrami eigenpairs of both shapes.
