@@ -11,6 +11,7 @@
 #include "core/curvature.h"
 #include "core/errors.h"
 #include "core/laplacian.h"
+#include "core/matching/l1_nearest.h"
 #include "core/mesh_graph.h"
 
 namespace symembed {
@@ -97,54 +98,29 @@ struct PartialSide {
   }
 };
 
-
-// Index of the column of `rows` (k x #cols, one row per landmark) nearest in L1 to `x` (k),
-// and that distance.
-std::pair<int, double> NearestColumnL1(const Eigen::MatrixXd& rows, const Eigen::VectorXd& x) {
-  int best = 0;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < rows.cols(); ++j) {
-    double cost = 0.0;
-    for (int i = 0; i < rows.rows() && cost < best_cost; ++i) cost += std::abs(rows(i, j) - x(i));
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = j;
-    }
-  }
-  return {best, best_cost};
-}
-
 // Triple (a, b, c) of part samples and its images (A, B, C) among the whole's samples.
 struct TripleHypothesis {
   double score = 0.0;
   int a = 0, b = 0, c = 0, A = 0, B = 0, C = 0;
 };
 
-// The whole's sample nearest in L1 to part sample q's distances to a, b, c under (A, B, C),
-// and that distance.
-std::pair<int, double> MapQuery(const PartialSide& part, const PartialSide& whole,
-                                const TripleHypothesis& h, int q) {
-  const double x = part.DS(h.a, q), y = part.DS(h.b, q), z = part.DS(h.c, q);
-  const double* ra = whole.DS.col(h.A).data();
-  const double* rb = whole.DS.col(h.B).data();
-  const double* rc = whole.DS.col(h.C).data();
-  int best = 0;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < whole.NumSamples(); ++j) {
-    const double cost = std::abs(ra[j] - x) + std::abs(rb[j] - y) + std::abs(rc[j] - z);
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = j;
-    }
-  }
-  return {best, best_cost};
+// The whole's sample nearest in L1 to part sample q's distances to a, b, c under (A, B, C):
+// whole_samples holds the whole's sample-to-sample distances (row A: from sample A).
+int MapQuery(const PartialSide& part, const L1Columns& whole_samples, const TripleHypothesis& h,
+             int q) {
+  const double x[3] = {part.DS(h.a, q), part.DS(h.b, q), part.DS(h.c, q)};
+  const int rows[3] = {h.A, h.B, h.C};
+  return whole_samples.Nearest(x, rows, 3).first;
 }
 
 // Mean disagreement of the mutual distances of the query samples and of their images.
-double TripleScore(const PartialSide& part, const PartialSide& whole, const TripleHypothesis& h,
+double TripleScore(const PartialSide& part, const PartialSide& whole,
+                   const L1Columns& whole_samples, const TripleHypothesis& h,
                    const std::vector<int>& queries) {
   std::vector<int> image(queries.size());
-  for (size_t i = 0; i < queries.size(); ++i) image[i] = MapQuery(part, whole, h, queries[i]).first;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    image[i] = MapQuery(part, whole_samples, h, queries[i]);
+  }
   double sum = 0.0;
   int count = 0;
   for (size_t i = 0; i < queries.size(); ++i) {
@@ -184,6 +160,7 @@ std::vector<TripleHypothesis> TripleHypotheses(const PartialSide& part, const Pa
   // A few queries beyond the pool rank the candidates before the full score.
   for (int q = pool; q < std::min(pool + 6, part.NumSamples()); ++q) first_queries.push_back(q);
   if (first_queries.size() < 3) first_queries = queries;
+  const L1Columns whole_samples(whole.DS.transpose());
   constexpr int kFirstKept = 300;
   constexpr int kKeptPerTriple = 4;
   std::vector<TripleHypothesis> kept;
@@ -206,14 +183,16 @@ std::vector<TripleHypothesis> TripleHypotheses(const PartialSide& part, const Pa
         }
       }
     }
-    for (TripleHypothesis& c : candidates) c.score = TripleScore(part, whole, c, first_queries);
+    for (TripleHypothesis& c : candidates)
+      c.score = TripleScore(part, whole, whole_samples, c, first_queries);
     auto by_score = [](const TripleHypothesis& x, const TripleHypothesis& y) {
       return x.score < y.score || (x.score == y.score && std::tie(x.A, x.B, x.C) < std::tie(y.A, y.B, y.C));
     };
     const size_t first = std::min<size_t>(kFirstKept, candidates.size());
     std::partial_sort(candidates.begin(), candidates.begin() + first, candidates.end(), by_score);
     candidates.resize(first);
-    for (TripleHypothesis& c : candidates) c.score = TripleScore(part, whole, c, queries);
+    for (TripleHypothesis& c : candidates)
+      c.score = TripleScore(part, whole, whole_samples, c, queries);
     std::sort(candidates.begin(), candidates.end(), by_score);
     for (size_t i = 0; i < std::min<size_t>(kKeptPerTriple, candidates.size()); ++i) {
       kept.push_back(candidates[i]);
@@ -227,10 +206,11 @@ std::vector<TripleHypothesis> TripleHypotheses(const PartialSide& part, const Pa
 // The whole's vertex nearest in L1 to each of `vertices`' distances to the landmarks.
 std::vector<int> MapVerticesBrute(const Eigen::MatrixXd& part_rows, const Eigen::MatrixXd& whole_rows,
                                   const std::vector<int>& vertices, double* mean_cost) {
+  const L1Columns columns(whole_rows);
   std::vector<int> image(vertices.size());
   double sum = 0.0;
   for (size_t i = 0; i < vertices.size(); ++i) {
-    const auto [j, cost] = NearestColumnL1(whole_rows, part_rows.col(vertices[i]));
+    const auto [j, cost] = columns.Nearest(part_rows.col(vertices[i]).data());
     image[i] = j;
     sum += cost;
   }
@@ -346,21 +326,13 @@ std::vector<int> MapAllVertices(const PartialSide& from, const PartialSide& to,
     if (cell[i].empty()) continue;
     const double r = std::min(2.0 * radius[i], cap) + 2.0 * to.graph.max_length * to.unit;
     DijkstraBall(to.graph, anchors_to[i], r / to.unit, &ball, &ball_ws);
+    Eigen::MatrixXd ball_rows(to_rows.rows(), ball.size());
+    for (size_t j = 0; j < ball.size(); ++j) ball_rows.col(j) = to_rows.col(ball[j].first);
+    const L1Columns columns(ball_rows);
     for (int v : cell[i]) {
-      int best = anchors_to[i];
-      double best_cost = std::numeric_limits<double>::infinity();
-      for (const auto& [u, d] : ball) {
-        (void)d;
-        double cost = 0.0;
-        for (int l = 0; l < from_rows.rows() && cost < best_cost; ++l) {
-          cost += std::abs(from_rows(l, v) - to_rows(l, u));
-        }
-        if (cost < best_cost) {
-          best_cost = cost;
-          best = u;
-        }
-      }
-      map[v] = best;
+      // The first vertex of the ball with the lowest finite cost; the anchor's image if none.
+      const auto [j, cost] = columns.Nearest(from_rows.col(v).data());
+      map[v] = cost < std::numeric_limits<double>::infinity() ? ball[j].first : anchors_to[i];
     }
   }
   return map;

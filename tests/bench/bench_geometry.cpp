@@ -8,22 +8,28 @@
 //                                    queue (`buckets`, what Dijkstra uses) or the binary heap
 //   BM_Sampling/<n>                  farthest point sampling, 1,000 samples
 //   BM_Curvature/<n>                 ComputeCurvature with default options
+//   BM_L1Nearest/rows/packed         L1Columns::Nearest (packed 1) or the plain loop (0), partial
+//                                    matching's search: 2,000 queries against the distances of
+//                                    10,000 points of a sphere to `rows` landmarks (3 rows: 300
+//                                    queries against 300 points, as the triples')
 //   BM_GeodesicsTosca/<solver>       Prepare + 1,000 farthest-point sources on TOSCA cat0
 //                                    (5,000 vertices, preprocessed), when the data is present
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <filesystem>
-
 #include "core/curvature.h"
+#include "core/matching/l1_nearest.h"
 #include "core/mesh_graph.h"
 #include "core/mesh_io.h"
-#include "stages/preprocess/standard.h"
 #include "registry/registry.h"
+#include "stages/preprocess/standard.h"
 #include "stages/sampling/farthest_point.h"
 #include "tests/test_util.h"
 
@@ -133,6 +139,46 @@ void BM_Curvature(benchmark::State& state) {
 BENCHMARK(BM_Curvature)->Arg(kSmall)->Arg(kMedium)->Arg(kLarge)->Unit(benchmark::kMillisecond)
     ->Complexity();
 
+void BM_L1Nearest(benchmark::State& state) {
+  const int rows = static_cast<int>(state.range(0));
+  const int n = rows == 3 ? 300 : 10000;
+  // Points on the unit sphere; each column: the distances of one point to the landmarks (the
+  // first `rows` points), as partial matching's geodesic coordinates.
+  Eigen::MatrixXd P = Eigen::MatrixXd::Random(n, 3);
+  P.rowwise().normalize();
+  Eigen::MatrixXd m(rows, n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < rows; ++i) m(i, j) = (P.row(i) - P.row(j)).norm();
+  }
+  const L1Columns columns(m);
+  const Eigen::MatrixXd queries =
+      m.leftCols(std::min(n, 2000)) + 0.01 * Eigen::MatrixXd::Random(rows, std::min(n, 2000));
+  const bool packed = state.range(1) == 1;
+  for (auto _ : state) {
+    long sum = 0;
+    for (int q = 0; q < queries.cols(); ++q) {
+      if (packed) {
+        sum += columns.Nearest(queries.col(q).data()).first;
+        continue;
+      }
+      // The plain loop over columns, for reference.
+      int best = 0;
+      double best_cost = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < n; ++j) {
+        double cost = 0.0;
+        for (int i = 0; i < rows && cost < best_cost; ++i)
+          cost += std::abs(m(i, j) - queries(i, q));
+        if (cost < best_cost) best_cost = cost, best = j;
+      }
+      sum += best;
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+BENCHMARK(BM_L1Nearest)
+    ->ArgNames({"rows", "packed"})
+    ->ArgsProduct({{3, 40}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
 }  // namespace
 }  // namespace symembed
 
