@@ -117,7 +117,7 @@ std::pair<int, double> NearestBaseline(const double* packed, int rows, int block
 
 }  // namespace
 
-L1Columns::L1Columns(const Eigen::MatrixXd& m)
+L1Columns::L1Columns(const Eigen::MatrixXd& m, NearestIsa isa)
     : rows_(static_cast<int>(m.rows())),
       cols_(static_cast<int>(m.cols())),
       blocks_((cols_ + kL1Block - 1) / kL1Block),
@@ -125,6 +125,13 @@ L1Columns::L1Columns(const Eigen::MatrixXd& m)
               std::numeric_limits<double>::infinity()),
       all_rows_(rows_) {
   if (cols_ < 1) throw InvalidInputError("L1Columns: no columns");
+  if (!NearestKernelSupports(isa)) {
+    throw InvalidInputError("L1Columns: this processor lacks that build");
+  }
+  isa_ = isa != NearestIsa::kAuto                     ? isa
+         : NearestKernelSupports(NearestIsa::kAvx512) ? NearestIsa::kAvx512
+         : NearestKernelSupports(NearestIsa::kAvx2)   ? NearestIsa::kAvx2
+                                                      : NearestIsa::kBaseline;
   std::iota(all_rows_.begin(), all_rows_.end(), 0);
   for (int j = 0; j < cols_; ++j) {
     double* out =
@@ -138,12 +145,14 @@ std::pair<int, double> L1Columns::Nearest(const double* x) const {
 }
 
 std::pair<int, double> L1Columns::Nearest(const double* x, const int* row_ids, int count) const {
-  // __builtin_cpu_supports also checks that the operating system saves the wider registers.
-  static const bool avx512 = __builtin_cpu_supports("avx512f");
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx512) return NearestAvx512(packed_.data(), rows_, blocks_, x, row_ids, count);
-  if (avx2) return NearestAvx2(packed_.data(), rows_, blocks_, x, row_ids, count);
-  return NearestBaseline(packed_.data(), rows_, blocks_, x, row_ids, count);
+  switch (isa_) {
+    case NearestIsa::kAvx512:
+      return NearestAvx512(packed_.data(), rows_, blocks_, x, row_ids, count);
+    case NearestIsa::kAvx2:
+      return NearestAvx2(packed_.data(), rows_, blocks_, x, row_ids, count);
+    default:
+      return NearestBaseline(packed_.data(), rows_, blocks_, x, row_ids, count);
+  }
 }
 
 }  // namespace symembed

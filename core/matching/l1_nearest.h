@@ -15,14 +15,19 @@
 #include <utility>
 #include <vector>
 
+#include "core/fmap/nearest_kernel.h"
+
 namespace symembed {
 
 constexpr int kL1Block = 8;
 
 class L1Columns {
  public:
-  // rows x cols, copied into the packed layout (padding columns hold +infinity).
-  explicit L1Columns(const Eigen::MatrixXd& m);
+  // rows x cols, copied into the packed layout (padding columns hold +infinity). `isa`: the build
+  // of the search to run, the widest the processor supports by default (another for tests and
+  // benchmarks; NearestKernelSupports says which it runs). Throws InvalidInputError for a matrix
+  // without columns, and for a build this processor does not run.
+  explicit L1Columns(const Eigen::MatrixXd& m, NearestIsa isa = NearestIsa::kAuto);
 
   int rows() const { return rows_; }
   int cols() const { return cols_; }
@@ -37,6 +42,7 @@ class L1Columns {
   int rows_ = 0;
   int cols_ = 0;
   int blocks_ = 0;
+  NearestIsa isa_ = NearestIsa::kAuto;  // resolved: never kAuto
   std::vector<double> packed_;  // blocks x rows x kL1Block
   std::vector<int> all_rows_;   // 0, 1, ..., rows - 1
 };

@@ -45,13 +45,17 @@ Eigen::MatrixXd GridMatrix(int rows, int cols, std::mt19937* rng) {
   return m;
 }
 
-TEST(L1Columns, FindsThePlainLoopsColumnAndSumBitForBit) {
+class L1ColumnsIsa : public testing::TestWithParam<NearestIsa> {};
+
+// Every build the processor runs (the others are skipped).
+TEST_P(L1ColumnsIsa, FindsThePlainLoopsColumnAndSumBitForBit) {
+  if (!NearestKernelSupports(GetParam())) GTEST_SKIP() << "this processor lacks that build";
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(0.0, 0.7);
   for (int rows : {1, 3, 5, 40}) {
     for (int cols : {1, 7, 8, 9, 301}) {
       const Eigen::MatrixXd m = GridMatrix(rows, cols, &rng);
-      const L1Columns packed(m);
+      const L1Columns packed(m, GetParam());
       std::vector<int> all(rows);
       for (int i = 0; i < rows; ++i) all[i] = i;
       for (int q = 0; q < 50; ++q) {
@@ -67,11 +71,12 @@ TEST(L1Columns, FindsThePlainLoopsColumnAndSumBitForBit) {
   }
 }
 
-TEST(L1Columns, OverChosenRowsInTheirOrder) {
+TEST_P(L1ColumnsIsa, OverChosenRowsInTheirOrder) {
+  if (!NearestKernelSupports(GetParam())) GTEST_SKIP() << "this processor lacks that build";
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(0.0, 0.7);
   const Eigen::MatrixXd m = GridMatrix(30, 300, &rng);
-  const L1Columns packed(m);
+  const L1Columns packed(m, GetParam());
   std::uniform_int_distribution<int> row(0, 29);
   for (int q = 0; q < 200; ++q) {
     const std::vector<int> rows = {row(rng), row(rng), row(rng)};
@@ -82,6 +87,10 @@ TEST(L1Columns, OverChosenRowsInTheirOrder) {
     ASSERT_EQ(std::memcmp(&cost, &pcost, sizeof(double)), 0);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Builds, L1ColumnsIsa,
+                         testing::Values(NearestIsa::kAuto, NearestIsa::kAvx512, NearestIsa::kAvx2,
+                                         NearestIsa::kBaseline));
 
 TEST(L1Columns, EveryColumnInfiniteGivesTheFirst) {
   Eigen::MatrixXd m = Eigen::MatrixXd::Constant(2, 10, std::numeric_limits<double>::infinity());
