@@ -111,15 +111,14 @@ void NearestBlocksBaseline(const float* coords, const float* sq_norms, int block
   NearestBlocks<4, 2, 6>(coords, sq_norms, blocks, dims, queries, m, nearest);
 }
 
-// The build for `isa`, kAuto resolved to the widest this processor runs.
-NearestIsa Resolve(NearestIsa isa) {
+}  // namespace
+
+NearestIsa ResolveNearestIsa(NearestIsa isa) {
   if (isa != NearestIsa::kAuto) return isa;
   if (NearestKernelSupports(NearestIsa::kAvx512)) return NearestIsa::kAvx512;
   if (NearestKernelSupports(NearestIsa::kAvx2)) return NearestIsa::kAvx2;
   return NearestIsa::kBaseline;
 }
-
-}  // namespace
 
 bool NearestKernelSupports(NearestIsa isa) {
   // __builtin_cpu_supports also checks that the operating system saves the wider registers.
@@ -173,7 +172,7 @@ void NearestPacked(const PackedPoints& points, const float* queries, int m, int*
   const int blocks = static_cast<int>(points.sq_norms.size()) / kNearestBlock;
   const float* coords = points.coords.data();
   const float* norms = points.sq_norms.data();
-  switch (Resolve(isa)) {
+  switch (ResolveNearestIsa(isa)) {
     case NearestIsa::kAvx512:
       NearestBlocksAvx512(coords, norms, blocks, points.dims, queries, m, nearest);
       break;

@@ -39,6 +39,9 @@ enum class NearestIsa { kAuto, kAvx512, kAvx2, kBaseline };
 // Whether this processor runs that build of the kernel (kAuto and kBaseline: always).
 bool NearestKernelSupports(NearestIsa isa);
 
+// The build for `isa`: itself, or for kAuto the widest this processor runs.
+NearestIsa ResolveNearestIsa(NearestIsa isa);
+
 // For each of m queries (row-major: query r's coordinates at queries[r * dims ...]), writes to
 // nearest[r] the index of the point minimising ||p||^2 - 2 q.p, the lowest index among equal
 // values. A query whose every value is NaN gets 0. `isa` forces one build of the kernel (one the

@@ -125,13 +125,9 @@ L1Columns::L1Columns(const Eigen::MatrixXd& m, NearestIsa isa)
               std::numeric_limits<double>::infinity()),
       all_rows_(rows_) {
   if (cols_ < 1) throw InvalidInputError("L1Columns: no columns");
-  if (!NearestKernelSupports(isa)) {
-    throw InvalidInputError("L1Columns: this processor lacks that build");
-  }
-  isa_ = isa != NearestIsa::kAuto                     ? isa
-         : NearestKernelSupports(NearestIsa::kAvx512) ? NearestIsa::kAvx512
-         : NearestKernelSupports(NearestIsa::kAvx2)   ? NearestIsa::kAvx2
-                                                      : NearestIsa::kBaseline;
+  SYMEMBED_CHECK(NearestKernelSupports(isa),
+                 "L1Columns: a build this processor cannot run was asked for");
+  isa_ = ResolveNearestIsa(isa);
   std::iota(all_rows_.begin(), all_rows_.end(), 0);
   for (int j = 0; j < cols_; ++j) {
     double* out =

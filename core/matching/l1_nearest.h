@@ -25,12 +25,9 @@ class L1Columns {
  public:
   // rows x cols, copied into the packed layout (padding columns hold +infinity). `isa`: the build
   // of the search to run, the widest the processor supports by default (another for tests and
-  // benchmarks; NearestKernelSupports says which it runs). Throws InvalidInputError for a matrix
-  // without columns, and for a build this processor does not run.
+  // benchmarks; NearestKernelSupports says which it runs; one it does not run is a programming
+  // error, as for NearestPacked). Throws InvalidInputError for a matrix without columns.
   explicit L1Columns(const Eigen::MatrixXd& m, NearestIsa isa = NearestIsa::kAuto);
-
-  int rows() const { return rows_; }
-  int cols() const { return cols_; }
 
   // The column nearest to x (rows() entries) over every row in order, and its L1 distance.
   std::pair<int, double> Nearest(const double* x) const;
