@@ -161,8 +161,9 @@ class Plane2dSearch {
     if (G_.size() > 0) chosen.consistency = Consistency(chosen.sigma);
     if (G_.size() == 0 || chosen.consistency >= options_.spectral.min_consistency) return;
     const double sizeG = RmsRadius(G_);
-    for (const SignFlipCandidate& flip : SignFlipCandidates(G_, options_.spectral.num_candidates,
-                                                            options_.search.outlier_distance)) {
+    for (const SignFlipCandidate& flip :
+         SignFlipCandidates(G_, options_.spectral.num_candidates, options_.search.outlier_distance,
+                            options_.threads)) {
       if (flip.fixed_fraction > options_.search.max_fixed_fraction) continue;
       AddSignFlipCandidate(flip, sizeG);
     }

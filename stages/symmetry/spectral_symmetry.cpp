@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "core/knn.h"
 #include "core/procrustes.h"
+#include "core/sign_flip_nearest.h"
 #include "core/spectral.h"
 #include "stages/symmetry/reflection_search.h"
 
@@ -72,12 +73,13 @@ Eigen::MatrixXd SampleSpectralCoordinates(const Surface& surface, const std::vec
 }
 
 std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int num_candidates,
-                                                  double outlier_distance) {
+                                                  double outlier_distance, int threads) {
   const int k = static_cast<int>(G.cols());
   SYMEMBED_CHECK(k >= 1 && k <= 12, "between 1 and 12 spectral coordinates");
   std::vector<SignFlipCandidate> all;
   if (num_candidates <= 0 || G.rows() < 2) return all;
   const KnnIndex index(G);
+  const SignFlipNeighbours neighbours = NearestUnderSignFlips(G, index, threads);
   const double size = RmsRadius(G);
   const int n = static_cast<int>(G.rows());
   // TruncatedScore's scale and cap: a score is the sum of the capped residuals over n * scale.
@@ -85,38 +87,29 @@ std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int 
   const double cap = outlier_distance * scale;
   // The lowest scores so far, at most num_candidates, ascending. A pattern whose capped residuals
   // over its first samples already sum past the highest of them (with a margin far above the
-  // rounding of the sum) scores above it, so its search stops there. partial_sort below would
-  // pass over such a pattern (it is not below the top of its heap of the lowest so far), so the
-  // patterns kept, their order among equal scores, their maps and scores are those of searching
-  // every pattern to the end.
+  // rounding of the sum) scores above it and is left out. partial_sort below would pass over such
+  // a pattern (it is not below the top of its heap of the lowest so far), so the patterns kept,
+  // their order among equal scores, their maps and scores are those of keeping every pattern.
   std::vector<double> lowest;
   constexpr int kChunk = 64;
   constexpr double kMargin = 1e-9;
   for (unsigned pattern = 1; pattern < (1u << k); ++pattern) {
-    Eigen::MatrixXd Q = G;
-    for (int j = 0; j < k; ++j) {
-      if (pattern >> j & 1u) Q.col(j) = -Q.col(j);
-    }
-    SignFlipCandidate c;
-    c.pattern = pattern;
-    c.sigma.resize(n);
-    c.residual.resize(n);
+    const int* nearest = neighbours.nearest.data() + static_cast<size_t>(pattern - 1) * n;
+    const double* distances = neighbours.distances.data() + static_cast<size_t>(pattern - 1) * n;
     const bool bounded = static_cast<int>(lowest.size()) == num_candidates;
     const double bound = bounded ? lowest.back() * n * scale * (1.0 + kMargin) : 0.0;
     double capped = 0.0;
     bool beaten = false;
     for (int begin = 0; begin < n && !beaten; begin += kChunk) {
-      const int rows = std::min(kChunk, n - begin);
-      Eigen::VectorXd distances;
-      const std::vector<int> nearest = index.Nearest(Q.middleRows(begin, rows), &distances, 1);
-      for (int r = 0; r < rows; ++r) {
-        c.sigma[begin + r] = nearest[r];
-        c.residual(begin + r) = distances(r);
-        capped += std::min(distances(r), cap);
-      }
+      const int end = std::min(n, begin + kChunk);
+      for (int r = begin; r < end; ++r) capped += std::min(distances[r], cap);
       beaten = bounded && capped > bound;
     }
     if (beaten) continue;
+    SignFlipCandidate c;
+    c.pattern = pattern;
+    c.sigma.assign(nearest, nearest + n);
+    c.residual = Eigen::Map<const Eigen::VectorXd>(distances, n);
     c.score = TruncatedScore(c.residual, size, outlier_distance);
     c.fixed_fraction = FixedFraction(c.sigma);
     lowest.insert(std::upper_bound(lowest.begin(), lowest.end(), c.score), c.score);

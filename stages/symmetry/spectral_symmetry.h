@@ -66,9 +66,10 @@ struct SignFlipCandidate {
 };
 
 // The num_candidates sign patterns (out of the 2^K - 1 that flip at least one coordinate) whose
-// self maps have the lowest score, best first; size is the RMS radius of G. K <= 12.
+// self maps have the lowest score, best first; size is the RMS radius of G. K <= 12. The nearest
+// neighbours are searched on `threads` threads (0: all cores); the result does not depend on them.
 std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int num_candidates,
-                                                  double outlier_distance);
+                                                  double outlier_distance, int threads = 1);
 
 // How well sigma (#S) commutes with the eigenfunctions: mean over the columns g_j of G of the
 // norm of the projection of (g_j o sigma) / |g_j o sigma| onto the span of the columns g_k with

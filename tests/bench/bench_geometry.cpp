@@ -12,6 +12,10 @@
 //                                    matching's search: 2,000 queries against the distances of
 //                                    10,000 points of a sphere to `rows` landmarks (3 rows: 300
 //                                    queries against 300 points, as the triples')
+//   BM_SignFlips/sweep/<0|1>         every sign flip of 8 eigenfunctions at 1,000 farthest-point
+//                                    samples of the 5k blob, each flipped sample's nearest
+//                                    sample: KnnIndex pattern by pattern (0) or
+//                                    NearestUnderSignFlips (1), one thread
 //   BM_GeodesicsTosca/<solver>       Prepare + 1,000 farthest-point sources on TOSCA cat0
 //                                    (5,000 vertices, preprocessed), when the data is present
 #include <benchmark/benchmark.h>
@@ -28,9 +32,11 @@
 #include "core/matching/l1_nearest.h"
 #include "core/mesh_graph.h"
 #include "core/mesh_io.h"
+#include "core/sign_flip_nearest.h"
 #include "registry/registry.h"
 #include "stages/preprocess/standard.h"
 #include "stages/sampling/farthest_point.h"
+#include "stages/symmetry/spectral_symmetry.h"
 #include "tests/test_util.h"
 
 namespace symembed {
@@ -179,6 +185,32 @@ BENCHMARK(BM_L1Nearest)
     ->ArgNames({"rows", "packed"})
     ->ArgsProduct({{3, 40}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
+void BM_SignFlips(benchmark::State& state) {
+  const Surface& s = Blob(kSmall);
+  const std::vector<int> samples = FarthestPointSampling(s, {1000, 1}).samples;
+  const Eigen::MatrixXd G = SampleSpectralCoordinates(s, samples, 8);
+  const KnnIndex index(G);
+  const bool sweep = state.range(0) == 1;
+  for (auto _ : state) {
+    long sum = 0;
+    if (sweep) {
+      const SignFlipNeighbours n = NearestUnderSignFlips(G, index, 1);
+      sum += n.nearest.back();
+    } else {
+      for (unsigned pattern = 1; pattern < 256u; ++pattern) {
+        Eigen::MatrixXd Q = G;
+        for (int d = 0; d < 8; ++d) {
+          if (pattern >> d & 1u) Q.col(d) = -Q.col(d);
+        }
+        Eigen::VectorXd distances;
+        sum += index.Nearest(Q, &distances, 1).back();
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+BENCHMARK(BM_SignFlips)->ArgName("sweep")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace symembed
 
