@@ -545,6 +545,8 @@ ShapeOutcome ComputeMeshOutcome(Surface input, double load_seconds, uint64_t mes
   second.first = &chain;
   std::string second_failure = FailureOf([&] { run_shape_kinds(second, false); });
   chain.distances.reset();
+  data->symmetry.detection.reset();
+  second_data.symmetry.detection.reset();
 
   const auto start = std::chrono::steady_clock::now();
   double axis_ratio = 0.0;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <any>
 #include <array>
 #include <map>
 #include <string>
@@ -69,6 +70,10 @@ struct SymmetryResult {
   // `self_map_displacement`) nearly tied with this one; the stage's RunAlternative proposes it.
   double tie_displacement = 0.0;
   StageStatus status;
+  // The stage's own record of the detection, for its RunAlternative on the same input in the
+  // same process (the per-shape chain drops it once the second plane is computed); empty when
+  // the stage keeps none or the result was read from the cache. Not a member of the cache entry.
+  std::any detection;
   // Its members in the order of its cache entries (registry/serialize.h).
   static constexpr auto Members() {
     return std::make_tuple(&SymmetryResult::normal, &SymmetryResult::offset, &SymmetryResult::sigma,

@@ -100,14 +100,18 @@ Eigen::MatrixXd SamplePoints(const Eigen::MatrixXd& Y, const std::vector<int>& s
   return P;
 }
 
+}  // namespace
+
 // One detection: the samples in 2D (X) and in the 3D embedding (P), and the candidates found.
 // Candidates are added in a fixed order (lines of the 2D embedding by angle, the 3D search, the
-// sign flips of the eigenfunctions), so the choice does not depend on the threads.
-class Plane2dSearch {
+// sign flips of the eigenfunctions), so the choice does not depend on the threads. The lines and
+// the 3D search do not depend on min_self_map_displacement; Choose, which adds the sign flips
+// when the choice so far needs them and picks the plane, does, and leaves the search as it was.
+class Plane2dCandidates {
  public:
-  Plane2dSearch(const Eigen::MatrixXd& D, const std::vector<int>& samples,
-                const Eigen::MatrixXd& Y, const Plane2dOptions& options, const Eigen::MatrixXd& G,
-                const Eigen::VectorXd& evals)
+  Plane2dCandidates(const Eigen::MatrixXd& D, const std::vector<int>& samples,
+                    const Eigen::MatrixXd& Y, const Plane2dOptions& options,
+                    const Eigen::MatrixXd& G, const Eigen::VectorXd& evals)
       : options_(options),
         G_(G),
         evals_(evals),
@@ -131,7 +135,7 @@ class Plane2dSearch {
         options_.threads);
     for (int k = 0; k < options_.num_angles; ++k) {
       iterations_ += angle_iterations[k];
-      for (Candidate& c : per_angle[k]) Consider(std::move(c));
+      for (Candidate& c : per_angle[k]) Consider(std::move(c), &candidates_);
     }
   }
 
@@ -147,34 +151,40 @@ class Plane2dSearch {
     double total = 0.0, distortion = 0.0;
     const ReflectionFit fit3 =
         SearchPlanes3d(P_, index3_, Dss_, o3, &total, &distortion, &iterations_);
-    if (std::isfinite(total)) Consider(FromFit3d(fit3, distortion, "3D search"));
+    if (std::isfinite(total)) Consider(FromFit3d(fit3, distortion, "3D search"), &candidates_);
   }
 
-  // Step 5: when the choice by distances is not an intrinsic symmetry of the eigenfunctions,
-  // self maps from sign flips of the eigenfunctions join the candidates, lifted to 3D, and the
-  // spectral inconsistency joins the criterion.
-  void AddSignFlipCandidatesIfInconsistent() {
+  // The plane chosen with the bound min_self_map_displacement. Step 5: when the choice by
+  // distances is not an intrinsic symmetry of the eigenfunctions, self maps from sign flips of the
+  // eigenfunctions join the candidates, lifted to 3D, and the spectral inconsistency joins the
+  // criterion.
+  SymmetryResult Choose(double min_self_map_displacement) const {
     if (candidates_.empty()) {
       throw InvalidInputError("symmetry plane2d: every candidate symmetry was rejected");
     }
-    Candidate& chosen = Best();
+    std::vector<Candidate> candidates = candidates_;
+    int iterations = iterations_;
+    Candidate& chosen = Best(candidates, min_self_map_displacement);
     if (G_.size() > 0) chosen.consistency = Consistency(chosen.sigma);
-    if (G_.size() == 0 || chosen.consistency >= options_.spectral.min_consistency) return;
-    const double sizeG = RmsRadius(G_);
-    for (const SignFlipCandidate& flip :
-         SignFlipCandidates(G_, options_.spectral.num_candidates, options_.search.outlier_distance,
-                            options_.threads)) {
-      if (flip.fixed_fraction > options_.search.max_fixed_fraction) continue;
-      AddSignFlipCandidate(flip, sizeG);
+    if (G_.size() > 0 && chosen.consistency < options_.spectral.min_consistency) {
+      const double sizeG = RmsRadius(G_);
+      for (const SignFlipCandidate& flip :
+           SignFlipCandidates(G_, options_.spectral.num_candidates,
+                              options_.search.outlier_distance, options_.threads)) {
+        if (flip.fixed_fraction > options_.search.max_fixed_fraction) continue;
+        AddSignFlipCandidate(flip, sizeG, &candidates, &iterations);
+      }
+      for (Candidate& c : candidates) {
+        c.consistency = Consistency(c.sigma);
+        c.total += options_.spectral.weight * (1.0 - c.consistency);
+      }
     }
-    for (Candidate& c : candidates_) {
-      c.consistency = Consistency(c.sigma);
-      c.total += options_.spectral.weight * (1.0 - c.consistency);
-    }
+    return Result(candidates, iterations, min_self_map_displacement);
   }
 
-  SymmetryResult Result() {
-    const Candidate& best = Best();
+  SymmetryResult Result(std::vector<Candidate>& candidates, int iterations,
+                        double min_self_map_displacement) const {
+    const Candidate& best = Best(candidates, min_self_map_displacement);
     SymmetryResult result;
     result.normal = best.normal;
     result.offset = best.offset;
@@ -196,7 +206,7 @@ class Plane2dSearch {
     }
     result.score = best.score;
     result.status.converged = best.converged;
-    result.status.iterations = iterations_;
+    result.status.iterations = iterations;
     result.status.residual = best.total;
     std::ostringstream message;
     message << "plane2d: " << best.origin << ", score " << best.score
@@ -209,7 +219,7 @@ class Plane2dSearch {
     if (options_.second_plane_below > 0.0 && options_.second_plane_tie > 1.0 &&
         best.displacement >= options_.second_plane_below) {
       const Candidate* tied = nullptr;
-      for (const Candidate& c : candidates_) {
+      for (const Candidate& c : candidates) {
         if (c.displacement >= moves_more && (tied == nullptr || c.total < tied->total)) tied = &c;
       }
       if (tied != nullptr && tied->total <= options_.second_plane_tie * best.total) {
@@ -296,7 +306,8 @@ class Plane2dSearch {
   // in a few eigenfunctions); the lifted plane refined in 3D gives the same symmetry's self map
   // point by point where the 3D embedding has it, and another symmetry, which the criterion then
   // weighs, where not.
-  void AddSignFlipCandidate(const SignFlipCandidate& flip, double sizeG) {
+  void AddSignFlipCandidate(const SignFlipCandidate& flip, double sizeG,
+                            std::vector<Candidate>* candidates, int* iterations) const {
     Candidate c;
     c.sigma = flip.sigma;
     c.confidence = SymmetryConfidence(flip.residual, flip.sigma, sizeG);
@@ -310,24 +321,23 @@ class Plane2dSearch {
       if (flip.pattern >> j & 1u) origin << " " << j + 1;
     }
     c.origin = origin.str();
-    std::optional<Candidate> refined = RefinedIn3d(c.normal, c.offset, c.origin, &iterations_);
-    if (refined) Consider(std::move(*refined));
-    Consider(std::move(c));
+    std::optional<Candidate> refined = RefinedIn3d(c.normal, c.offset, c.origin, iterations);
+    if (refined) Consider(std::move(*refined), candidates);
+    Consider(std::move(c), candidates);
   }
 
-  void Consider(Candidate c) {
+  void Consider(Candidate c, std::vector<Candidate>* candidates) const {
     c.total = c.score + options_.intrinsic_weight * c.intrinsic;
     c.displacement = SelfMapDisplacement(P_, c.sigma);
-    if (std::isfinite(c.total)) candidates_.push_back(std::move(c));
+    if (std::isfinite(c.total)) candidates->push_back(std::move(c));
   }
 
   // The candidate of the lowest total (the first on ties) among those whose self map moves the
-  // samples at least min_self_map_displacement, or among all when none does.
-  Candidate& Best() {
-    const double bound = options_.min_self_map_displacement;
-    const bool any_moves = std::any_of(candidates_.begin(), candidates_.end(),
+  // samples at least `bound`, or among all when none does.
+  static Candidate& Best(std::vector<Candidate>& candidates, double bound) {
+    const bool any_moves = std::any_of(candidates.begin(), candidates.end(),
                                        [&](const Candidate& c) { return c.displacement >= bound; });
-    return *std::min_element(candidates_.begin(), candidates_.end(),
+    return *std::min_element(candidates.begin(), candidates.end(),
                              [&](const Candidate& a, const Candidate& b) {
                                if (any_moves) {
                                  const bool a_moves = a.displacement >= bound;
@@ -338,9 +348,9 @@ class Plane2dSearch {
                              });
   }
 
-  const Plane2dOptions& options_;
-  const Eigen::MatrixXd& G_;
-  const Eigen::VectorXd& evals_;
+  const Plane2dOptions options_;
+  const Eigen::MatrixXd G_;
+  const Eigen::VectorXd evals_;
   const Eigen::MatrixXd Dss_;  // #S x #S
   const Eigen::MatrixXd X_;    // #S x 2
   const KnnIndex index2_;
@@ -348,11 +358,9 @@ class Plane2dSearch {
   const Eigen::MatrixXd P_;  // #S x 3
   const KnnIndex index3_;
   const double size2_, size3_;
-  std::vector<Candidate> candidates_;
+  std::vector<Candidate> candidates_;  // the lines' and the 3D search's
   int iterations_ = 0;
 };
-
-}  // namespace
 
 Eigen::VectorXd DistanceConsistencyWeights(const Eigen::MatrixXd& Dss,
                                            const std::vector<int>& sigma, double scale) {
@@ -399,15 +407,25 @@ double SampleSelfMapDisplacement(const Eigen::MatrixXd& Y, const std::vector<int
   return SelfMapDisplacement(SamplePoints(Y, samples), sigma);
 }
 
+std::shared_ptr<const Plane2dCandidates> SearchPlane2d(
+    const Eigen::MatrixXd& D, const std::vector<int>& samples, const Eigen::MatrixXd& Y,
+    const Plane2dOptions& options, const Eigen::MatrixXd& G, const Eigen::VectorXd& evals) {
+  CheckPlane2dInputs(samples, Y, options, G, evals);
+  auto search = std::make_shared<Plane2dCandidates>(D, samples, Y, options, G, evals);
+  search->AddLineCandidates();
+  if (options.candidates_3d) search->AddSearch3dCandidate();
+  return search;
+}
+
+SymmetryResult ChoosePlane2d(const Plane2dCandidates& candidates,
+                             double min_self_map_displacement) {
+  return candidates.Choose(min_self_map_displacement);
+}
+
 SymmetryResult DetectSymmetryPlane2d(const Eigen::MatrixXd& D, const std::vector<int>& samples,
                                      const Eigen::MatrixXd& Y, const Plane2dOptions& options,
                                      const Eigen::MatrixXd& G, const Eigen::VectorXd& evals) {
-  CheckPlane2dInputs(samples, Y, options, G, evals);
-  Plane2dSearch search(D, samples, Y, options, G, evals);
-  search.AddLineCandidates();
-  if (options.candidates_3d) search.AddSearch3dCandidate();
-  search.AddSignFlipCandidatesIfInconsistent();
-  return search.Result();
+  return SearchPlane2d(D, samples, Y, options, G, evals)->Choose(options.min_self_map_displacement);
 }
 
 }  // namespace symembed

@@ -33,6 +33,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -122,6 +123,18 @@ Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations
 // the samples or a sample id is out of range.
 double SampleSelfMapDisplacement(const Eigen::MatrixXd& Y, const std::vector<int>& samples,
                                  const std::vector<int>& sigma);
+
+// The candidates of one detection, steps 1 to 4, which do not depend on
+// min_self_map_displacement (their arguments as DetectSymmetryPlane2d's, which throws the same).
+class Plane2dCandidates;
+std::shared_ptr<const Plane2dCandidates> SearchPlane2d(
+    const Eigen::MatrixXd& D, const std::vector<int>& samples, const Eigen::MatrixXd& Y,
+    const Plane2dOptions& options, const Eigen::MatrixXd& G = Eigen::MatrixXd(),
+    const Eigen::VectorXd& evals = Eigen::VectorXd());
+// Step 5 and the choice among the candidates with the given min_self_map_displacement (the
+// search's own options otherwise): DetectSymmetryPlane2d's result for options with that bound,
+// bit for bit, without searching again (the symmetry stage's second plane).
+SymmetryResult ChoosePlane2d(const Plane2dCandidates& candidates, double min_self_map_displacement);
 
 // D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3
 // embedding; G: #S x K spectral coordinates of the samples (SampleSpectralCoordinates), or empty

@@ -21,10 +21,26 @@ ReflectionSearchOptions ReadSearchOptions(OptionReader& o) {
   return s;
 }
 
+class Plane2dStage;
+
+// What Plane2dStage::Run keeps in its result: the candidates, from which RunAlternative chooses
+// again when it is asked by the same stage about the same samples and embedding.
+struct Plane2dDetection {
+  const Plane2dStage* stage = nullptr;
+  std::vector<int> samples;
+  Eigen::MatrixXd Y;
+  std::shared_ptr<const Plane2dCandidates> candidates;
+};
+
 class Plane2dStage : public SymmetryStage {
  public:
   explicit Plane2dStage(Plane2dOptions options) : options_(options) {}
-  SymmetryResult Run(const SymmetryInput& in) const override { return Detect(in, options_); }
+  SymmetryResult Run(const SymmetryInput& in) const override {
+    std::shared_ptr<const Plane2dCandidates> candidates = Search(in, options_);
+    SymmetryResult result = ChoosePlane2d(*candidates, options_.min_self_map_displacement);
+    result.detection = Plane2dDetection{this, in.samples, in.embedding.Y, std::move(candidates)};
+    return result;
+  }
 
   // Below second_plane_below, the best candidate that moves the samples at least that much;
   // above it, the nearly tied candidate that moves them clearly more (tie_displacement).
@@ -37,21 +53,27 @@ class Plane2dStage : public SymmetryStage {
       moves_at_least = bound;
     }
     if (!(moves_at_least > 0.0)) return SymmetryResult{};
-    Plane2dOptions options = options_;
-    options.min_self_map_displacement = std::max(options.min_self_map_displacement, moves_at_least);
-    SymmetryResult second = Detect(in, options);
+    const double bound2 = std::max(options_.min_self_map_displacement, moves_at_least);
+    // The candidates do not depend on the bound: those of Run when it kept them.
+    const auto* kept = std::any_cast<Plane2dDetection>(&chosen.detection);
+    const bool same = kept && kept->stage == this && kept->candidates &&
+                      kept->samples == in.samples && kept->Y.rows() == in.embedding.Y.rows() &&
+                      kept->Y.cols() == in.embedding.Y.cols() && kept->Y == in.embedding.Y;
+    SymmetryResult second = same ? ChoosePlane2d(*kept->candidates, bound2)
+                                 : ChoosePlane2d(*Search(in, options_), bound2);
     if (second.sigma == chosen.sigma) return SymmetryResult{};
     second.status.message = "second plane: " + second.status.message;
     return second;
   }
 
  private:
-  static SymmetryResult Detect(const SymmetryInput& in, const Plane2dOptions& options) {
+  static std::shared_ptr<const Plane2dCandidates> Search(const SymmetryInput& in,
+                                                         const Plane2dOptions& options) {
     const int k = options.spectral.num_eigenfunctions;
     Eigen::VectorXd evals;
     const Eigen::MatrixXd G =
         k > 0 ? SampleSpectralCoordinates(in.surface, in.samples, k, &evals) : Eigen::MatrixXd();
-    return DetectSymmetryPlane2d(in.D, in.samples, in.embedding.Y, options, G, evals);
+    return SearchPlane2d(in.D, in.samples, in.embedding.Y, options, G, evals);
   }
 
   Plane2dOptions options_;

@@ -345,6 +345,27 @@ struct FlatFigure {
 // second_plane_below (default 0.4) it also proposes the left-right plane as a second hypothesis
 // (the pair then chooses), and with the option off, or for a choice that moves the samples
 // enough, none.
+// The second plane chosen from the candidates Run kept is the one a new search gives (a first
+// plane read back from the cache keeps none), bit for bit.
+void ExpectSameSecondPlaneWithoutTheKeptCandidates(const SymmetryStage& stage,
+                                                   const SymmetryInput& input,
+                                                   const SymmetryResult& first,
+                                                   const SymmetryResult& second) {
+  ASSERT_TRUE(first.detection.has_value());
+  SymmetryResult read_back = first;
+  read_back.detection.reset();
+  const SymmetryResult searched = stage.RunAlternative(input, read_back);
+  EXPECT_EQ(searched.sigma, second.sigma);
+  EXPECT_EQ(searched.normal, second.normal);
+  EXPECT_EQ(searched.offset, second.offset);
+  EXPECT_EQ(searched.confidence, second.confidence);
+  EXPECT_EQ(searched.score, second.score);
+  EXPECT_EQ(searched.tie_displacement, second.tie_displacement);
+  EXPECT_EQ(searched.status.iterations, second.status.iterations);
+  EXPECT_EQ(searched.status.residual, second.status.residual);
+  EXPECT_EQ(searched.status.message, second.status.message);
+}
+
 TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
   const FlatFigure flat;
   const SymmetryInput& input = flat.input;
@@ -358,6 +379,7 @@ TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
   EXPECT_LT(AngleDeg(second.normal, Eigen::Vector3d::UnitX()), 1.0) << second.status.message;
   EXPECT_GE(flat.Moved(second.sigma), 0.3);
   EXPECT_EQ(second.status.message.rfind("second plane: ", 0), 0u) << second.status.message;
+  ExpectSameSecondPlaneWithoutTheKeptCandidates(*stage, input, first, second);
   // The default bound (0.4) proposes it too; the option off, or a chosen plane that moves the
   // samples enough: none.
   EXPECT_FALSE(make("{type: plane2d}")->RunAlternative(input, first).sigma.empty());
@@ -389,6 +411,7 @@ TEST(Plane2d, ProposesANearlyTiedPlaneThatMovesTheSamplesClearlyMore) {
   ASSERT_EQ(second.sigma.size(), flat.samples.size()) << second.status.message;
   EXPECT_GE(flat.Moved(second.sigma), 1.5 * moved);
   EXPECT_EQ(second.status.message.rfind("second plane: ", 0), 0u) << second.status.message;
+  ExpectSameSecondPlaneWithoutTheKeptCandidates(*generous, input, first, second);
 
   for (const std::string tie : {"", ", second_plane_tie: 1"}) {
     const auto stage = make("{type: plane2d, " + below + tie + "}");
