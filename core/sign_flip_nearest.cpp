@@ -1,11 +1,14 @@
 #include "core/sign_flip_nearest.h"
 
+#include <flann/algorithms/dist.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
 
+#include "core/double_lanes.h"
 #include "core/errors.h"
 #include "core/nearest_kd.h"
 #include "core/parallel.h"
@@ -21,12 +24,6 @@ constexpr int kFlipBlock = 8;
 // relative), and the kd-tree's own distances differ from the exact ones by less still.
 constexpr double kTieMargin = 1e-9;
 
-template <int kLanes>
-struct FlipVectors {
-  typedef double Doubles __attribute__((vector_size(8 * kLanes)));
-  typedef int64_t Bits __attribute__((vector_size(8 * kLanes)));
-};
-
 // For one query row g (K coordinates): sweeps the patterns in Gray-code order and writes, per
 // pattern s, the row of lowest c_j(s) to arg[s] and whether it is the only row within `margin`
 // of it to unique[s]. packed: blocks x K x kFlipBlock coordinates (padding rows 0); norms:
@@ -36,8 +33,8 @@ __attribute__((always_inline)) inline void SweepKernel(const double* packed, con
                                                        int blocks, int K, const double* g,
                                                        double margin, double* c, int* arg,
                                                        unsigned char* unique) {
-  using Doubles = typename FlipVectors<kLanes>::Doubles;
-  using Bits = typename FlipVectors<kLanes>::Bits;
+  using Doubles = typename DoubleLanes<kLanes>::Doubles;
+  using Bits = typename DoubleLanes<kLanes>::Bits;
   constexpr int kVectors = kFlipBlock / kLanes;
   const double inf = std::numeric_limits<double>::infinity();
   // c_j with no coordinate negated.
@@ -119,24 +116,6 @@ __attribute__((target("avx2"))) void SweepAvx2(const double* packed, const doubl
 void SweepBaseline(const double* packed, const double* norms, int blocks, int K, const double* g,
                    double margin, double* c, int* arg, unsigned char* unique) {
   SweepKernel<2>(packed, norms, blocks, K, g, margin, c, arg, unique);
-}
-
-// The squared distance as KnnIndex's kd-tree (FLANN's L2) computes it: coordinates in order,
-// four squared differences summed left to right and added to the total, then the rest one by
-// one. Kept out of the builds above, whose fused multiply-adds would round differently.
-__attribute__((noinline)) double KdTreeSquaredDistance(const double* q, const double* p, int K) {
-  double result = 0.0;
-  int a = 0;
-  for (; a + 3 < K; a += 4) {
-    const double d0 = q[a] - p[a], d1 = q[a + 1] - p[a + 1];
-    const double d2 = q[a + 2] - p[a + 2], d3 = q[a + 3] - p[a + 3];
-    result += d0 * d0 + d1 * d1 + d2 * d2 + d3 * d3;
-  }
-  for (; a < K; ++a) {
-    const double d = q[a] - p[a];
-    result += d * d;
-  }
-  return result;
 }
 
 }  // namespace
@@ -234,8 +213,10 @@ SignFlipNeighbours NearestUnderSignFlips(const Eigen::MatrixXd& G, const KnnInde
       for (int d = 0; d < K; ++d) q[d] = (pattern >> d & 1u) ? -G(i, d) : G(i, d);
       const size_t at = static_cast<size_t>(pattern - 1) * n + i;
       out.nearest[at] = j;
-      out.distances[at] = std::sqrt(
-          std::max(0.0, KdTreeSquaredDistance(q, rows.data() + static_cast<size_t>(j) * K, K)));
+      // The kd-tree's own distance (FLANN's L2), computed here, outside the builds above, whose
+      // fused multiply-adds would round differently.
+      const double sq = flann::L2<double>()(q, rows.data() + static_cast<size_t>(j) * K, K);
+      out.distances[at] = std::sqrt(std::max(0.0, sq));
     }
     if (!tied.empty()) query(pattern, tied);
   }

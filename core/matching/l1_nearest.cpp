@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 
+#include "core/double_lanes.h"
 #include "core/errors.h"
 
 namespace symembed {
@@ -14,23 +15,12 @@ namespace {
 // enough that a far block stops early, rarely enough that the comparison costs little.
 constexpr int kCheckRows = 4;
 
-// Vectors of doubles in GCC's vector extension: 8 lanes (one zmm register) for the AVX-512
-// build, 4 (one ymm register) for the AVX2 build, 2 (one xmm register) for the baseline. Each
-// lane does the same scalar arithmetic.
-template <int kLanes>
-struct Vectors {
-  typedef double Doubles __attribute__((vector_size(8 * kLanes)));
-  typedef int64_t Bits __attribute__((vector_size(8 * kLanes)));
-  // For loads at addresses aligned to a double only.
-  typedef double DoublesUnaligned __attribute__((vector_size(8 * kLanes), aligned(8)));
-};
-
 template <int kLanes>
 __attribute__((always_inline)) inline std::pair<int, double> NearestKernel(
     const double* packed, int rows, int blocks, const double* x, const int* row_ids, int count) {
-  using Doubles = typename Vectors<kLanes>::Doubles;
-  using Bits = typename Vectors<kLanes>::Bits;
-  using DoublesUnaligned = typename Vectors<kLanes>::DoublesUnaligned;
+  using Doubles = typename DoubleLanes<kLanes>::Doubles;
+  using Bits = typename DoubleLanes<kLanes>::Bits;
+  using DoublesUnaligned = typename DoubleLanes<kLanes>::DoublesUnaligned;
   constexpr int kVectors = kL1Block / kLanes;
   static_assert(kL1Block % kLanes == 0, "a block is whole vectors");
   const double inf = std::numeric_limits<double>::infinity();

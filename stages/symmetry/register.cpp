@@ -38,7 +38,8 @@ class Plane2dStage : public SymmetryStage {
   SymmetryResult Run(const SymmetryInput& in) const override {
     std::shared_ptr<const Plane2dCandidates> candidates = Search(in, options_);
     SymmetryResult result = ChoosePlane2d(*candidates, options_.min_self_map_displacement);
-    result.detection = Plane2dDetection{this, in.samples, in.embedding.Y, std::move(candidates)};
+    result.detection = std::make_shared<const Plane2dDetection>(
+        Plane2dDetection{this, in.samples, in.embedding.Y, std::move(candidates)});
     return result;
   }
 
@@ -55,12 +56,13 @@ class Plane2dStage : public SymmetryStage {
     if (!(moves_at_least > 0.0)) return SymmetryResult{};
     const double bound2 = std::max(options_.min_self_map_displacement, moves_at_least);
     // The candidates do not depend on the bound: those of Run when it kept them.
-    const auto* kept = std::any_cast<Plane2dDetection>(&chosen.detection);
-    const bool same = kept && kept->stage == this && kept->candidates &&
-                      kept->samples == in.samples && kept->Y.rows() == in.embedding.Y.rows() &&
-                      kept->Y.cols() == in.embedding.Y.cols() && kept->Y == in.embedding.Y;
-    SymmetryResult second = same ? ChoosePlane2d(*kept->candidates, bound2)
-                                 : ChoosePlane2d(*Search(in, options_), bound2);
+    const auto* kept = std::any_cast<std::shared_ptr<const Plane2dDetection>>(&chosen.detection);
+    const Plane2dDetection* d = kept ? kept->get() : nullptr;
+    const bool same = d && d->stage == this && d->samples == in.samples &&
+                      d->Y.rows() == in.embedding.Y.rows() &&
+                      d->Y.cols() == in.embedding.Y.cols() && d->Y == in.embedding.Y;
+    SymmetryResult second =
+        same ? ChoosePlane2d(*d->candidates, bound2) : ChoosePlane2d(*Search(in, options_), bound2);
     if (second.sigma == chosen.sigma) return SymmetryResult{};
     second.status.message = "second plane: " + second.status.message;
     return second;

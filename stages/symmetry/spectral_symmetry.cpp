@@ -82,46 +82,29 @@ std::vector<SignFlipCandidate> SignFlipCandidates(const Eigen::MatrixXd& G, int 
   const SignFlipNeighbours neighbours = NearestUnderSignFlips(G, index, threads);
   const double size = RmsRadius(G);
   const int n = static_cast<int>(G.rows());
-  // TruncatedScore's scale and cap: a score is the sum of the capped residuals over n * scale.
-  const double scale = std::max(size, std::numeric_limits<double>::min());
-  const double cap = outlier_distance * scale;
-  // The lowest scores so far, at most num_candidates, ascending. A pattern whose capped residuals
-  // over its first samples already sum past the highest of them (with a margin far above the
-  // rounding of the sum) scores above it and is left out. partial_sort below would pass over such
-  // a pattern (it is not below the top of its heap of the lowest so far), so the patterns kept,
-  // their order among equal scores, their maps and scores are those of keeping every pattern.
-  std::vector<double> lowest;
-  constexpr int kChunk = 64;
-  constexpr double kMargin = 1e-9;
+  auto residual = [&](unsigned pattern) {
+    return Eigen::Map<const Eigen::VectorXd>(
+        neighbours.distances.data() + static_cast<size_t>(pattern - 1) * n, n);
+  };
+  std::vector<unsigned> patterns;
+  std::vector<double> scores(1u << k);
   for (unsigned pattern = 1; pattern < (1u << k); ++pattern) {
-    const int* nearest = neighbours.nearest.data() + static_cast<size_t>(pattern - 1) * n;
-    const double* distances = neighbours.distances.data() + static_cast<size_t>(pattern - 1) * n;
-    const bool bounded = static_cast<int>(lowest.size()) == num_candidates;
-    const double bound = bounded ? lowest.back() * n * scale * (1.0 + kMargin) : 0.0;
-    double capped = 0.0;
-    bool beaten = false;
-    for (int begin = 0; begin < n && !beaten; begin += kChunk) {
-      const int end = std::min(n, begin + kChunk);
-      for (int r = begin; r < end; ++r) capped += std::min(distances[r], cap);
-      beaten = bounded && capped > bound;
-    }
-    if (beaten) continue;
+    patterns.push_back(pattern);
+    scores[pattern] = TruncatedScore(residual(pattern), size, outlier_distance);
+  }
+  const size_t keep = std::min<size_t>(num_candidates, patterns.size());
+  std::partial_sort(patterns.begin(), patterns.begin() + keep, patterns.end(),
+                    [&](unsigned a, unsigned b) { return scores[a] < scores[b]; });
+  for (size_t t = 0; t < keep; ++t) {
+    const int* nearest = neighbours.nearest.data() + static_cast<size_t>(patterns[t] - 1) * n;
     SignFlipCandidate c;
-    c.pattern = pattern;
+    c.pattern = patterns[t];
     c.sigma.assign(nearest, nearest + n);
-    c.residual = Eigen::Map<const Eigen::VectorXd>(distances, n);
-    c.score = TruncatedScore(c.residual, size, outlier_distance);
+    c.residual = residual(patterns[t]);
+    c.score = scores[patterns[t]];
     c.fixed_fraction = FixedFraction(c.sigma);
-    lowest.insert(std::upper_bound(lowest.begin(), lowest.end(), c.score), c.score);
-    if (static_cast<int>(lowest.size()) > num_candidates) lowest.pop_back();
     all.push_back(std::move(c));
   }
-  const size_t keep = std::min<size_t>(num_candidates, all.size());
-  std::partial_sort(all.begin(), all.begin() + keep, all.end(),
-                    [](const SignFlipCandidate& a, const SignFlipCandidate& b) {
-                      return a.score < b.score;
-                    });
-  all.resize(keep);
   return all;
 }
 

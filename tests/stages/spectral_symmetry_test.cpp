@@ -121,8 +121,8 @@ TEST(SpectralSymmetry, SignFlipsFindTheMirrorsOfABox) {
   }
 }
 
-// Every sign pattern searched to the end and the lowest scores kept: what SignFlipCandidates
-// returns, which stops searching a pattern once it cannot be among them.
+// Every sign pattern searched on the kd-tree, pattern by pattern, and the lowest scores kept:
+// what SignFlipCandidates returns from its sweep over the patterns.
 std::vector<SignFlipCandidate> EverySignFlip(const Eigen::MatrixXd& G, int keep,
                                              double outlier_distance) {
   const KnnIndex index(G);
@@ -138,9 +138,8 @@ std::vector<SignFlipCandidate> EverySignFlip(const Eigen::MatrixXd& G, int keep,
     c.score = TruncatedScore(c.residual, RmsRadius(G), outlier_distance);
     all.push_back(std::move(c));
   }
-  // As SignFlipCandidates orders them: a pattern that stops early scores above the keep-th
-  // lowest score found before it, so partial_sort's selection passes over it and orders equal
-  // scores (the box's mirrors give some) as it would with every pattern.
+  // Equal scores (the box's mirrors give some) in partial_sort's order, as SignFlipCandidates
+  // orders them.
   const size_t kept = std::min<size_t>(keep, all.size());
   std::partial_sort(all.begin(), all.begin() + kept, all.end(),
                     [](const SignFlipCandidate& a, const SignFlipCandidate& b) {
@@ -150,7 +149,7 @@ std::vector<SignFlipCandidate> EverySignFlip(const Eigen::MatrixXd& G, int keep,
   return all;
 }
 
-TEST(SpectralSymmetry, SignFlipsThatCannotBeKeptStopEarlyAndChangeNothing) {
+TEST(SpectralSymmetry, SignFlipCandidatesAreThoseOfTheKdTreePatternByPattern) {
   // The figure's samples in 8 coordinates (the default) and the box's in 6; few kept and many;
   // a cap that truncates most residuals and one that truncates few.
   const Surface figure = testing::SymmetricFigure(1, true);

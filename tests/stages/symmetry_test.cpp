@@ -156,6 +156,20 @@ TEST(Plane2d, LiftAloneIsCloseAndKeepsWorkingWithOneLimbRemoved) {
   EXPECT_GT(f.FractionMirrored(r.sigma), 0.95);
 }
 
+// Two symmetry results the same bit for bit: plane, self map, confidence, score, near tie,
+// iterations, residual and message.
+void ExpectSameSymmetry(const SymmetryResult& a, const SymmetryResult& b) {
+  EXPECT_EQ(a.normal, b.normal);
+  EXPECT_EQ(a.offset, b.offset);
+  EXPECT_EQ(a.sigma, b.sigma);
+  EXPECT_EQ(a.confidence, b.confidence);
+  EXPECT_EQ(a.score, b.score);
+  EXPECT_EQ(a.tie_displacement, b.tie_displacement);
+  EXPECT_EQ(a.status.iterations, b.status.iterations);
+  EXPECT_EQ(a.status.residual, b.status.residual);
+  EXPECT_EQ(a.status.message, b.status.message);
+}
+
 TEST(Plane2d, TheResultDoesNotDependOnTheThreads) {
   // A posed, partial figure (not exactly symmetric, many distinct candidates): one thread and
   // three give the same plane, self map, confidence, score, iterations and message, bit for bit,
@@ -164,25 +178,16 @@ TEST(Plane2d, TheResultDoesNotDependOnTheThreads) {
   const Eigen::MatrixXd Y = (figure.V * kRotation.transpose()).rowwise() + kShift;
   const std::vector<int> samples = AllVertices(figure.NumVertices());
   const Eigen::MatrixXd D = EuclideanDistances(Y, samples);
-  auto expect_same = [](const SymmetryResult& a, const SymmetryResult& b) {
-    EXPECT_EQ(a.normal, b.normal);
-    EXPECT_EQ(a.offset, b.offset);
-    EXPECT_EQ(a.sigma, b.sigma);
-    EXPECT_EQ(a.confidence, b.confidence);
-    EXPECT_EQ(a.score, b.score);
-    EXPECT_EQ(a.status.iterations, b.status.iterations);
-    EXPECT_EQ(a.status.residual, b.status.residual);
-    EXPECT_EQ(a.status.message, b.status.message);
-  };
   Plane2dOptions one, three;
   one.threads = 1;
   three.threads = 3;
-  expect_same(DetectSymmetryPlane2d(D, samples, Y, one), DetectSymmetryPlane2d(D, samples, Y, three));
+  ExpectSameSymmetry(DetectSymmetryPlane2d(D, samples, Y, one),
+                     DetectSymmetryPlane2d(D, samples, Y, three));
   Plane3dOptions one3, three3;
   one3.threads = 1;
   three3.threads = 3;
-  expect_same(DetectSymmetryPlane3d(D, samples, Y, one3),
-              DetectSymmetryPlane3d(D, samples, Y, three3));
+  ExpectSameSymmetry(DetectSymmetryPlane3d(D, samples, Y, one3),
+                     DetectSymmetryPlane3d(D, samples, Y, three3));
 }
 
 // The figure with one arm removed, pressed flat along its front-back axis (z scaled by 0.02):
@@ -354,16 +359,7 @@ void ExpectSameSecondPlaneWithoutTheKeptCandidates(const SymmetryStage& stage,
   ASSERT_TRUE(first.detection.has_value());
   SymmetryResult read_back = first;
   read_back.detection.reset();
-  const SymmetryResult searched = stage.RunAlternative(input, read_back);
-  EXPECT_EQ(searched.sigma, second.sigma);
-  EXPECT_EQ(searched.normal, second.normal);
-  EXPECT_EQ(searched.offset, second.offset);
-  EXPECT_EQ(searched.confidence, second.confidence);
-  EXPECT_EQ(searched.score, second.score);
-  EXPECT_EQ(searched.tie_displacement, second.tie_displacement);
-  EXPECT_EQ(searched.status.iterations, second.status.iterations);
-  EXPECT_EQ(searched.status.residual, second.status.residual);
-  EXPECT_EQ(searched.status.message, second.status.message);
+  ExpectSameSymmetry(stage.RunAlternative(input, read_back), second);
 }
 
 TEST(Plane2d, ProposesASecondPlaneWhenTheChosenSelfMapMovesTheSamplesLittle) {
