@@ -105,7 +105,7 @@ class RefinedCandidates {
 
 // The candidate turned from candidate k by pi about the vertical axis (y of the canonical frame):
 // I <-> Ry, Rx <-> Rz in CandidateRotations() order.
-inline int FrontBackPartner(int k) { return k ^ 2; }
+inline constexpr int FrontBackPartner(int k) { return k ^ 2; }
 
 struct RefinedChoice {
   int best = 0;     // argmin of the other terms' scores

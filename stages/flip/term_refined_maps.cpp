@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "core/errors.h"
@@ -46,7 +47,8 @@ bool RefinedMapsTermOptions::IsValid(std::string* error) const {
                            {"orientation_weight", kWeight, orientation_weight},
                            {"front_back_vote", kWeight, front_back_vote},
                            {"long_axis_weight", kWeight, long_axis_weight},
-                           {"long_axis_time", kLongAxisTime, long_axis_time}});
+                           {"long_axis_time", kLongAxisTime, long_axis_time},
+                           {"distortion_decides", kDistortionDecides, distortion_decides}});
   if (out.str().empty() && !smoothing.IsValid(&feature_error)) out << feature_error;
   if (out.str().empty()) out << FirstViolation({{"normal_weight", kNormalWeight, normal_weight}});
   if (error) *error = out.str();
@@ -169,10 +171,20 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
       vote[FrontBackPartner(k)] = -vote[k];
     }
   }
+  // The lower distortion of each pair of partners (k and FrontBackPartner(k)), and the pair it
+  // rules out, if any.
+  std::array<double, 4> pair_distortion{};
+  for (int k = 0; k < 4; ++k) {
+    pair_distortion[k] = std::min(distortion[k], distortion[FrontBackPartner(k)]);
+  }
+  static_assert(FrontBackPartner(0) != 1, "candidates 0 and 1 lie in different pairs");
+  const double lower = std::min(pair_distortion[0], pair_distortion[1]);
+  const double higher = std::max(pair_distortion[0], pair_distortion[1]);
+  const bool ruled = options_.distortion_decides > 0.0 &&
+                     higher >= options_.distortion_decides * lower && higher > lower;
   for (int k = 0; k < 4; ++k) {
     const int partner = FrontBackPartner(k);
-    const double g = options_.distortion_front_back ? distortion[k]
-                                                    : std::min(distortion[k], distortion[partner]);
+    const double g = options_.distortion_front_back ? distortion[k] : pair_distortion[k];
     const double c = voting ? std::min(disagreement[k], disagreement[partner]) +
                                   options_.front_back_vote * std::max(0.0, -vote[k])
                             : disagreement[k];
@@ -181,6 +193,18 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
     if (long_axis) {
       (*total)[k] +=
           weight() * options_.long_axis_weight * std::min(diffused[k], diffused[partner]);
+    }
+  }
+  if (ruled) {
+    // Above every candidate of the better pair, each by its distortion gap.
+    double kept_highest = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 4; ++k) {
+      if (pair_distortion[k] == lower) kept_highest = std::max(kept_highest, (*total)[k]);
+    }
+    for (int k = 0; k < 4; ++k) {
+      if (pair_distortion[k] == lower) continue;
+      (*total)[k] = std::max((*total)[k], kept_highest + weight() * options_.distortion_weight *
+                                                             (pair_distortion[k] - lower));
     }
   }
   // Distortion / disagreement / orientation of each candidate's refined map, and its disagreement
@@ -193,6 +217,7 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
     *detail << "; long_axis";
     for (int k = 0; k < 4; ++k) *detail << " " << diffused[k];
   }
+  if (ruled) *detail << "; long axis by distortion";
   if (voting) {
     *detail << "; front_back_vote";
     for (int k = 0; k < 4; ++k) *detail << " " << vote[k];
@@ -212,6 +237,8 @@ std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
   r.front_back_vote = o.GetDouble("front_back_vote", r.front_back_vote, R::kWeight);
   r.long_axis_weight = o.GetDouble("long_axis_weight", r.long_axis_weight, R::kWeight);
   r.long_axis_time = o.GetDouble("long_axis_time", r.long_axis_time, R::kLongAxisTime);
+  r.distortion_decides =
+      o.GetDouble("distortion_decides", r.distortion_decides, R::kDistortionDecides);
   r.smoothing = ReadFeatureSmoothing(o, r.smoothing);
   r.normal_weight = o.GetDouble("normal_weight", r.normal_weight, R::kNormalWeight);
   r.deformed_start = o.GetBool("deformed_start", r.deformed_start);

@@ -59,10 +59,17 @@
 // partners is noise beside c_k's; the lower of the two, like a_k, keeps the right plane's best
 // total where the flip stage compares two symmetry planes. The four measure different failures,
 // so none needs a threshold: each is a mean over the samples of a quantity near 0 for the right
-// map. The source's geodesics from its first `sources` samples are a per-shape product
-// (AddNeeds), with the curvature features; the target's geodesics are computed per candidate from
-// the images of the samples. [Bronstein, Bronstein & Kimmel 2006] Generalized multidimensional
-// scaling (distortion of a map as the criterion of a correspondence).
+// map. One ratio rules candidates out: a_k reads curvature at the body's ends, which an uneven
+// meshing or a body of other proportions can turn, so where one pair's lower distortion g' is
+// at least distortion_decides times the other pair's, the distances decide the long axis: the
+// worse pair's totals are set above the other pair's, each by its distortion gap (weight
+// distortion_weight), so both keep their order and a later term or the decision still sees them.
+// The pairs' distortions either lie close (a_k decides) or several times apart, and the ratio
+// sits between (docs/failure-modes.md, "The long axis by the distances"). The source's geodesics
+// from its first `sources` samples are a per-shape product (AddNeeds), with the curvature features;
+// the target's geodesics are computed per candidate from the images of the samples. [Bronstein,
+// Bronstein & Kimmel 2006] Generalized multidimensional scaling (distortion of a map as the
+// criterion of a correspondence).
 #pragma once
 
 #include <Eigen/Core>
@@ -105,6 +112,12 @@ struct RefinedMapsTermOptions {
   static constexpr Range kWeight = Range::AtLeast(0.0);
   double long_axis_time = 0.03;
   static constexpr Range kLongAxisTime = Range::Above(0.0);
+  // When one pair of front-back partners' lower distortion is at least this many times the other
+  // pair's, that pair is ruled out (0: never; at most 1: the distortions alone decide the long
+  // axis): the direction of the long axis is then the one whose maps keep distances that much
+  // better, whatever a_k and c'_k say.
+  double distortion_decides = 2.0;
+  static constexpr Range kDistortionDecides = Range::AtLeast(0.0);
   // Of the curvature features (ExtrinsicFeatures, extrinsic.h).
   FeatureSmoothing smoothing = {};
   // Weight of the embedded normals in the initial maps (RefinedAgreementOptions::normal_weight).

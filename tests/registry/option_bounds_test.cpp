@@ -236,6 +236,8 @@ const std::vector<BoundedOption>& BoundedOptions() {
        BOUND(Maps, long_axis_weight, Maps::kWeight, false)},
       {"flip", "extrinsic", "", "terms.refined_maps.long_axis_time", "long_axis_time",
        BOUND(Maps, long_axis_time, Maps::kLongAxisTime, false)},
+      {"flip", "extrinsic", "", "terms.refined_maps.distortion_decides", "distortion_decides",
+       BOUND(Maps, distortion_decides, Maps::kDistortionDecides, false)},
       {"flip", "extrinsic", "", "terms.refined_maps.normal_weight", "normal_weight",
        BOUND(Maps, normal_weight, Maps::kNormalWeight, false)},
       {"flip", "extrinsic", "", "terms.refined_maps.zoomout.samples", "zoomout: samples",

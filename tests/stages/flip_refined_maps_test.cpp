@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <any>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -10,6 +12,7 @@
 #include "core/canonical_frame.h"
 #include "core/errors.h"
 #include "core/fmap/functional_map.h"
+#include "core/knn.h"
 #include "core/mesh_graph.h"
 #include "core/primitives.h"
 #include "core/spectral.h"
@@ -197,9 +200,11 @@ TEST(RefinedMapsFlip, PartnersShareTheirLowerDistortionAndCurvatureDecidesBetwee
 // the other three measures.
 TEST(RefinedMapsFlip, LongAxisMeasureScoresFrontBackPartnersAlike) {
   auto [source, target] = TwoPoses(FigureKind::kQuadruped, 1500);
+  // The measure alone: no pair ruled out by the distortions.
   RefinedMapsTermOptions off = SmallOptions();
   off.long_axis_weight = 0.0;
-  RefinedMapsTermOptions on = SmallOptions();
+  off.distortion_decides = 0.0;
+  RefinedMapsTermOptions on = off;
   on.long_axis_weight = 2.0;
   const RefinedMapsTerm without(1.0, off), with(1.0, on);
   const LaplaceBasis source_basis = PrepareForTerm(with, &source);
@@ -232,6 +237,54 @@ TEST(RefinedMapsFlip, LongAxisMeasureScoresFrontBackPartnersAlike) {
   const size_t section = values.find("; long_axis");
   values.erase(section, values.find(';', section + 1) - section);
   EXPECT_EQ(values, detail_without);
+}
+
+// The failure mode of the long-axis measure: curvature at the body's ends, which an uneven
+// meshing or a body of other proportions can turn, read backwards (here the target's diffused
+// features taken from its vertices turned head to tail, about the frame's z axis), against maps
+// whose distortions tell the direction apart by a wide factor. Without the ratio the measure
+// turns the pair head to tail; with it the distances decide, the better pair's totals are
+// untouched and the other pair's lie above them.
+TEST(RefinedMapsFlip, DistortionsAFactorApartDecideTheLongAxis) {
+  auto [source, target] = TwoPoses(FigureKind::kQuadruped, 1500);
+  RefinedMapsTermOptions measure_decides = SmallOptions();
+  measure_decides.distortion_decides = 0.0;
+  const RefinedMapsTermOptions ratio_decides = SmallOptions();
+  const RefinedMapsTerm without(1.0, measure_decides), with(1.0, ratio_decides);
+  const LaplaceBasis source_basis = PrepareForTerm(with, &source);
+  const LaplaceBasis target_basis = PrepareForTerm(with, &target);
+  const int right = OracleChoice(source, target);
+  std::string detail;
+  const auto before = ScoreTerm(with, source, target, source_basis, target_basis, &detail);
+  EXPECT_EQ(std::min_element(before.begin(), before.end()) - before.begin(), right) << detail;
+
+  const auto key = DiffusedFeaturesKey(ratio_decides.smoothing, ratio_decides.long_axis_time);
+  const Eigen::MatrixXd& features = ProductOf(target, key);
+  Eigen::MatrixXd turned_points = target.Y;
+  turned_points.leftCols<2>() *= -1.0;
+  const std::vector<int> turned = KnnIndex(target.Y).Nearest(turned_points);
+  Eigen::MatrixXd turned_features(features.rows(), features.cols());
+  for (int v = 0; v < features.rows(); ++v) turned_features.row(v) = features.row(turned[v]);
+  target.products.PutAny(key.Id(), std::make_shared<const std::any>(turned_features));
+
+  std::string detail_without, detail_with;
+  const auto total_without =
+      ScoreTerm(without, source, target, source_basis, target_basis, &detail_without);
+  const auto total_with = ScoreTerm(with, source, target, source_basis, target_basis, &detail_with);
+  const int chosen_without =
+      std::min_element(total_without.begin(), total_without.end()) - total_without.begin();
+  const int chosen_with =
+      std::min_element(total_with.begin(), total_with.end()) - total_with.begin();
+  // The turned measure takes the other direction of the long axis; the ratio keeps the right one.
+  EXPECT_NE(chosen_without, right) << detail_without;
+  EXPECT_NE(chosen_without, FrontBackPartner(right)) << detail_without;
+  EXPECT_EQ(chosen_with, right) << detail_with;
+  EXPECT_EQ(detail_without.find("long axis by distortion"), std::string::npos);
+  EXPECT_NE(detail_with.find("; long axis by distortion"), std::string::npos) << detail_with;
+  for (const int k : {right, FrontBackPartner(right)}) {
+    EXPECT_EQ(total_with[k], total_without[k]) << k;
+    EXPECT_GT(total_with[k ^ 1], std::max(total_with[right], total_with[FrontBackPartner(right)]));
+  }
 }
 
 // Mean distance on the surface (in units of sqrt(area)) between each sample and its image, for a
