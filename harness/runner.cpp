@@ -64,9 +64,11 @@ std::string VariantsText(const ExperimentConfig& config) {
 class VariantRun {
  public:
   // `indexes`: the datasets RunExperiment read, by OptionsText of their stage.
+  // `targets_descending`: take the targets' pairs in descending order of the target's name.
   VariantRun(const ExperimentConfig& config, const VariantConfig& variant, const Registry& registry,
              const RunOptions& options, RunEvaluation& evaluation, StageCounters* counters,
-             RunStats* stats, const std::map<std::string, DatasetIndex>& indexes)
+             RunStats* stats, const std::map<std::string, DatasetIndex>& indexes,
+             bool targets_descending)
       : config_(config),
         variant_(variant),
         options_(options),
@@ -76,7 +78,8 @@ class VariantRun {
         pipeline_(BuildPipeline(config, variant, registry)),
         dir_(options.out_dir + "/" + variant.name),
         cache_(options.cache_dir),
-        index_(indexes.at(OptionsText(*pipeline_.dataset))) {}
+        index_(indexes.at(OptionsText(*pipeline_.dataset))),
+        targets_descending_(targets_descending) {}
 
   void Run() {
     if (options_.shapes_only) {
@@ -303,10 +306,16 @@ class VariantRun {
     }
     kept_.clear();
     // Pairs of one target run together: the evaluator computes and caches distances per target
-    // and evicts whole targets, so this order computes each target's distances about once.
-    // Outputs do not depend on the order.
+    // and evicts whole targets, least recently used first, so this order computes each
+    // target's distances about once per variant. The variants of a run share the evaluator and
+    // take the targets in alternate directions, so each starts with the targets the one before
+    // left in the cache (in one direction every variant would find its next target evicted
+    // when the cache holds fewer than all). Outputs do not depend on the order.
     std::sort(pending_.begin(), pending_.end(), [&](int a, int b) {
-      return std::tie(pairs_[a].target, a) < std::tie(pairs_[b].target, b);
+      const std::string& ta = pairs_[a].target;
+      const std::string& tb = pairs_[b].target;
+      if (ta != tb) return targets_descending_ ? tb < ta : ta < tb;
+      return a < b;
     });
   }
 
@@ -442,6 +451,7 @@ class VariantRun {
   std::string dir_;
   DiskCache cache_;
   const DatasetIndex& index_;
+  bool targets_descending_;
   PairNames names_;  // the file stems of all the variant's pairs
   std::vector<DatasetPair> pairs_;
   std::vector<std::optional<PairEvaluation>> records_;
@@ -547,8 +557,10 @@ RunStats RunExperiment(const ExperimentConfig& config, const Registry& registry,
   RunStats stats;
   if (!unwritable_cache.empty()) stats.warnings.push_back(unwritable_cache);
   StageCounters counters;
-  for (const VariantConfig* v : variants) {
-    VariantRun(config, *v, registry, options, evaluation, &counters, &stats, indexes).Run();
+  for (size_t i = 0; i < variants.size(); ++i) {
+    VariantRun(config, *variants[i], registry, options, evaluation, &counters, &stats, indexes,
+               i % 2 == 1)
+        .Run();
   }
   if (!options.shapes_only) {
     std::vector<std::string> names;

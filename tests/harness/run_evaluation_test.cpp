@@ -35,6 +35,7 @@ using testing::runner::RunShards;
 using testing::runner::TestRegistry;
 using testing::runner::WriteTestDataset;
 
+// Two jobs unless `options` names another number.
 RunStats RunConfig(const std::string& config_text, const std::string& out, const std::string& cache,
                    RunOptions options = {}) {
   const Registry registry = TestRegistry();
@@ -42,7 +43,7 @@ RunStats RunConfig(const std::string& config_text, const std::string& out, const
   options.out_dir = out;
   options.cache_dir = cache;
   options.quiet = true;
-  options.jobs = 2;
+  if (options.jobs == 0) options.jobs = 2;
   options.load_mesh = ReadOff;
   GroundTruthRunEvaluation evaluation(&registry);
   return RunExperiment(config, registry, options, evaluation);
@@ -167,6 +168,34 @@ TEST(RunEvaluation, RejectsAMalformedDistanceCacheBudget) {
   EXPECT_TRUE(tiny.ok());
   EXPECT_TRUE(normal.ok());
   EXPECT_EQ(Outputs(tmp.File("tiny")), Outputs(tmp.File("normal")));
+}
+
+// With room for one target's distance rows, the second variant starts with the target the first
+// ended with, whose rows it finds in the cache; in the first variant's order it would find that
+// target evicted by the two before it.
+TEST(RunEvaluation, TheNextVariantStartsWithTheTargetTheCacheStillHolds) {
+  TempDir tmp;
+  const std::string config = WriteTestDataset(
+      tmp.File("data"), 3, "variants:\n  - {name: flip2, set: {pipeline.flip.choose: 2}}\n");
+  RunOptions one_job;
+  one_job.jobs = 1;
+  // 20 float rows of 20 vertices per target: 1,600 bytes; two do not fit.
+  setenv("SYMEMBED_EVAL_CACHE_MB", "0.002", 1);
+  const RunStats stats = RunConfig(config, tmp.File("out"), tmp.File("cache"), one_job);
+  unsetenv("SYMEMBED_EVAL_CACHE_MB");
+  ASSERT_TRUE(stats.ok());
+  auto distance_seconds = [&](const std::string& variant, const std::string& stem) {
+    const PairEvaluation record =
+        ParsePairRecord(ReadText(tmp.File("out/" + variant + "/pairs/" + stem + ".rec")));
+    return record.stage_seconds.at("ground_truth_distances");
+  };
+  // The first variant computes the rows of every target (targets in ascending order, s2 last);
+  // the second, every pair onto s2 first, finds them all.
+  EXPECT_GT(distance_seconds("base", "s0_s2") + distance_seconds("base", "s1_s2"), 0.0);
+  EXPECT_EQ(distance_seconds("flip2", "s0_s2"), 0.0);
+  EXPECT_EQ(distance_seconds("flip2", "s1_s2"), 0.0);
+  // Its other targets' rows were evicted: computed again.
+  EXPECT_GT(distance_seconds("flip2", "s1_s0") + distance_seconds("flip2", "s2_s0"), 0.0);
 }
 
 TEST(RunEvaluation, ShardsMergedAndResumedRunsEqualASingleRun) {
