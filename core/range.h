@@ -75,8 +75,48 @@ struct RangeField {
 };
 
 // "NAME must be in [a, b), got x" for the first of `fields`, in the order given, whose value lies
-// outside its range; "" when every value is allowed. An IsValid lists its bounded options in one
-// call, between the checks of its own that must come before or after them.
+// outside its range; "" when every value is allowed. For the bounded fields an options struct
+// does not declare in its Fields (below).
 std::string FirstViolation(std::initializer_list<RangeField> fields);
+
+// An options struct declares its options once, in a static member template that visits each
+// with its key (as in a YAML config and in messages), its member and its declared Range, in the
+// order the YAML reader reads them:
+//
+//   template <typename Self, typename Visit>
+//   static void Fields(Self& self, Visit&& visit) {
+//     visit("graph_neighbors", self.graph_neighbors, kGraphNeighbors);
+//     visit("symmetric", self.symmetric);  // a bool: no range
+//     visit("confidence", self.confidence, kConfidence, kIfGiven);
+//   }
+//
+// FieldViolation checks the declared fields (for IsValid), ReadFields (registry/options.h)
+// reads them from YAML. kIfGiven marks an option read only when given
+// (OptionReader::GetDoubleIfGiven).
+struct IfGiven {};
+inline constexpr IfGiven kIfGiven{};
+
+// Stores why in *error (when error is given) and returns whether why is empty: how an IsValid
+// ends.
+inline bool NoViolation(const std::string& why, std::string* error) {
+  if (error != nullptr) *error = why;
+  return why.empty();
+}
+
+// FirstViolation over the fields Options::Fields declares, in their order; "" when each lies in
+// its range.
+template <typename Options>
+std::string FieldViolation(const Options& options) {
+  std::string found;
+  struct Check {
+    std::string* found;
+    void operator()(const char* name, double value, const Range& range, IfGiven = {}) const {
+      if (found->empty()) *found = FirstViolation({{name, range, value}});
+    }
+    void operator()(const char*, bool) const {}
+  };
+  Options::Fields(options, Check{&found});
+  return found;
+}
 
 }  // namespace symembed

@@ -104,4 +104,38 @@ class OptionReader {
   YAML::Node unset_defaults_;
 };
 
+// Reads every option Options::Fields declares (core/range.h) into *options, in its order, each
+// member's value the default.
+template <typename Options>
+void ReadFields(OptionReader& reader, Options* options) {
+  struct Read {
+    OptionReader& r;
+    void operator()(const char* key, int& value, const Range& range) const {
+      value = r.GetInt(key, value, range);
+    }
+    void operator()(const char* key, unsigned& value, const Range& range) const {
+      value = static_cast<unsigned>(r.GetInt(key, static_cast<int>(value), range));
+    }
+    void operator()(const char* key, double& value, const Range& range) const {
+      value = r.GetDouble(key, value, range);
+    }
+    void operator()(const char* key, int& value, const Range& range, IfGiven) const {
+      value = r.GetIntIfGiven(key, value, range);
+    }
+    void operator()(const char* key, double& value, const Range& range, IfGiven) const {
+      value = r.GetDoubleIfGiven(key, value, range);
+    }
+    void operator()(const char* key, bool& value) const { value = r.GetBool(key, value); }
+  };
+  Options::Fields(*options, Read{reader});
+}
+
+// ReadFields, then options->IsValid: a violation throws ConfigError located at the map.
+template <typename Options>
+void ReadValidFields(OptionReader& reader, Options* options) {
+  ReadFields(reader, options);
+  std::string error;
+  if (!options->IsValid(&error)) reader.Fail("", error);
+}
+
 }  // namespace symembed

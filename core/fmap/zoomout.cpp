@@ -11,11 +11,10 @@ namespace symembed {
 
 bool ZoomOutOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  out << FirstViolation({{"k_start", kKStart, k_start}, {"k_end", kKEnd, k_end}});
+  out << FieldViolation(*this);
   if (out.str().empty() && k_end < k_start) {
     out << "k_end (" << k_end << ") must be >= k_start (" << k_start << ")";
   }
-  if (out.str().empty()) out << FirstViolation({{"step", kStep, step}});
   for (size_t i = 0; i < extra_k_starts.size() && out.str().empty(); ++i) {
     const int k = extra_k_starts[i];
     const auto earlier = extra_k_starts.begin() + i;

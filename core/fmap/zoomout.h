@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/range.h"
@@ -23,6 +24,17 @@
 #include "core/stage_status.h"
 
 namespace symembed {
+
+// Visits k_start, k_end and step, the basis sizes of a schedule grown like ZoomOut's, with the
+// ranges Options declares (kKStart, kKEnd, kStep): the start of an options struct's Fields
+// (core/range.h).
+template <typename Self, typename Visit>
+void BasisSizeFields(Self& self, Visit&& visit) {
+  using Options = std::remove_const_t<Self>;
+  visit("k_start", self.k_start, Options::kKStart);
+  visit("k_end", self.k_end, Options::kKEnd);
+  visit("step", self.step, Options::kStep);
+}
 
 struct ZoomOutOptions {
   int k_start = 20;  // basis size of the first functional map
@@ -38,6 +50,11 @@ struct ZoomOutOptions {
   // samples (the other entries of the result keep the initial map).
   bool dense_result = true;
 
+  // The options as the config names them (core/range.h), besides extra_k_starts.
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    BasisSizeFields(self, visit);
+  }
   bool IsValid(std::string* error) const;
 };
 

@@ -13,19 +13,11 @@ namespace symembed {
 
 bool DeformOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  out << FirstViolation({{"k_start", kKStart, k_start}, {"k_end", kKEnd, k_end}});
+  out << FieldViolation(*this);
   if (out.str().empty() && k_end < k_start) {
     out << "k_end must be >= k_start (" << k_start << "), got " << k_end;
   }
-  if (out.str().empty())
-    out << FirstViolation({{"step", kStep, step},
-                           {"iterations", kIterations, iterations},
-                           {"smoothness", kSmoothness, smoothness},
-                           {"samples", kSamples, samples},
-                           {"normal_weight", kNormalWeight, normal_weight},
-                           {"threads", kThreads, threads}});
-  if (error) *error = out.str();
-  return out.str().empty();
+  return NoViolation(out.str(), error);
 }
 
 namespace {

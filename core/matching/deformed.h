@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "core/fmap/zoomout.h"
 #include "core/matching/nearest.h"
 #include "core/range.h"
 #include "core/spectral.h"
@@ -50,6 +51,16 @@ struct DeformOptions {
   int threads = 1;  // of the final nearest-neighbour query (0: DefaultThreadCount())
   static constexpr Range kThreads = Range::Closed(0, 256);
 
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    BasisSizeFields(self, visit);
+    visit("iterations", self.iterations, kIterations);
+    visit("smoothness", self.smoothness, kSmoothness);
+    visit("samples", self.samples, kSamples);
+    visit("normal_weight", self.normal_weight, kNormalWeight);
+    visit("threads", self.threads, kThreads);
+  }
   bool IsValid(std::string* error) const;
 };
 

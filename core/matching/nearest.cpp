@@ -63,17 +63,6 @@ MatchResult MatchNearest(const EmbeddedPoints& source, const EmbeddedPoints& tar
   return NearestRows(lift(source), lift(target), threads);
 }
 
-bool ScaledIcpOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  out << FirstViolation({{"iterations", kIterations, iterations},
-                         {"min_scale", kMinScale, min_scale},
-                         {"max_scale", kMaxScale, max_scale},
-                         {"normal_weight", kNormalWeight, normal_weight},
-                         {"threads", kThreads, threads}});
-  if (error) *error = out.str();
-  return out.str().empty();
-}
-
 ScaledAlignment AlignScaled(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,
                             const ScaledIcpOptions& options) {
   std::string error;

@@ -57,7 +57,17 @@ struct ScaledIcpOptions {
   int threads = 0;
   static constexpr Range kThreads = Range::Closed(0, 256);
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("iterations", self.iterations, kIterations);
+    visit("symmetric", self.symmetric);
+    visit("min_scale", self.min_scale, kMinScale);
+    visit("max_scale", self.max_scale, kMaxScale);
+    visit("normal_weight", self.normal_weight, kNormalWeight);
+    visit("threads", self.threads, kThreads);
+  }
+  bool IsValid(std::string* error) const { return NoViolation(FieldViolation(*this), error); }
 };
 
 // Per-axis scale s and translation b with the source moved to y -> s .* y + b, found by ICP.

@@ -13,16 +13,9 @@
 namespace symembed {
 
 bool SmacofOptions::IsValid(std::string* error) const {
-  std::ostringstream why;
-  why << FirstViolation({{"tolerance", kTolerance, tolerance},
-                         {"max_iterations", kMaxIterations, max_iterations},
-                         {"weight_power", kWeightPower, weight_power},
-                         {"relaxation", kRelaxation, relaxation},
-                         {"anderson_window", kAndersonWindow, anderson_window},
-                         {"threads", kThreads, threads}});
-  if (why.str().empty()) return true;
-  if (error) *error = why.str();
-  return false;
+  std::string why = FieldViolation(*this);
+  if (why.empty()) why = FirstViolation({{"threads", kThreads, threads}});
+  return NoViolation(why, error);
 }
 
 namespace {

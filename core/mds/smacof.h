@@ -56,6 +56,16 @@ struct SmacofOptions {
   int threads = 0;
   static constexpr Range kThreads = Range::AtLeast(0);
 
+  // The options as a config names them (core/range.h), besides threads.
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("tolerance", self.tolerance, kTolerance);
+    visit("max_iterations", self.max_iterations, kMaxIterations);
+    visit("weight_power", self.weight_power, kWeightPower);
+    visit("relaxation", self.relaxation, kRelaxation);
+    visit("anderson_window", self.anderson_window, kAndersonWindow);
+  }
+
   // Whether every option lies in its range; else the first violation, naming the field.
   bool IsValid(std::string* error) const;
 };

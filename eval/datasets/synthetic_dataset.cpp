@@ -34,27 +34,10 @@ std::unique_ptr<SyntheticDataset> CreateSyntheticDataset(OptionReader& options) 
     }
     g.kinds.push_back(FigureKindFromName(name));
   }
-  g.poses = options.GetInt("poses", 8, SynthOptions::kPoses);
+  ReadFields(options, &g);
   if (g.poses < 2)
     options.Fail("poses",
                  "pairs are formed between poses: needs >= 2, got " + std::to_string(g.poses));
-  g.vertices = options.GetInt("vertices", 5000, SynthOptions::kVertices);
-  g.seed = options.GetInt("seed", 1, SynthOptions::kSeed);
-  g.remesh = options.GetInt("remesh", 0, SynthOptions::kRemesh);
-  g.remesh_anisotropy =
-      options.GetDouble("remesh_anisotropy", 1.0, SynthOptions::kRemeshAnisotropy);
-  g.nonisometric = options.GetDouble("nonisometric", 0.0, SynthOptions::kNonisometric);
-  g.noise = options.GetDouble("noise", 0.0, SynthOptions::kNoise);
-  g.partial = options.GetDouble("partial", 0.0, SynthOptions::kFraction);
-  g.pairs = options.GetInt("pairs", 0, SynthOptions::kPairs);
-  // The failure modes are read (and so resolved) only when given, so that the resolved config of
-  // every dataset without them stays what it was.
-  g.plane_cuts = options.GetDoubleIfGiven("plane_cuts", g.plane_cuts, SynthOptions::kFraction);
-  g.holes = options.GetDoubleIfGiven("holes", g.holes, SynthOptions::kFraction);
-  g.glue = options.GetDoubleIfGiven("glue", g.glue, SynthOptions::kFraction);
-  g.glue_bridges =
-      options.GetIntIfGiven("glue_bridges", g.glue_bridges, SynthOptions::kGlueBridges);
-  g.cross_class = options.GetDoubleIfGiven("cross_class", g.cross_class, SynthOptions::kCrossClass);
   std::string error;
   if (!g.IsValid(&error)) options.Fail("", error);
   std::string cache = options.GetString("cache", "");

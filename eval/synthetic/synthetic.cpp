@@ -29,29 +29,8 @@ bool SynthOptions::IsValid(std::string* error) const {
       if (kinds[i] == kinds[j]) return fail("kinds: '" + FigureKindName(kinds[i]) + "' twice");
     }
   }
-  struct Bounded {
-    const char* name;
-    double value;
-    Range range;
-  };
-  const Bounded bounded[] = {{"poses", static_cast<double>(poses), kPoses},
-                             {"vertices", static_cast<double>(vertices), kVertices},
-                             {"seed", static_cast<double>(seed), kSeed},
-                             {"remesh", static_cast<double>(remesh), kRemesh},
-                             {"remesh_anisotropy", remesh_anisotropy, kRemeshAnisotropy},
-                             {"nonisometric", nonisometric, kNonisometric},
-                             {"noise", noise, kNoise},
-                             {"partial", partial, kFraction},
-                             {"plane_cuts", plane_cuts, kFraction},
-                             {"holes", holes, kFraction},
-                             {"glue", glue, kFraction},
-                             {"glue_bridges", static_cast<double>(glue_bridges), kGlueBridges},
-                             {"cross_class", cross_class, kCrossClass},
-                             {"pairs", static_cast<double>(pairs), kPairs}};
-  for (const Bounded& b : bounded) {
-    if (!b.range.Contains(b.value))
-      return fail(std::string(b.name) + ": " + b.range.Violation(b.value));
-  }
+  const std::string bounds = FieldViolation(*this);
+  if (!bounds.empty()) return fail(bounds);
   if (remesh > 0 && remesh < 50) return fail("remesh: a target below 50 vertices is degenerate");
   if (remesh_anisotropy > 1.0 && remesh == 0) {
     return fail("remesh_anisotropy: needs remesh > 0 (the anisotropy is the remeshing's)");

@@ -78,6 +78,26 @@ struct SynthOptions {
   int pairs = 0;  // > 0: pairs per class in test_pairs.txt; 0: all unordered pairs
   static constexpr Range kPairs = Range::AtLeast(0);
 
+  // The options as a dataset's config names them (core/range.h), besides kinds. The failure
+  // modes are read only when given, so that the resolved config of a dataset without them stays
+  // as it was.
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("poses", self.poses, kPoses);
+    visit("vertices", self.vertices, kVertices);
+    visit("seed", self.seed, kSeed);
+    visit("remesh", self.remesh, kRemesh);
+    visit("remesh_anisotropy", self.remesh_anisotropy, kRemeshAnisotropy);
+    visit("nonisometric", self.nonisometric, kNonisometric);
+    visit("noise", self.noise, kNoise);
+    visit("partial", self.partial, kFraction);
+    visit("pairs", self.pairs, kPairs);
+    visit("plane_cuts", self.plane_cuts, kFraction, kIfGiven);
+    visit("holes", self.holes, kFraction, kIfGiven);
+    visit("glue", self.glue, kFraction, kIfGiven);
+    visit("glue_bridges", self.glue_bridges, kGlueBridges, kIfGiven);
+    visit("cross_class", self.cross_class, kCrossClass, kIfGiven);
+  }
   bool IsValid(std::string* error) const;
 };
 

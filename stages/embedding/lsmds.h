@@ -28,6 +28,16 @@ struct LsmdsOptions {
   SmacofOptions smacof;
   OutOfSampleOptions out_of_sample;
 
+  // The options as the config names them (core/range.h), besides dims and init.
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("seed", self.seed, Range::AtLeast(0));
+    SmacofOptions::Fields(self.smacof, visit);
+    using P = OutOfSampleOptions;
+    visit("neighbors", self.out_of_sample.neighbors, P::kNeighbors);
+    visit("out_of_sample_weight_power", self.out_of_sample.weight_power, P::kWeightPower);
+    visit("out_of_sample_iterations", self.out_of_sample.max_iterations, P::kMaxIterations);
+  }
   bool IsValid(std::string* error) const;
 };
 

@@ -51,24 +51,7 @@ std::unique_ptr<Stage> MakeLsmds(OptionReader& reader) {
                                      {{"original", LsmdsInit::kOriginal},
                                       {"isomap", LsmdsInit::kIsomap},
                                       {"random", LsmdsInit::kRandom}});
-  o.seed =
-      static_cast<unsigned>(reader.GetInt("seed", static_cast<int>(o.seed), Range::AtLeast(0)));
-  using S = SmacofOptions;
-  o.smacof.tolerance = reader.GetDouble("tolerance", o.smacof.tolerance, S::kTolerance);
-  o.smacof.max_iterations =
-      reader.GetInt("max_iterations", o.smacof.max_iterations, S::kMaxIterations);
-  o.smacof.weight_power = reader.GetDouble("weight_power", o.smacof.weight_power, S::kWeightPower);
-  o.smacof.relaxation = reader.GetDouble("relaxation", o.smacof.relaxation, S::kRelaxation);
-  o.smacof.anderson_window =
-      reader.GetInt("anderson_window", o.smacof.anderson_window, S::kAndersonWindow);
-  using P = OutOfSampleOptions;
-  o.out_of_sample.neighbors = reader.GetInt("neighbors", o.out_of_sample.neighbors, P::kNeighbors);
-  o.out_of_sample.weight_power =
-      reader.GetDouble("out_of_sample_weight_power", o.out_of_sample.weight_power, P::kWeightPower);
-  o.out_of_sample.max_iterations =
-      reader.GetInt("out_of_sample_iterations", o.out_of_sample.max_iterations, P::kMaxIterations);
-  std::string why;
-  if (!o.IsValid(&why)) reader.Fail("", why);
+  ReadValidFields(reader, &o);
   return std::make_unique<LsmdsStage>(o);
 }
 

@@ -33,9 +33,7 @@ int RefinedDecision::Decide(const FlipTermContext& context, const std::array<dou
 
 std::unique_ptr<FlipDecision> ReadRefinedDecision(OptionReader& o) {
   RefinedAgreementOptions f;
-  f.margin = o.GetDouble("margin", f.margin, RefinedAgreementOptions::kMargin);
-  f.normal_weight =
-      o.GetDouble("normal_weight", f.normal_weight, RefinedAgreementOptions::kNormalWeight);
+  ReadFields(o, &f);
   f.zoomout = ReadFlipZoomOutSchedule(o, "zoomout", f.zoomout);
   std::string error;
   if (!f.IsValid(&error)) o.Fail("", error);

@@ -10,19 +10,11 @@
 namespace symembed {
 
 bool DescriptorMapOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  out << FirstViolation({{"k", kK, k}, {"eigenpairs", kEigenpairs, eigenpairs}});
-  if (out.str().empty() && eigenpairs < k) {
-    out << "eigenpairs must be >= k (" << k << "), got " << eigenpairs;
+  std::string why = FieldViolation(*this);
+  if (why.empty() && eigenpairs < k) {
+    why = "eigenpairs must be >= k (" + std::to_string(k) + "), got " + std::to_string(eigenpairs);
   }
-  if (out.str().empty())
-    out << FirstViolation({{"energies", kEnergies, energies},
-                           {"sigma", kSigma, sigma},
-                           {"mu", kMu, mu},
-                           {"samples", kSamples, samples},
-                           {"axes", kAxes, axes}});
-  if (error) *error = out.str();
-  return out.str().empty();
+  return NoViolation(why, error);
 }
 
 DescriptorAgreement DescriptorMapAgreement(const Eigen::MatrixX3d& Ys, const Eigen::MatrixX3d& Yt,

@@ -46,6 +46,17 @@ struct DescriptorMapOptions {
   int axes = 1;
   static constexpr Range kAxes = Range::Closed(1, 2);
 
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("k", self.k, kK);
+    visit("eigenpairs", self.eigenpairs, kEigenpairs);
+    visit("energies", self.energies, kEnergies);
+    visit("sigma", self.sigma, kSigma);
+    visit("mu", self.mu, kMu);
+    visit("samples", self.samples, kSamples);
+    visit("axes", self.axes, kAxes);
+  }
   bool IsValid(std::string* error) const;
 };
 

@@ -12,35 +12,11 @@
 namespace symembed {
 
 bool ExtrinsicFlipOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  std::string smoothing_error;
-  out << FirstViolation({{"local_weight", kWeight, local_weight},
-                         {"global_weight", kWeight, global_weight},
-                         {"chamfer_weight", kWeight, chamfer_weight}});
-  if (out.str().empty() && local_weight + global_weight + chamfer_weight <= 0.0) {
-    out << "at least one of local_weight, global_weight, chamfer_weight must be > 0";
+  std::string why = FieldViolation(*this);
+  if (why.empty() && local_weight + global_weight + chamfer_weight <= 0.0) {
+    why = "at least one of local_weight, global_weight, chamfer_weight must be > 0";
   }
-  if (out.str().empty())
-    out << FirstViolation(
-        {{"profile_bins", kBins, profile_bins}, {"histogram_bins", kBins, histogram_bins}});
-  if (out.str().empty() && !smoothing.IsValid(&smoothing_error)) out << smoothing_error;
-  if (error) *error = out.str();
-  return out.str().empty();
-}
-
-bool FeatureSmoothing::IsValid(std::string* error) const {
-  std::ostringstream out;
-  out << FirstViolation(
-      {{"smoothing_rings", kRings, rings}, {"smoothing_radius", kRadius, radius}});
-  if (error) *error = out.str();
-  return out.str().empty();
-}
-
-FeatureSmoothing ReadFeatureSmoothing(OptionReader& o, const FeatureSmoothing& defaults) {
-  FeatureSmoothing s;
-  s.rings = o.GetInt("smoothing_rings", defaults.rings, FeatureSmoothing::kRings);
-  s.radius = o.GetDouble("smoothing_radius", defaults.radius, FeatureSmoothing::kRadius);
-  return s;
+  return NoViolation(why, error);
 }
 
 namespace {

@@ -40,11 +40,14 @@ struct FeatureSmoothing {
   double radius = 0.0;  // > 0 overrides rings
   static constexpr Range kRadius = Range::AtLeast(0.0);
 
-  bool IsValid(std::string* error) const;
+  // The options as a term's config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("smoothing_rings", self.rings, kRings);
+    visit("smoothing_radius", self.radius, kRadius);
+  }
+  bool IsValid(std::string* error) const { return NoViolation(FieldViolation(*this), error); }
 };
-
-// Reads `smoothing_rings` and `smoothing_radius` of a term's options (defaults: `defaults`).
-FeatureSmoothing ReadFeatureSmoothing(OptionReader& options, const FeatureSmoothing& defaults);
 
 struct ExtrinsicFlipOptions {
   // Weights of the local, global and Chamfer scores (at least one > 0).
@@ -60,6 +63,16 @@ struct ExtrinsicFlipOptions {
   // Averaging of the curvatures against noise (FeatureSmoothing): the paper's scorer over 2 rings.
   FeatureSmoothing smoothing = {};
 
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("local_weight", self.local_weight, kWeight);
+    visit("global_weight", self.global_weight, kWeight);
+    visit("chamfer_weight", self.chamfer_weight, kWeight);
+    visit("profile_bins", self.profile_bins, kBins);
+    visit("histogram_bins", self.histogram_bins, kBins);
+    FeatureSmoothing::Fields(self.smoothing, visit);
+  }
   bool IsValid(std::string* error) const;
 };
 

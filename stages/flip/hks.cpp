@@ -9,15 +9,6 @@
 
 namespace symembed {
 
-bool HksFlipOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  out << FirstViolation({{"eigenpairs", kEigenpairs, eigenpairs},
-                         {"num_times", kNumTimes, num_times},
-                         {"threads", kThreads, threads}});
-  if (error) *error = out.str();
-  return out.str().empty();
-}
-
 Eigen::MatrixXd HeatKernelSignature(const LaplaceBasis& basis, const Eigen::VectorXd& times) {
   const Eigen::MatrixXd phi2 = basis.evecs.array().square().matrix();
   // E(i, t) = exp(-lambda_i t); eigenvalues ~0 (clamped at 0) keep weight 1.

@@ -30,7 +30,14 @@ struct HksFlipOptions {
   int threads = 1;  // 0: DefaultThreadCount()
   static constexpr Range kThreads = Range::Closed(0, 256);
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("eigenpairs", self.eigenpairs, kEigenpairs);
+    visit("num_times", self.num_times, kNumTimes);
+    visit("threads", self.threads, kThreads);
+  }
+  bool IsValid(std::string* error) const { return NoViolation(FieldViolation(*this), error); }
 };
 
 // times: T >= 1 diffusion times. Returns #V x T, each column divided by its heat trace.

@@ -33,11 +33,8 @@ bool RefinedAgreementOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   std::string schedule;
   if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
-  if (out.str().empty())
-    out << FirstViolation(
-        {{"margin", kMargin, margin}, {"normal_weight", kNormalWeight, normal_weight}});
-  if (error) *error = out.str();
-  return out.str().empty();
+  if (out.str().empty()) out << FieldViolation(*this);
+  return NoViolation(out.str(), error);
 }
 
 RefinedCandidates::RefinedCandidates(const ShapeData& source, const ShapeData& target,

@@ -59,6 +59,12 @@ struct RefinedAgreementOptions {
   double normal_weight = 0.1;
   static constexpr Range kNormalWeight = Range::AtLeast(0.0);
 
+  // The options as the config names them (core/range.h), besides the `zoomout` map.
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("margin", self.margin, kMargin);
+    visit("normal_weight", self.normal_weight, kNormalWeight);
+  }
   bool IsValid(std::string* error) const;
 };
 

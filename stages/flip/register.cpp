@@ -74,13 +74,7 @@ void RegisterFlipStages(Registry& registry) {
   registry.Add("flip", "hks",
                "heat kernel signatures (Laplace-Beltrami eigenpairs) compared through each "
                "candidate's NN map",
-               [](OptionReader& o) -> std::unique_ptr<Stage> {
-                 HksFlipOptions h;
-                 h.eigenpairs = o.GetInt("eigenpairs", h.eigenpairs, HksFlipOptions::kEigenpairs);
-                 h.num_times = o.GetInt("num_times", h.num_times, HksFlipOptions::kNumTimes);
-                 h.threads = o.GetInt("threads", h.threads, HksFlipOptions::kThreads);
-                 return std::make_unique<HksStage>(h);
-               });
+               FieldsFactory<HksStage, HksFlipOptions>());
   registry.Add(
       "flip", "oracle", "lowest ground-truth error (evaluation only; fails without ground truth)",
       [](OptionReader& o) -> std::unique_ptr<Stage> {

@@ -33,15 +33,7 @@ void CurvatureTerm::Score(const FlipTermContext& context, std::array<double, 4>*
 
 std::unique_ptr<FlipTerm> ReadCurvatureTerm(OptionReader& o, double weight) {
   ExtrinsicFlipOptions e;
-  using E = ExtrinsicFlipOptions;
-  e.local_weight = o.GetDouble("local_weight", e.local_weight, E::kWeight);
-  e.global_weight = o.GetDouble("global_weight", e.global_weight, E::kWeight);
-  e.chamfer_weight = o.GetDouble("chamfer_weight", e.chamfer_weight, E::kWeight);
-  e.profile_bins = o.GetInt("profile_bins", e.profile_bins, E::kBins);
-  e.histogram_bins = o.GetInt("histogram_bins", e.histogram_bins, E::kBins);
-  e.smoothing = ReadFeatureSmoothing(o, e.smoothing);
-  std::string error;
-  if (!e.IsValid(&error)) o.Fail("", error);
+  ReadValidFields(o, &e);
   return std::make_unique<CurvatureTerm>(weight, e);
 }
 

@@ -39,17 +39,8 @@ void DescriptorTerm::Score(const FlipTermContext& context, std::array<double, 4>
 }
 
 std::unique_ptr<FlipTerm> ReadDescriptorTerm(OptionReader& o, double weight) {
-  using D = DescriptorMapOptions;
   DescriptorMapOptions d;
-  d.k = o.GetInt("k", d.k, D::kK);
-  d.eigenpairs = o.GetInt("eigenpairs", d.eigenpairs, D::kEigenpairs);
-  d.energies = o.GetInt("energies", d.energies, D::kEnergies);
-  d.sigma = o.GetDouble("sigma", d.sigma, D::kSigma);
-  d.mu = o.GetDouble("mu", d.mu, D::kMu);
-  d.samples = o.GetInt("samples", d.samples, D::kSamples);
-  d.axes = o.GetInt("axes", d.axes, D::kAxes);
-  std::string error;
-  if (!d.IsValid(&error)) o.Fail("", error);
+  ReadValidFields(o, &d);
   return std::make_unique<DescriptorTerm>(weight, d);
 }
 

@@ -30,29 +30,16 @@ DeformOptions Deformation(const RefinedMapsTermOptions& options) {
 
 bool RefinedMapsTermOptions::IsValid(std::string* error) const {
   std::ostringstream out;
-  std::string feature_error;
   std::string schedule;
   if (!zoomout.IsValid(&schedule)) out << "zoomout: " << schedule;
-  if (out.str().empty())
-    out << FirstViolation({{"sources", kSources, sources}, {"targets", kTargets, targets}});
+  if (out.str().empty()) out << FieldViolation(*this);
   if (out.str().empty() && targets < sources) {
     out << "targets must be >= sources (" << sources << "), got " << targets;
   }
   if (out.str().empty() && targets > zoomout.samples) {
     out << "targets must be <= zoomout.samples (" << zoomout.samples << "), got " << targets;
   }
-  if (out.str().empty())
-    out << FirstViolation({{"distortion_weight", kWeight, distortion_weight},
-                           {"disagreement_weight", kWeight, disagreement_weight},
-                           {"orientation_weight", kWeight, orientation_weight},
-                           {"front_back_vote", kWeight, front_back_vote},
-                           {"long_axis_weight", kWeight, long_axis_weight},
-                           {"long_axis_time", kLongAxisTime, long_axis_time},
-                           {"distortion_decides", kDistortionDecides, distortion_decides}});
-  if (out.str().empty() && !smoothing.IsValid(&feature_error)) out << feature_error;
-  if (out.str().empty()) out << FirstViolation({{"normal_weight", kNormalWeight, normal_weight}});
-  if (error) *error = out.str();
-  return out.str().empty();
+  return NoViolation(out.str(), error);
 }
 
 double GeodesicDistortion(const Eigen::MatrixXd& source_distances, const MeshGraph& target,
@@ -227,23 +214,7 @@ void RefinedMapsTerm::Score(const FlipTermContext& context, std::array<double, 4
 std::unique_ptr<FlipTerm> ReadRefinedMapsTerm(OptionReader& o, double weight) {
   RefinedMapsTermOptions r;
   r.zoomout = ReadFlipZoomOutSchedule(o, "zoomout", r.zoomout);
-  using R = RefinedMapsTermOptions;
-  r.sources = o.GetInt("sources", r.sources, R::kSources);
-  r.targets = o.GetInt("targets", r.targets, R::kTargets);
-  r.distortion_weight = o.GetDouble("distortion_weight", r.distortion_weight, R::kWeight);
-  r.distortion_front_back = o.GetBool("distortion_front_back", r.distortion_front_back);
-  r.disagreement_weight = o.GetDouble("disagreement_weight", r.disagreement_weight, R::kWeight);
-  r.orientation_weight = o.GetDouble("orientation_weight", r.orientation_weight, R::kWeight);
-  r.front_back_vote = o.GetDouble("front_back_vote", r.front_back_vote, R::kWeight);
-  r.long_axis_weight = o.GetDouble("long_axis_weight", r.long_axis_weight, R::kWeight);
-  r.long_axis_time = o.GetDouble("long_axis_time", r.long_axis_time, R::kLongAxisTime);
-  r.distortion_decides =
-      o.GetDouble("distortion_decides", r.distortion_decides, R::kDistortionDecides);
-  r.smoothing = ReadFeatureSmoothing(o, r.smoothing);
-  r.normal_weight = o.GetDouble("normal_weight", r.normal_weight, R::kNormalWeight);
-  r.deformed_start = o.GetBool("deformed_start", r.deformed_start);
-  std::string error;
-  if (!r.IsValid(&error)) o.Fail("", error);
+  ReadValidFields(o, &r);
   return std::make_unique<RefinedMapsTerm>(weight, r);
 }
 

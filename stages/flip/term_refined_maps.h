@@ -128,6 +128,23 @@ struct RefinedMapsTermOptions {
   // so that the candidates are judged from the maps the pipeline would start from.
   bool deformed_start = true;
 
+  // The options as the config names them (core/range.h), besides the `zoomout` map.
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("sources", self.sources, kSources);
+    visit("targets", self.targets, kTargets);
+    visit("distortion_weight", self.distortion_weight, kWeight);
+    visit("distortion_front_back", self.distortion_front_back);
+    visit("disagreement_weight", self.disagreement_weight, kWeight);
+    visit("orientation_weight", self.orientation_weight, kWeight);
+    visit("front_back_vote", self.front_back_vote, kWeight);
+    visit("long_axis_weight", self.long_axis_weight, kWeight);
+    visit("long_axis_time", self.long_axis_time, kLongAxisTime);
+    visit("distortion_decides", self.distortion_decides, kDistortionDecides);
+    FeatureSmoothing::Fields(self.smoothing, visit);
+    visit("normal_weight", self.normal_weight, kNormalWeight);
+    visit("deformed_start", self.deformed_start);
+  }
   bool IsValid(std::string* error) const;
 };
 

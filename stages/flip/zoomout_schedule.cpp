@@ -8,17 +8,12 @@ namespace symembed {
 
 bool FlipZoomOutSchedule::IsValid(std::string* error) const {
   std::ostringstream out;
-  out << FirstViolation({{"k_start", kKStart, k_start}, {"k_end", kKEnd, k_end}});
+  out << FieldViolation(*this);
   if (out.str().empty() && k_end < k_start) out << "need 1 <= k_start <= k_end";
-  if (out.str().empty())
-    out << FirstViolation({{"step", kStep, step}, {"samples", kSamples, samples}});
   if (out.str().empty() && samples < k_end) {
     out << "samples must be >= k_end (" << k_end << "), got " << samples;
   }
-  if (out.str().empty())
-    out << FirstViolation({{"target_samples", kTargetSamples, target_samples}});
-  if (error) *error = out.str();
-  return out.str().empty();
+  return NoViolation(out.str(), error);
 }
 
 ZoomOutOptions FlipZoomOutSchedule::ZoomOut() const {
@@ -40,13 +35,8 @@ std::vector<int> FlipZoomOutSchedule::TargetPrefix(const std::vector<int>& targe
 FlipZoomOutSchedule ReadFlipZoomOutSchedule(OptionReader& options, const std::string& key,
                                             const FlipZoomOutSchedule& defaults) {
   OptionReader o = options.Child(key);
-  FlipZoomOutSchedule s;
-  s.k_start = o.GetInt("k_start", defaults.k_start, FlipZoomOutSchedule::kKStart);
-  s.k_end = o.GetInt("k_end", defaults.k_end, FlipZoomOutSchedule::kKEnd);
-  s.step = o.GetInt("step", defaults.step, FlipZoomOutSchedule::kStep);
-  s.samples = o.GetInt("samples", defaults.samples, FlipZoomOutSchedule::kSamples);
-  s.target_samples =
-      o.GetInt("target_samples", defaults.target_samples, FlipZoomOutSchedule::kTargetSamples);
+  FlipZoomOutSchedule s = defaults;
+  ReadFields(o, &s);
   o.Finish();
   std::string error;
   if (!s.IsValid(&error)) o.Fail("", error);

@@ -27,6 +27,13 @@ struct FlipZoomOutSchedule {
   int target_samples = 0;
   static constexpr Range kTargetSamples = Range::Closed(0, 100000);
 
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    BasisSizeFields(self, visit);
+    visit("samples", self.samples, kSamples);
+    visit("target_samples", self.target_samples, kTargetSamples);
+  }
   bool IsValid(std::string* error) const;
   // ZoomOut's options for the schedule: the sampled iterations only (dense_result false).
   ZoomOutOptions ZoomOut() const;

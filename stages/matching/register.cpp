@@ -130,40 +130,24 @@ void RegisterMatchingStages(Registry& registry) {
                      o, std::make_unique<NearestStage>(
                             normal_weight, o.GetInt("threads", 1, Range::Closed(0, 256))));
                });
-  registry.Add("matching", "nearest_scaled",
-               "ICP up to per-axis scale and translation, then nearest neighbour; a pair with a partial "
-               "shape (partial_boundary_ratio) by geodesic landmarks on the surfaces",
-               [](OptionReader& o) -> std::unique_ptr<Stage> {
-                 using S = ScaledIcpOptions;
-                 ScaledIcpOptions s;
-                 s.iterations = o.GetInt("iterations", s.iterations, S::kIterations);
-                 s.symmetric = o.GetBool("symmetric", s.symmetric);
-                 s.min_scale = o.GetDouble("min_scale", s.min_scale, S::kMinScale);
-                 s.max_scale = o.GetDouble("max_scale", s.max_scale, S::kMaxScale);
-                 s.normal_weight = o.GetDouble("normal_weight", s.normal_weight, S::kNormalWeight);
-                 s.threads = o.GetInt("threads", 1, S::kThreads);
-                 std::string error;
-                 if (!s.IsValid(&error)) o.Fail("", error);
-                 return WithPartialRoute(o, std::make_unique<NearestScaledStage>(s));
-               });
+  registry.Add(
+      "matching", "nearest_scaled",
+      "ICP up to per-axis scale and translation, then nearest neighbour; a pair with a partial "
+      "shape (partial_boundary_ratio) by geodesic landmarks on the surfaces",
+      [](OptionReader& o) -> std::unique_ptr<Stage> {
+        ScaledIcpOptions s;
+        s.threads = 1;  // pairs run side by side
+        ReadValidFields(o, &s);
+        return WithPartialRoute(o, std::make_unique<NearestScaledStage>(s));
+      });
   registry.Add(
       "matching", "deformed",
       "the source embedding bent onto the target's by a deformation smooth along the "
       "source surface (non-rigid ICP in its Laplace-Beltrami basis), then nearest neighbour; a "
       "pair with a partial shape (partial_boundary_ratio) by geodesic landmarks on the surfaces",
       [](OptionReader& o) -> std::unique_ptr<Stage> {
-        using D = DeformOptions;
         DeformOptions d;
-        d.k_start = o.GetInt("k_start", d.k_start, D::kKStart);
-        d.k_end = o.GetInt("k_end", d.k_end, D::kKEnd);
-        d.step = o.GetInt("step", d.step, D::kStep);
-        d.iterations = o.GetInt("iterations", d.iterations, D::kIterations);
-        d.smoothness = o.GetDouble("smoothness", d.smoothness, D::kSmoothness);
-        d.samples = o.GetInt("samples", d.samples, D::kSamples);
-        d.normal_weight = o.GetDouble("normal_weight", d.normal_weight, D::kNormalWeight);
-        d.threads = o.GetInt("threads", 1, D::kThreads);
-        std::string error;
-        if (!d.IsValid(&error)) o.Fail("", error);
+        ReadValidFields(o, &d);
         return WithPartialRoute(o, std::make_unique<DeformedStage>(d));
       });
 }

@@ -28,25 +28,7 @@ void RegisterPreprocessStages(Registry& registry) {
                "component (failing past max_removed_area), orient consistently "
                "(outward when closed), drop unreferenced vertices, centre and scale to unit area, "
                "cut the handles of a surface of genus > 0 (topological noise)",
-               [](OptionReader& reader) -> std::unique_ptr<Stage> {
-                 StandardPreprocessOptions options;
-                 options.orient = reader.GetBool("orient", options.orient);
-                 options.weld_boundary_duplicates = reader.GetBool(
-                     "weld_boundary_duplicates", options.weld_boundary_duplicates);
-                 options.keep_largest_component =
-                     reader.GetBool("keep_largest_component", options.keep_largest_component);
-                 options.max_removed_area =
-                     reader.GetDouble("max_removed_area", options.max_removed_area,
-                                      StandardPreprocessOptions::kMaxRemovedArea);
-                 options.normalize = reader.GetBool("normalize", options.normalize);
-                 options.degenerate_tolerance =
-                     reader.GetDouble("degenerate_tolerance", options.degenerate_tolerance,
-                                      StandardPreprocessOptions::kDegenerateTolerance);
-                 options.cut_handles = reader.GetBool("cut_handles", options.cut_handles);
-                 options.cap_cut_handles =
-                     reader.GetBool("cap_cut_handles", options.cap_cut_handles);
-                 return std::make_unique<StandardPreprocessStage>(options);
-               });
+               FieldsFactory<StandardPreprocessStage, StandardPreprocessOptions>());
 }
 
 }  // namespace symembed

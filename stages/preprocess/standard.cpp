@@ -14,15 +14,6 @@
 
 namespace symembed {
 
-bool StandardPreprocessOptions::IsValid(std::string* error) const {
-  const std::string why =
-      FirstViolation({{"degenerate_tolerance", kDegenerateTolerance, degenerate_tolerance},
-                      {"max_removed_area", kMaxRemovedArea, max_removed_area}});
-  if (why.empty()) return true;
-  if (error) *error = why;
-  return false;
-}
-
 namespace {
 
 using Face = std::array<int, 3>;

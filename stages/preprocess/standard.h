@@ -54,7 +54,19 @@ struct StandardPreprocessOptions {
   bool cut_handles = true;              // step 3b
   bool cap_cut_handles = true;          // step 3b: close the loops a cut opens
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("orient", self.orient);
+    visit("weld_boundary_duplicates", self.weld_boundary_duplicates);
+    visit("keep_largest_component", self.keep_largest_component);
+    visit("max_removed_area", self.max_removed_area, kMaxRemovedArea);
+    visit("normalize", self.normalize);
+    visit("degenerate_tolerance", self.degenerate_tolerance, kDegenerateTolerance);
+    visit("cut_handles", self.cut_handles);
+    visit("cap_cut_handles", self.cap_cut_handles);
+  }
+  bool IsValid(std::string* error) const { return NoViolation(FieldViolation(*this), error); }
 };
 
 // Throws InvalidInputError (naming the face or vertex) for face ids out of range, non-finite

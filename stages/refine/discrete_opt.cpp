@@ -18,28 +18,18 @@ namespace symembed {
 bool DiscreteOptOptions::IsValid(std::string* error) const {
   std::ostringstream out;
   const DiscreteOptWeights& w = weights;
-  const Range& weight = DiscreteOptWeights::kWeight;
-  out << FirstViolation({{"k_start", kKStart, k_start}, {"k_end", kKEnd, k_end}});
+  out << FieldViolation(*this);
   if (out.str().empty() && k_end < k_start) {
     out << "k_end (" << k_end << ") must be >= k_start (" << k_start << ")";
   }
-  if (out.str().empty())
-    out << FirstViolation({{"step", kStep, step}, {"descriptors", kDescriptors, descriptors}});
-  if (out.str().empty())
-    out << FirstViolation({{"weights.orthogonality", weight, w.orthogonality},
-                           {"weights.bijectivity", weight, w.bijectivity},
-                           {"weights.proper", weight, w.proper},
-                           {"weights.laplacian", weight, w.laplacian},
-                           {"weights.descriptor", weight, w.descriptor},
-                           {"weights.embedding", weight, w.embedding}});
+  const std::string weight = FieldViolation(w);
+  if (out.str().empty() && !weight.empty()) out << "weights." << weight;
   // The descriptor and embedding terms alone do not depend on the functional maps: the
   // iterations would repeat one query.
   if (out.str().empty() && !(w.orthogonality + w.bijectivity + w.proper + w.laplacian > 0)) {
     out << "one of the weights orthogonality, bijectivity, proper, laplacian must be > 0";
   }
-  if (out.str().empty()) return true;
-  if (error != nullptr) *error = out.str();
-  return false;
+  return NoViolation(out.str(), error);
 }
 
 WksProducts DiscreteWksProducts(const LaplaceBasis& basis, int k_end) {

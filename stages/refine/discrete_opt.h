@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/fmap/descriptors.h"
+#include "core/fmap/zoomout.h"
 #include "core/range.h"
 #include "core/spectral.h"
 #include "registry/types.h"
@@ -41,6 +42,17 @@ struct DiscreteOptWeights {
   // Needs the pair's embedded points (DiscreteOptPoints); the refine stage's default is 100.
   double embedding = 0.0;
   static constexpr Range kWeight = Range::AtLeast(0.0);  // of each weight above
+
+  // The weights as the config's `weights` map names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("orthogonality", self.orthogonality, kWeight);
+    visit("bijectivity", self.bijectivity, kWeight);
+    visit("proper", self.proper, kWeight);
+    visit("laplacian", self.laplacian, kWeight);
+    visit("descriptor", self.descriptor, kWeight);
+    visit("embedding", self.embedding, kWeight);
+  }
 };
 
 struct DiscreteOptOptions {
@@ -60,6 +72,12 @@ struct DiscreteOptOptions {
   // (the other entries of the result keep the initial map).
   bool dense_result = true;
 
+  // The options as the config names them (core/range.h), besides `candidates` and `weights`.
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    BasisSizeFields(self, visit);
+    visit("descriptors", self.descriptors, kDescriptors);
+  }
   bool IsValid(std::string* error) const;
 };
 

@@ -8,14 +8,6 @@
 
 namespace symembed {
 
-bool FunctionalMapIcpOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  out << FirstViolation({{"k", kK, k}, {"max_iterations", kMaxIterations, max_iterations}});
-  if (out.str().empty()) return true;
-  if (error != nullptr) *error = out.str();
-  return false;
-}
-
 FunctionalMapIcpResult FunctionalMapIcp(const LaplaceBasis& source, const LaplaceBasis& target,
                                         const std::vector<int>& initial_map,
                                         const FunctionalMapIcpOptions& options) {

@@ -23,7 +23,13 @@ struct FunctionalMapIcpOptions {
   int max_iterations = 20;  // upper bound on Procrustes / nearest-neighbour rounds
   static constexpr Range kMaxIterations = Range::Closed(1, 10000);
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("k", self.k, kK);
+    visit("max_iterations", self.max_iterations, kMaxIterations);
+  }
+  bool IsValid(std::string* error) const { return NoViolation(FieldViolation(*this), error); }
 };
 
 struct FunctionalMapIcpResult {

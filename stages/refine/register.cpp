@@ -223,14 +223,6 @@ class DiscreteRefine : public RefineStage {
   int sample_count_;
 };
 
-// The basis sizes of a schedule grown like ZoomOut's: k_start, k_end and step.
-template <typename Options>
-void ReadBasisSizes(OptionReader& reader, Options* options) {
-  options->k_start = reader.GetInt("k_start", options->k_start, Options::kKStart);
-  options->k_end = reader.GetInt("k_end", options->k_end, Options::kKEnd);
-  options->step = reader.GetInt("step", options->step, Options::kStep);
-}
-
 // A sample must determine k_end coefficients.
 void CheckSampleCount(OptionReader& reader, const std::string& key, int count, int k_end) {
   if (count > 0 && count < k_end) {
@@ -259,7 +251,7 @@ void RegisterRefineStages(Registry& registry) {
       "Spectra",
       [](OptionReader& reader) -> std::unique_ptr<Stage> {
         ZoomOutOptions options;
-        ReadBasisSizes(reader, &options);
+        ReadFields(reader, &options);
         // By default ZoomOut also runs from k = 5, 10 and 15 and keeps the run with the lowest
         // residual: a single start at k_start leaves regions that the initial map sends to the
         // wrong part of the target where they are, and which start recovers them depends on the
@@ -292,25 +284,17 @@ void RegisterRefineStages(Registry& registry) {
       "[Ren et al. 2021]",
       [](OptionReader& reader) -> std::unique_ptr<Stage> {
         DiscreteOptOptions options;
-        ReadBasisSizes(reader, &options);
-        options.descriptors =
-            reader.GetInt("descriptors", options.descriptors, DiscreteOptOptions::kDescriptors);
+        ReadFields(reader, &options);
         options.sample_candidates =
             reader.GetChoice("candidates", "samples", {"samples", "vertices"}) == "samples";
         OptionReader w = reader.Child("weights");
-        DiscreteOptWeights& weights = options.weights;
-        constexpr Range kWeight = DiscreteOptWeights::kWeight;
-        weights.orthogonality = w.GetDouble("orthogonality", weights.orthogonality, kWeight);
-        weights.bijectivity = w.GetDouble("bijectivity", weights.bijectivity, kWeight);
-        weights.proper = w.GetDouble("proper", weights.proper, kWeight);
-        weights.laplacian = w.GetDouble("laplacian", weights.laplacian, kWeight);
-        weights.descriptor = w.GetDouble("descriptor", weights.descriptor, kWeight);
         // The stage anchors the map to the matching stage's aligned embeddings by default:
         // on a pair that is far from isometric the spectral terms alone move whole regions
         // away from where the embedding put them. The embedding is in units of the unit-area
         // surface: at weight 100 a point 0.1 away from its image costs 1, a unit of each
         // spectral term (whose eigenfunctions have unit norm).
-        weights.embedding = w.GetDouble("embedding", kDefaultEmbeddingWeight, kWeight);
+        options.weights.embedding = kDefaultEmbeddingWeight;
+        ReadFields(w, &options.weights);
         w.Finish();
         reader.AdoptChild("weights", w);
         const int sample_count = reader.GetInt("sample_count", kDefaultSamples, Range::AtLeast(0));
@@ -321,15 +305,7 @@ void RegisterRefineStages(Registry& registry) {
       });
   registry.Add("refine", "icp",
                "functional-map ICP at a fixed basis size [Ovsjanikov et al. 2012] (baseline)",
-               [](OptionReader& reader) -> std::unique_ptr<Stage> {
-                 FunctionalMapIcpOptions options;
-                 options.k = reader.GetInt("k", options.k, FunctionalMapIcpOptions::kK);
-                 options.max_iterations = reader.GetInt("max_iterations", options.max_iterations,
-                                                        FunctionalMapIcpOptions::kMaxIterations);
-                 std::string error;
-                 if (!options.IsValid(&error)) reader.Fail("", error);
-                 return std::make_unique<IcpRefine>(options);
-               });
+               FieldsFactory<IcpRefine, FunctionalMapIcpOptions>());
 }
 
 }  // namespace symembed

@@ -10,13 +10,6 @@
 
 namespace symembed {
 
-bool FarthestPointOptions::IsValid(std::string* error) const {
-  const std::string why = FirstViolation({{"count", kCount, count}});
-  if (why.empty()) return true;
-  if (error) *error = why;
-  return false;
-}
-
 SamplingResult FarthestPointSampling(const Surface& surface, const FarthestPointOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw ConfigError("sampling/farthest_point: " + error);

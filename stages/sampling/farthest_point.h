@@ -24,7 +24,13 @@ struct FarthestPointOptions {
   static constexpr Range kCount = Range::AtLeast(1);
   std::uint32_t seed = 1;  // seeds the choice of the first sample
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("count", self.count, kCount);
+    visit("seed", self.seed, Range::AtLeast(0));
+  }
+  bool IsValid(std::string* error) const { return NoViolation(FieldViolation(*this), error); }
 };
 
 // Returns `count` distinct vertex ids in sampling order and the coverage radius (the largest

@@ -34,14 +34,7 @@ void RegisterSamplingStages(Registry& registry) {
       [](OptionReader&) -> std::unique_ptr<Stage> { return std::make_unique<AllSamplingStage>(); });
   registry.Add("sampling", "farthest_point",
                "geodesic farthest point sampling from a seeded start (options: count, seed)",
-               [](OptionReader& reader) -> std::unique_ptr<Stage> {
-                 FarthestPointOptions options;
-                 options.count =
-                     reader.GetInt("count", options.count, FarthestPointOptions::kCount);
-                 options.seed = static_cast<std::uint32_t>(
-                     reader.GetInt("seed", static_cast<int>(options.seed), Range::AtLeast(0)));
-                 return std::make_unique<FarthestPointStage>(options);
-               });
+               FieldsFactory<FarthestPointStage, FarthestPointOptions>());
 }
 
 }  // namespace symembed

@@ -13,23 +13,6 @@
 
 namespace symembed {
 
-bool CeresSymmetrizeOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  out << FirstViolation({{"symmetry_weight", kWeight, symmetry_weight},
-                         {"plane_weight", kWeight, plane_weight},
-                         {"anchor_weight", kWeight, anchor_weight},
-                         {"graph_neighbors", kGraphNeighbors, graph_neighbors},
-                         {"mirror_neighbors", kMirrorNeighbors, mirror_neighbors},
-                         {"follow_neighbors", kFollowNeighbors, follow_neighbors},
-                         {"max_iterations", kMaxIterations, max_iterations},
-                         {"function_tolerance", kFunctionTolerance, function_tolerance},
-                         {"threads", kThreads, threads},
-                         {"warm_start_iterations", kWarmStartIterations, warm_start_iterations},
-                         {"warm_start_tolerance", kWarmStartTolerance, warm_start_tolerance}});
-  if (error) *error = out.str();
-  return out.str().empty();
-}
-
 std::vector<std::pair<int, int>> KnnGraphEdges(const Eigen::MatrixX3d& P, int k) {
   const int n = static_cast<int>(P.rows());
   std::set<std::pair<int, int>> edges;

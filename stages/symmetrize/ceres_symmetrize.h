@@ -76,7 +76,22 @@ struct CeresSymmetrizeOptions {
   int threads = 1;
   static constexpr Range kThreads = Range::Closed(1, 256);
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("symmetry_weight", self.symmetry_weight, kWeight);
+    visit("plane_weight", self.plane_weight, kWeight);
+    visit("anchor_weight", self.anchor_weight, kWeight);
+    visit("graph_neighbors", self.graph_neighbors, kGraphNeighbors);
+    visit("mirror_neighbors", self.mirror_neighbors, kMirrorNeighbors);
+    visit("follow_neighbors", self.follow_neighbors, kFollowNeighbors);
+    visit("max_iterations", self.max_iterations, kMaxIterations);
+    visit("function_tolerance", self.function_tolerance, kFunctionTolerance);
+    visit("threads", self.threads, kThreads);
+    visit("warm_start_iterations", self.warm_start_iterations, kWarmStartIterations);
+    visit("warm_start_tolerance", self.warm_start_tolerance, kWarmStartTolerance);
+  }
+  bool IsValid(std::string* error) const { return NoViolation(FieldViolation(*this), error); }
 };
 
 // Y: #V x 3 embedding; samples: #S ids; symmetry: plane in Y's coordinates, sigma (#S),

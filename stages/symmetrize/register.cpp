@@ -45,31 +45,10 @@ class NoneStage : public SymmetrizeStage {
 }  // namespace
 
 void RegisterSymmetrizeStages(Registry& registry) {
-  registry.Add(
-      "symmetrize", "ceres",
-      "Ceres: stress on a sample k-NN graph + symmetry_weight * ||M y_i - y_sigma(i)||^2; "
-      "dense vertices follow the samples",
-      [](OptionReader& o) -> std::unique_ptr<Stage> {
-        using C = CeresSymmetrizeOptions;
-        CeresSymmetrizeOptions c;
-        c.symmetry_weight = o.GetDouble("symmetry_weight", c.symmetry_weight, C::kWeight);
-        c.plane_weight = o.GetDouble("plane_weight", c.plane_weight, C::kWeight);
-        c.anchor_weight = o.GetDouble("anchor_weight", c.anchor_weight, C::kWeight);
-        c.graph_neighbors = o.GetInt("graph_neighbors", c.graph_neighbors, C::kGraphNeighbors);
-        c.mirror_neighbors = o.GetInt("mirror_neighbors", c.mirror_neighbors, C::kMirrorNeighbors);
-        c.follow_neighbors = o.GetInt("follow_neighbors", c.follow_neighbors, C::kFollowNeighbors);
-        c.max_iterations = o.GetInt("max_iterations", c.max_iterations, C::kMaxIterations);
-        c.function_tolerance =
-            o.GetDouble("function_tolerance", c.function_tolerance, C::kFunctionTolerance);
-        c.threads = o.GetInt("threads", c.threads, C::kThreads);
-        c.warm_start_iterations =
-            o.GetInt("warm_start_iterations", c.warm_start_iterations, C::kWarmStartIterations);
-        c.warm_start_tolerance =
-            o.GetDouble("warm_start_tolerance", c.warm_start_tolerance, C::kWarmStartTolerance);
-        std::string error;
-        if (!c.IsValid(&error)) o.Fail("", error);
-        return std::make_unique<CeresStage>(c);
-      });
+  registry.Add("symmetrize", "ceres",
+               "Ceres: stress on a sample k-NN graph + symmetry_weight * ||M y_i - y_sigma(i)||^2; "
+               "dense vertices follow the samples",
+               FieldsFactory<CeresStage, CeresSymmetrizeOptions>());
   registry.Add("symmetrize", "average",
                "closed form y_i <- (y_i + M y_sigma(i)) / 2 on the samples; dense vertices follow",
                [](OptionReader& o) -> std::unique_ptr<Stage> {

@@ -15,28 +15,6 @@
 
 namespace symembed {
 
-bool Plane2dOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  std::string sub;
-  if (!search.IsValid(&sub)) out << sub;
-  if (out.str().empty() && !spectral.IsValid(&sub)) out << sub;
-  if (out.str().empty())
-    out << FirstViolation(
-        {{"num_angles", kNumAngles, num_angles},
-         {"intrinsic_weight", kIntrinsicWeight, intrinsic_weight},
-         {"intrinsic_pairs", kIntrinsicPairs, intrinsic_pairs},
-         {"smacof_iterations", kSmacofIterations, smacof_iterations},
-         {"refine_3d_iterations", kRefine3dIterations, refine_3d_iterations},
-         {"num_directions", kNumDirections, num_directions},
-         {"threads", kThreads, threads},
-         {"min_self_map_displacement", kMinSelfMapDisplacement, min_self_map_displacement},
-         {"second_plane_below", kSecondPlaneBelow, second_plane_below},
-         {"second_plane_tie", kSecondPlaneTie, second_plane_tie},
-         {"distance_confidence", kDistanceConfidence, distance_confidence}});
-  if (error) *error = out.str();
-  return out.str().empty();
-}
-
 Eigen::MatrixXd EmbedSamples2d(const Eigen::MatrixXd& Dss, int smacof_iterations, int threads) {
   ClassicalMdsOptions mds;
   mds.dims = 2;

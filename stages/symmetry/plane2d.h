@@ -99,7 +99,29 @@ struct Plane2dOptions {
   int threads = 0;
   static constexpr Range kThreads = Range::Closed(0, 256);
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    ReflectionSearchOptions::Fields(self.search, visit);
+    visit("num_angles", self.num_angles, kNumAngles);
+    visit("intrinsic_weight", self.intrinsic_weight, kIntrinsicWeight);
+    visit("intrinsic_pairs", self.intrinsic_pairs, kIntrinsicPairs);
+    visit("seed", self.seed, Range::Any());
+    visit("smacof_iterations", self.smacof_iterations, kSmacofIterations);
+    visit("min_self_map_displacement", self.min_self_map_displacement, kMinSelfMapDisplacement);
+    visit("second_plane_below", self.second_plane_below, kSecondPlaneBelow);
+    visit("second_plane_tie", self.second_plane_tie, kSecondPlaneTie);
+    visit("refine_3d_iterations", self.refine_3d_iterations, kRefine3dIterations);
+    visit("candidates_3d", self.candidates_3d);
+    visit("num_directions", self.num_directions, kNumDirections);
+    SpectralSymmetryOptions::Fields(self.spectral, visit);
+    // Off unless given, so that the resolved options, and every cache key, stay as without it.
+    visit("distance_confidence", self.distance_confidence, kDistanceConfidence, kIfGiven);
+    visit("threads", self.threads, kThreads);
+  }
+  bool IsValid(std::string* error) const {
+    return search.IsValid(error) && NoViolation(FieldViolation(*this), error);
+  }
 };
 
 // Per sample i, how well the self map keeps its geodesic distances: d_i, the median over the

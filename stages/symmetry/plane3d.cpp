@@ -10,19 +10,6 @@
 
 namespace symembed {
 
-bool Plane3dOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  std::string sub;
-  if (!search.IsValid(&sub)) out << sub;
-  if (out.str().empty())
-    out << FirstViolation({{"num_directions", kNumDirections, num_directions},
-                           {"intrinsic_weight", kIntrinsicWeight, intrinsic_weight},
-                           {"intrinsic_pairs", kIntrinsicPairs, intrinsic_pairs},
-                           {"threads", kThreads, threads}});
-  if (error) *error = out.str();
-  return out.str().empty();
-}
-
 namespace {
 
 Eigen::MatrixXd SampleRows(const Eigen::MatrixXd& Y, const std::vector<int>& samples) {

@@ -35,7 +35,19 @@ struct Plane3dOptions {
   int threads = 0;
   static constexpr Range kThreads = Range::Closed(0, 256);
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    ReflectionSearchOptions::Fields(self.search, visit);
+    visit("num_directions", self.num_directions, kNumDirections);
+    visit("intrinsic_weight", self.intrinsic_weight, kIntrinsicWeight);
+    visit("intrinsic_pairs", self.intrinsic_pairs, kIntrinsicPairs);
+    visit("seed", self.seed, Range::Any());
+    visit("threads", self.threads, kThreads);
+  }
+  bool IsValid(std::string* error) const {
+    return search.IsValid(error) && NoViolation(FieldViolation(*this), error);
+  }
 };
 
 // The best refined candidate plane on the sample positions P (#S x 3, index built on P), Dss the

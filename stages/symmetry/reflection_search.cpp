@@ -13,14 +13,9 @@
 namespace symembed {
 
 bool ReflectionSearchOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  out << FirstViolation({{"max_iterations", kMaxIterations, max_iterations},
-                         {"trim_fraction", kTrimFraction, trim_fraction},
-                         {"outlier_distance", kOutlierDistance, outlier_distance},
-                         {"max_fixed_fraction", kMaxFixedFraction, max_fixed_fraction},
-                         {"tolerance", kTolerance, tolerance}});
-  if (error) *error = out.str();
-  return out.str().empty();
+  std::string why = FieldViolation(*this);
+  if (why.empty()) why = FirstViolation({{"tolerance", kTolerance, tolerance}});
+  return NoViolation(why, error);
 }
 
 Eigen::MatrixXd Reflect(const Eigen::MatrixXd& P, const Eigen::VectorXd& normal, double offset) {

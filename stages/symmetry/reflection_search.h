@@ -39,6 +39,14 @@ struct ReflectionSearchOptions {
   double tolerance = 1e-6;
   static constexpr Range kTolerance = Range::Above(0.0);
 
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("max_iterations", self.max_iterations, kMaxIterations);
+    visit("trim_fraction", self.trim_fraction, kTrimFraction);
+    visit("outlier_distance", self.outlier_distance, kOutlierDistance);
+    visit("max_fixed_fraction", self.max_fixed_fraction, kMaxFixedFraction);
+  }
   bool IsValid(std::string* error) const;
 };
 

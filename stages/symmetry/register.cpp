@@ -10,17 +10,6 @@
 namespace symembed {
 namespace {
 
-ReflectionSearchOptions ReadSearchOptions(OptionReader& o) {
-  ReflectionSearchOptions s;
-  using R = ReflectionSearchOptions;
-  s.max_iterations = o.GetInt("max_iterations", s.max_iterations, R::kMaxIterations);
-  s.trim_fraction = o.GetDouble("trim_fraction", s.trim_fraction, R::kTrimFraction);
-  s.outlier_distance = o.GetDouble("outlier_distance", s.outlier_distance, R::kOutlierDistance);
-  s.max_fixed_fraction =
-      o.GetDouble("max_fixed_fraction", s.max_fixed_fraction, R::kMaxFixedFraction);
-  return s;
-}
-
 class Plane2dStage;
 
 // What Plane2dStage::Run keeps in its result: the candidates, from which RunAlternative chooses
@@ -95,70 +84,15 @@ class Plane3dStage : public SymmetryStage {
 }  // namespace
 
 void RegisterSymmetryStages(Registry& registry) {
-  registry.Add(
-      "symmetry", "plane2d",
-      "reflection line in a 2D LS-MDS embedding of the samples (angle sweep, "
-      "reflect/NN/refit, intrinsic and spectral checks, eigenfunction sign-flip "
-      "candidates), lifted to a plane in the 3D embedding",
-      [](OptionReader& o) -> std::unique_ptr<Stage> {
-        using P = Plane2dOptions;
-        using S = SpectralSymmetryOptions;
-        Plane2dOptions p;
-        p.search = ReadSearchOptions(o);
-        p.num_angles = o.GetInt("num_angles", p.num_angles, P::kNumAngles);
-        p.intrinsic_weight =
-            o.GetDouble("intrinsic_weight", p.intrinsic_weight, P::kIntrinsicWeight);
-        p.intrinsic_pairs = o.GetInt("intrinsic_pairs", p.intrinsic_pairs, P::kIntrinsicPairs);
-        p.seed = o.GetInt("seed", p.seed);
-        p.smacof_iterations =
-            o.GetInt("smacof_iterations", p.smacof_iterations, P::kSmacofIterations);
-        p.min_self_map_displacement = o.GetDouble(
-            "min_self_map_displacement", p.min_self_map_displacement, P::kMinSelfMapDisplacement);
-        p.second_plane_below =
-            o.GetDouble("second_plane_below", p.second_plane_below, P::kSecondPlaneBelow);
-        p.second_plane_tie =
-            o.GetDouble("second_plane_tie", p.second_plane_tie, P::kSecondPlaneTie);
-        p.refine_3d_iterations =
-            o.GetInt("refine_3d_iterations", p.refine_3d_iterations, P::kRefine3dIterations);
-        p.candidates_3d = o.GetBool("candidates_3d", p.candidates_3d);
-        p.num_directions = o.GetInt("num_directions", p.num_directions, P::kNumDirections);
-        p.spectral.num_eigenfunctions = o.GetInt(
-            "spectral_eigenfunctions", p.spectral.num_eigenfunctions, S::kNumEigenfunctions);
-        p.spectral.num_candidates =
-            o.GetInt("spectral_candidates", p.spectral.num_candidates, S::kNumCandidates);
-        p.spectral.min_consistency =
-            o.GetDouble("spectral_min_consistency", p.spectral.min_consistency, S::kMinConsistency);
-        p.spectral.weight = o.GetDouble("spectral_weight", p.spectral.weight, S::kWeight);
-        p.spectral.eigenvalue_tolerance =
-            o.GetDouble("spectral_eigenvalue_tolerance", p.spectral.eigenvalue_tolerance,
-                        S::kEigenvalueTolerance);
-        // Read (and so written to the resolved config) only when given: off, the
-        // stage's resolved options, and with them every cache key, stay as they were.
-        p.distance_confidence = o.GetDoubleIfGiven("distance_confidence", p.distance_confidence,
-                                                   P::kDistanceConfidence);
-        p.threads = o.GetInt("threads", p.threads, P::kThreads);
-        std::string error;
-        if (!p.IsValid(&error)) o.Fail("", error);
-        return std::make_unique<Plane2dStage>(p);
-      });
+  registry.Add("symmetry", "plane2d",
+               "reflection line in a 2D LS-MDS embedding of the samples (angle sweep, "
+               "reflect/NN/refit, intrinsic and spectral checks, eigenfunction sign-flip "
+               "candidates), lifted to a plane in the 3D embedding",
+               FieldsFactory<Plane2dStage, Plane2dOptions>());
   registry.Add("symmetry", "plane3d",
                "reflection plane searched in the 3D embedding (principal axes + sphere of "
                "normals, reflect/NN/refit, trimmed score, intrinsic check)",
-               [](OptionReader& o) -> std::unique_ptr<Stage> {
-                 using P = Plane3dOptions;
-                 Plane3dOptions p;
-                 p.search = ReadSearchOptions(o);
-                 p.num_directions = o.GetInt("num_directions", p.num_directions, P::kNumDirections);
-                 p.intrinsic_weight =
-                     o.GetDouble("intrinsic_weight", p.intrinsic_weight, P::kIntrinsicWeight);
-                 p.intrinsic_pairs =
-                     o.GetInt("intrinsic_pairs", p.intrinsic_pairs, P::kIntrinsicPairs);
-                 p.seed = o.GetInt("seed", p.seed);
-                 p.threads = o.GetInt("threads", p.threads, P::kThreads);
-                 std::string error;
-                 if (!p.IsValid(&error)) o.Fail("", error);
-                 return std::make_unique<Plane3dStage>(p);
-               });
+               FieldsFactory<Plane3dStage, Plane3dOptions>());
 }
 
 }  // namespace symembed

@@ -15,18 +15,6 @@
 
 namespace symembed {
 
-bool SpectralSymmetryOptions::IsValid(std::string* error) const {
-  std::ostringstream out;
-  out << FirstViolation(
-      {{"spectral_eigenfunctions", kNumEigenfunctions, num_eigenfunctions},
-       {"spectral_candidates", kNumCandidates, num_candidates},
-       {"spectral_min_consistency", kMinConsistency, min_consistency},
-       {"spectral_weight", kWeight, weight},
-       {"spectral_eigenvalue_tolerance", kEigenvalueTolerance, eigenvalue_tolerance}});
-  if (error) *error = out.str();
-  return out.str().empty();
-}
-
 namespace {
 
 // Number of leading eigenvalues that are ~0 (one per connected component), relative to the

@@ -47,7 +47,16 @@ struct SpectralSymmetryOptions {
   double eigenvalue_tolerance = 0.05;
   static constexpr Range kEigenvalueTolerance = Range::Closed(0.0, 1.0);
 
-  bool IsValid(std::string* error) const;
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("spectral_eigenfunctions", self.num_eigenfunctions, kNumEigenfunctions);
+    visit("spectral_candidates", self.num_candidates, kNumCandidates);
+    visit("spectral_min_consistency", self.min_consistency, kMinConsistency);
+    visit("spectral_weight", self.weight, kWeight);
+    visit("spectral_eigenvalue_tolerance", self.eigenvalue_tolerance, kEigenvalueTolerance);
+  }
+  bool IsValid(std::string* error) const { return NoViolation(FieldViolation(*this), error); }
 };
 
 // Global point signature of the samples: #S x K, column j = phi_(j+1) / sqrt(lambda_(j+1)) at the
