@@ -122,9 +122,7 @@ class Plane2dCandidates {
     Plane3dOptions o3;
     o3.search = options_.search;
     o3.num_directions = options_.num_directions;
-    o3.intrinsic_weight = options_.intrinsic_weight;
-    o3.intrinsic_pairs = options_.intrinsic_pairs;
-    o3.seed = options_.seed;
+    o3.intrinsic = options_.intrinsic;
     o3.threads = options_.threads;
     double total = 0.0, distortion = 0.0;
     const ReflectionFit fit3 =
@@ -216,10 +214,10 @@ class Plane2dCandidates {
   }
 
   double Intrinsic(const std::vector<int>& sigma) const {
-    return options_.intrinsic_weight > 0.0
+    return options_.intrinsic.weight > 0.0
                ? IntrinsicDistortion(Dss_, sigma, options_.search.trim_fraction,
-                                     options_.intrinsic_pairs,
-                                     static_cast<unsigned>(options_.seed))
+                                     options_.intrinsic.pairs,
+                                     static_cast<unsigned>(options_.intrinsic.seed))
                : 0.0;
   }
 
@@ -305,7 +303,7 @@ class Plane2dCandidates {
   }
 
   void Consider(Candidate c, std::vector<Candidate>* candidates) const {
-    c.total = c.score + options_.intrinsic_weight * c.intrinsic;
+    c.total = c.score + options_.intrinsic.weight * c.intrinsic;
     c.displacement = SelfMapDisplacement(P_, c.sigma);
     if (std::isfinite(c.total)) candidates->push_back(std::move(c));
   }

@@ -48,14 +48,7 @@ struct Plane2dOptions {
   // Line directions of the coarse sweep over [0, pi).
   int num_angles = 36;
   static constexpr Range kNumAngles = Range::Closed(1, 3600);
-  // Weight of the intrinsic distortion in the choice among candidates (0: off).
-  double intrinsic_weight = 2.0;
-  static constexpr Range kIntrinsicWeight = Range::AtLeast(0.0);
-  // Sample pairs used by the intrinsic check.
-  int intrinsic_pairs = 4000;
-  static constexpr Range kIntrinsicPairs = Range::AtLeast(1);
-  // Seed of the pair sampling.
-  int seed = 1;
+  IntrinsicCheckOptions intrinsic;
   // SMACOF iterations of the 2D embedding (0: classical MDS only).
   int smacof_iterations = 200;
   static constexpr Range kSmacofIterations = Range::AtLeast(0);
@@ -104,9 +97,7 @@ struct Plane2dOptions {
   static void Fields(Self& self, Visit&& visit) {
     ReflectionSearchOptions::Fields(self.search, visit);
     visit("num_angles", self.num_angles, kNumAngles);
-    visit("intrinsic_weight", self.intrinsic_weight, kIntrinsicWeight);
-    visit("intrinsic_pairs", self.intrinsic_pairs, kIntrinsicPairs);
-    visit("seed", self.seed, Range::Any());
+    IntrinsicCheckOptions::Fields(self.intrinsic, visit);
     visit("smacof_iterations", self.smacof_iterations, kSmacofIterations);
     visit("min_self_map_displacement", self.min_self_map_displacement, kMinSelfMapDisplacement);
     visit("second_plane_below", self.second_plane_below, kSecondPlaneBelow);

@@ -56,10 +56,10 @@ ReflectionFit SearchPlanes3d(const Eigen::MatrixXd& P, const KnnIndex& index,
       [&](int k) {
         const Eigen::VectorXd& n = starts[k];
         fits[k] = RefineReflection(P, index, n, n.dot(centroid), options.search);
-        if (std::isfinite(fits[k].score) && options.intrinsic_weight > 0.0) {
-          distortions[k] =
-              IntrinsicDistortion(Dss, fits[k].sigma, options.search.trim_fraction,
-                                  options.intrinsic_pairs, static_cast<unsigned>(options.seed));
+        if (std::isfinite(fits[k].score) && options.intrinsic.weight > 0.0) {
+          distortions[k] = IntrinsicDistortion(Dss, fits[k].sigma, options.search.trim_fraction,
+                                               options.intrinsic.pairs,
+                                               static_cast<unsigned>(options.intrinsic.seed));
         }
       },
       options.threads);
@@ -67,7 +67,7 @@ ReflectionFit SearchPlanes3d(const Eigen::MatrixXd& P, const KnnIndex& index,
   for (size_t k = 0; k < starts.size(); ++k) {
     *iterations += fits[k].iterations;
     if (!std::isfinite(fits[k].score)) continue;
-    const double t = fits[k].score + options.intrinsic_weight * distortions[k];
+    const double t = fits[k].score + options.intrinsic.weight * distortions[k];
     if (t < *total) {
       *total = t;
       *intrinsic = distortions[k];

@@ -23,14 +23,7 @@ struct Plane3dOptions {
   // Starting normals besides the principal axes (Fibonacci points on the hemisphere).
   int num_directions = 32;
   static constexpr Range kNumDirections = Range::Closed(0, 10000);
-  // Weight of the intrinsic distortion in the choice among candidate planes (0: off).
-  double intrinsic_weight = 2.0;
-  static constexpr Range kIntrinsicWeight = Range::AtLeast(0.0);
-  // Sample pairs used by the intrinsic check.
-  int intrinsic_pairs = 4000;
-  static constexpr Range kIntrinsicPairs = Range::AtLeast(1);
-  // Seed of the pair sampling.
-  int seed = 1;
+  IntrinsicCheckOptions intrinsic;
   // Threads the starting planes are refined on (0: all cores). The result does not depend on it.
   int threads = 0;
   static constexpr Range kThreads = Range::Closed(0, 256);
@@ -40,9 +33,7 @@ struct Plane3dOptions {
   static void Fields(Self& self, Visit&& visit) {
     ReflectionSearchOptions::Fields(self.search, visit);
     visit("num_directions", self.num_directions, kNumDirections);
-    visit("intrinsic_weight", self.intrinsic_weight, kIntrinsicWeight);
-    visit("intrinsic_pairs", self.intrinsic_pairs, kIntrinsicPairs);
-    visit("seed", self.seed, Range::Any());
+    IntrinsicCheckOptions::Fields(self.intrinsic, visit);
     visit("threads", self.threads, kThreads);
   }
   bool IsValid(std::string* error) const {

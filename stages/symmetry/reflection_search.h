@@ -50,6 +50,27 @@ struct ReflectionSearchOptions {
   bool IsValid(std::string* error) const;
 };
 
+// The intrinsic check of candidate planes (IntrinsicDistortion below), weighed against their
+// extrinsic score in the choice among them.
+struct IntrinsicCheckOptions {
+  // Weight of the intrinsic distortion in the choice among candidates (0: off).
+  double weight = 2.0;
+  static constexpr Range kWeight = Range::AtLeast(0.0);
+  // Sample pairs used by the check.
+  int pairs = 4000;
+  static constexpr Range kPairs = Range::AtLeast(1);
+  // Seed of the pair sampling.
+  int seed = 1;
+
+  // The options as the config names them (core/range.h).
+  template <typename Self, typename Visit>
+  static void Fields(Self& self, Visit&& visit) {
+    visit("intrinsic_weight", self.weight, kWeight);
+    visit("intrinsic_pairs", self.pairs, kPairs);
+    visit("seed", self.seed, Range::Any());
+  }
+};
+
 struct ReflectionFit {
   Eigen::VectorXd normal;     // d, unit
   double offset = 0.0;
