@@ -130,12 +130,18 @@ void ReadFields(OptionReader& reader, Options* options) {
   Options::Fields(*options, Read{reader});
 }
 
-// ReadFields, then options->IsValid: a violation throws ConfigError located at the map.
+// Throws ConfigError located at the reader's map with options.IsValid's message when it fails.
+template <typename Options>
+void RequireValid(const OptionReader& reader, const Options& options) {
+  std::string error;
+  if (!options.IsValid(&error)) reader.Fail("", error);
+}
+
+// ReadFields, then RequireValid.
 template <typename Options>
 void ReadValidFields(OptionReader& reader, Options* options) {
   ReadFields(reader, options);
-  std::string error;
-  if (!options->IsValid(&error)) reader.Fail("", error);
+  RequireValid(reader, *options);
 }
 
 }  // namespace symembed

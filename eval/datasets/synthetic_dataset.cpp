@@ -38,8 +38,7 @@ std::unique_ptr<SyntheticDataset> CreateSyntheticDataset(OptionReader& options) 
   if (g.poses < 2)
     options.Fail("poses",
                  "pairs are formed between poses: needs >= 2, got " + std::to_string(g.poses));
-  std::string error;
-  if (!g.IsValid(&error)) options.Fail("", error);
+  RequireValid(options, g);
   std::string cache = options.GetString("cache", "");
   if (cache.empty()) cache = "results/.cache/synthetic/" + SynthOptionsHash(g);
   DatasetRestrictions restrictions = ReadRestrictions(options);

@@ -59,8 +59,7 @@ std::unique_ptr<Stage> MakeIsomap(OptionReader& reader) {
   IsomapOptions o;
   o.dims = ReadDims(reader, o.dims);
   o.fix_orientation = reader.GetBool("fix_orientation", o.fix_orientation);
-  std::string why;
-  if (!o.IsValid(&why)) reader.Fail("", why);
+  RequireValid(reader, o);
   return std::make_unique<IsomapStage>(o);
 }
 

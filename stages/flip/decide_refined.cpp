@@ -35,8 +35,7 @@ std::unique_ptr<FlipDecision> ReadRefinedDecision(OptionReader& o) {
   RefinedAgreementOptions f;
   ReadFields(o, &f);
   f.zoomout = ReadFlipZoomOutSchedule(o, "zoomout", f.zoomout);
-  std::string error;
-  if (!f.IsValid(&error)) o.Fail("", error);
+  RequireValid(o, f);
   return std::make_unique<RefinedDecision>(f);
 }
 

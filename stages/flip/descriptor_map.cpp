@@ -1,7 +1,6 @@
 #include "stages/flip/descriptor_map.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "core/errors.h"
 #include "core/fmap/functional_map.h"

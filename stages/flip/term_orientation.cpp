@@ -30,8 +30,7 @@ void OrientationTerm::Score(const FlipTermContext& context, std::array<double, 4
 std::unique_ptr<FlipTerm> ReadOrientationTerm(OptionReader& o, double weight) {
   OrientationOptions r;
   r.zoomout = ReadFlipZoomOutSchedule(o, "zoomout", r.zoomout);
-  std::string error;
-  if (!r.IsValid(&error)) o.Fail("", error);
+  RequireValid(o, r);
   return std::make_unique<OrientationTerm>(weight, r);
 }
 

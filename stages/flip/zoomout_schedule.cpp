@@ -38,8 +38,7 @@ FlipZoomOutSchedule ReadFlipZoomOutSchedule(OptionReader& options, const std::st
   FlipZoomOutSchedule s = defaults;
   ReadFields(o, &s);
   o.Finish();
-  std::string error;
-  if (!s.IsValid(&error)) o.Fail("", error);
+  RequireValid(o, s);
   options.AdoptChild(key, o);
   return s;
 }

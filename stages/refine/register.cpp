@@ -267,8 +267,7 @@ void RegisterRefineStages(Registry& registry) {
         const int sample_count = reader.GetInt("sample_count", kDefaultSamples, Range::AtLeast(0));
         const int target_sample_count = reader.GetInt(
             "target_sample_count", sample_count == 0 ? 0 : kDefaultSamples, Range::AtLeast(0));
-        std::string error;
-        if (!options.IsValid(&error)) reader.Fail("", error);
+        RequireValid(reader, options);
         CheckSampleCount(reader, "sample_count", sample_count, options.k_end);
         CheckSampleCount(reader, "target_sample_count", target_sample_count, options.k_end);
         if (target_sample_count > 0 && sample_count == 0) {
@@ -298,8 +297,7 @@ void RegisterRefineStages(Registry& registry) {
         w.Finish();
         reader.AdoptChild("weights", w);
         const int sample_count = reader.GetInt("sample_count", kDefaultSamples, Range::AtLeast(0));
-        std::string error;
-        if (!options.IsValid(&error)) reader.Fail("", error);
+        RequireValid(reader, options);
         CheckSampleCount(reader, "sample_count", sample_count, options.k_end);
         return std::make_unique<DiscreteRefine>(options, sample_count);
       });
