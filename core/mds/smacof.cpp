@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/errors.h"
-#include "core/parallel.h"
+#include "core/mds/stress_pass.h"
 
 namespace symembed {
 
@@ -19,77 +19,6 @@ bool SmacofOptions::IsValid(std::string* error) const {
 }
 
 namespace {
-
-// The pairs are split over a fixed number of lanes, each with its own accumulators, so the
-// summation order (and the result) does not depend on the thread count.
-constexpr int kLanes = 16;
-constexpr int kRowBlock = 8;
-
-// One pass over the unordered pairs i < j: the distances of X, the (weighted) stress and, when
-// BX is given, B(X) X with b_ij = -w_ij d_ij / ||x_i - x_j|| (0 for coincident points), b_ii =
-// -sum_j b_ij, i.e. (B(X) X)_i = sum_j w_ij d_ij / ||x_i - x_j|| (x_i - x_j). Each pair's square
-// root and division are done once and its contribution added to both rows. Row i only reads
-// the contiguous tails j > i of the columns of X and of column i of D (D is symmetric).
-double StressPass(const Eigen::MatrixXd& D, const Eigen::MatrixXd* W, const Eigen::MatrixXd& X,
-                  Eigen::MatrixXd* BX, int threads) {
-  const int n = static_cast<int>(D.rows());
-  const int dims = static_cast<int>(X.cols());
-  const int blocks = (n + kRowBlock - 1) / kRowBlock;
-  std::vector<double> lane_stress(kLanes, 0.0);
-  std::vector<Eigen::MatrixXd> lane_bx(BX != nullptr ? kLanes : 0);
-  ParallelFor(
-      kLanes,
-      [&](int lane) {
-        Eigen::ArrayXd dist(n), ratio(n);
-        Eigen::ArrayXXd diff(n, dims);
-        Eigen::MatrixXd* acc = nullptr;
-        if (BX != nullptr) {
-          lane_bx[lane].setZero(n, dims);
-          acc = &lane_bx[lane];
-        }
-        double sum = 0.0;
-        // Blocks are dealt round-robin so every lane gets long and short rows alike.
-        for (int b = lane; b < blocks; b += kLanes) {
-          const int end = std::min(n, (b + 1) * kRowBlock);
-          for (int i = b * kRowBlock; i < end; ++i) {
-            const int len = n - i - 1;
-            if (len == 0) continue;
-            auto dx = diff.topRows(len);
-            auto di = dist.head(len);
-            for (int c = 0; c < dims; ++c) {
-              dx.col(c) = X.col(c).segment(i + 1, len).array() - X(i, c);
-            }
-            di = dx.square().rowwise().sum().sqrt();
-            const auto Dt = D.col(i).segment(i + 1, len).array();
-            auto ri = ratio.head(len);
-            if (W != nullptr) {
-              const auto Wt = W->col(i).segment(i + 1, len).array();
-              sum += (Wt * (Dt - di).square()).sum();
-              if (acc != nullptr) ri = (di > 0.0).select(Wt * Dt / di, 0.0);
-            } else {
-              sum += (Dt - di).square().sum();
-              if (acc != nullptr) ri = (di > 0.0).select(Dt / di, 0.0);
-            }
-            if (acc != nullptr) {
-              for (int c = 0; c < dims; ++c) {
-                // x_i - x_j = -dx for row i; x_j - x_i = dx for the rows j.
-                (*acc)(i, c) -= (ri * dx.col(c)).sum();
-                acc->col(c).segment(i + 1, len).array() += ri * dx.col(c);
-              }
-            }
-          }
-        }
-        lane_stress[lane] = sum;
-      },
-      threads);
-  double total = 0.0;
-  for (double s : lane_stress) total += s;
-  if (BX != nullptr) {
-    BX->setZero(n, dims);
-    for (const Eigen::MatrixXd& a : lane_bx) *BX += a;
-  }
-  return total;
-}
 
 void CheckDistances(const Eigen::MatrixXd& D, const char* who) {
   if (D.rows() != D.cols()) {
