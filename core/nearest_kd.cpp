@@ -1,5 +1,7 @@
 #include "core/nearest_kd.h"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,11 +12,72 @@
 
 namespace symembed {
 namespace {
-constexpr int kLeafSize = 8;
+constexpr int kLeafSize = 16;  // a multiple of 4
+
+// The leaf scan keeps (best, best_id) the lowest (squared distance, index) pair seen: the order
+// of the points does not matter, so a block of them may be measured at once and the lowest
+// taken after. Each distance is (((p_0 - q_0)^2 + (p_1 - q_1)^2) + ...), a multiply then an
+// add, in every build.
+template <int D>
+void ScanLeafBaseline(const double* coords, const int* ids, const double* q, double* best,
+                      int* best_id) {
+  for (int k = 0; k < kLeafSize; ++k) {
+    double d = 0.0;
+    for (int c = 0; c < D; ++c) {
+      const double diff = coords[c * kLeafSize + k] - q[c];
+      d = d + diff * diff;
+    }
+    if (d < *best || (d == *best && ids[k] < *best_id)) {
+      *best = d;
+      *best_id = ids[k];
+    }
+  }
+}
+
+template <int D>
+__attribute__((target("avx2"))) void ScanLeafAvx2(const double* coords, const int* ids,
+                                                  const double* q, double* best, int* best_id) {
+  constexpr int kBlocks = kLeafSize / 4;
+  __m256d d[kBlocks];
+  for (int h = 0; h < kBlocks; ++h) {
+    // 0 + x is x for the squares (never -0), so the first square starts the sum.
+    __m256d diff = _mm256_sub_pd(_mm256_loadu_pd(coords + 4 * h), _mm256_set1_pd(q[0]));
+    d[h] = _mm256_mul_pd(diff, diff);
+    for (int c = 1; c < D; ++c) {
+      diff = _mm256_sub_pd(_mm256_loadu_pd(coords + c * kLeafSize + 4 * h), _mm256_set1_pd(q[c]));
+      d[h] = _mm256_add_pd(d[h], _mm256_mul_pd(diff, diff));
+    }
+  }
+  __m256d m = d[0];
+  for (int h = 1; h < kBlocks; ++h) m = _mm256_min_pd(m, d[h]);
+  m = _mm256_min_pd(m, _mm256_permute4x64_pd(m, 0x4e));
+  m = _mm256_min_pd(m, _mm256_permute_pd(m, 0x5));
+  const double lowest = _mm256_cvtsd_f64(m);
+  if (lowest > *best) return;
+  alignas(32) double values[kLeafSize];
+  for (int h = 0; h < kBlocks; ++h) _mm256_store_pd(values + 4 * h, d[h]);
+  int id = *best_id;
+  if (lowest < *best) id = std::numeric_limits<int>::max();
+  for (int k = 0; k < kLeafSize; ++k) {
+    if (values[k] == lowest && ids[k] < id) id = ids[k];
+  }
+  *best = lowest;
+  *best_id = id;
+}
+
+bool KdTreeHasAvx2() {
+  // __builtin_cpu_supports also checks that the operating system saves the wider registers.
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
+}
+
 }  // namespace
 
 template <int D>
-NearestKd<D>::NearestKd(const double* points, int n) {
+NearestKd<D>::NearestKd(const double* points, int n, NearestKdIsa isa) {
+  SYMEMBED_CHECK(isa != NearestKdIsa::kAvx2 || KdTreeHasAvx2(),
+                 "NearestKd: AVX2 asked for on a processor without it");
+  avx2_ = isa == NearestKdIsa::kAvx2 || (isa == NearestKdIsa::kAuto && KdTreeHasAvx2());
   if (n < 1) throw InvalidInputError("NearestKd: empty point set");
   for (long i = 0; i < static_cast<long>(n) * D; ++i) {
     if (!std::isfinite(points[i])) {
@@ -31,6 +94,25 @@ NearestKd<D>::NearestKd(const double* points, int n) {
   for (int s = 0; s < n; ++s) {
     std::copy_n(points + static_cast<size_t>(ids_[s]) * D, D, coords_.data() + static_cast<size_t>(s) * D);
     slots_[ids_[s]] = s;
+  }
+  int leaves = 0;
+  for (Node& node : nodes_) {
+    if (node.dim < 0) node.leaf = leaves++;
+  }
+  leaf_coords_.assign(static_cast<size_t>(leaves) * D * kLeafSize,
+                      std::numeric_limits<double>::infinity());
+  leaf_ids_.assign(static_cast<size_t>(leaves) * kLeafSize, std::numeric_limits<int>::max());
+  for (const Node& node : nodes_) {
+    if (node.dim >= 0) continue;
+    SYMEMBED_CHECK(node.end - node.begin <= kLeafSize, "a leaf of " << node.end - node.begin);
+    for (int s = node.begin; s < node.end; ++s) {
+      const int k = s - node.begin;
+      leaf_ids_[static_cast<size_t>(node.leaf) * kLeafSize + k] = ids_[s];
+      for (int c = 0; c < D; ++c) {
+        leaf_coords_[(static_cast<size_t>(node.leaf) * D + c) * kLeafSize + k] =
+            coords_[static_cast<size_t>(s) * D + c];
+      }
+    }
   }
 }
 
@@ -87,12 +169,12 @@ void NearestKd<D>::Search(int index, const double* q, double off[D], double boun
                           int* best_id) const {
   const Node& node = nodes_[index];
   if (node.dim < 0) {
-    for (int s = node.begin; s < node.end; ++s) {
-      const double d = SquaredDistance(s, q);
-      if (d < *best || (d == *best && ids_[s] < *best_id)) {
-        *best = d;
-        *best_id = ids_[s];
-      }
+    const double* coords = leaf_coords_.data() + static_cast<size_t>(node.leaf) * D * kLeafSize;
+    const int* ids = leaf_ids_.data() + static_cast<size_t>(node.leaf) * kLeafSize;
+    if (avx2_) {
+      ScanLeafAvx2<D>(coords, ids, q, best, best_id);
+    } else {
+      ScanLeafBaseline<D>(coords, ids, q, best, best_id);
     }
     return;
   }
@@ -134,15 +216,25 @@ template class NearestKd<5>;
 template class NearestKd<6>;
 template class NearestKd<7>;
 
-std::unique_ptr<NearestSearch> MakeNearestSearch(const double* points, int n, int dims) {
+bool NearestKdSupports(NearestKdIsa isa) { return isa != NearestKdIsa::kAvx2 || KdTreeHasAvx2(); }
+
+std::unique_ptr<NearestSearch> MakeNearestSearch(const double* points, int n, int dims,
+                                                 NearestKdIsa isa) {
   switch (dims) {
-    case 1: return std::make_unique<NearestKd<1>>(points, n);
-    case 2: return std::make_unique<NearestKd<2>>(points, n);
-    case 3: return std::make_unique<NearestKd<3>>(points, n);
-    case 4: return std::make_unique<NearestKd<4>>(points, n);
-    case 5: return std::make_unique<NearestKd<5>>(points, n);
-    case 6: return std::make_unique<NearestKd<6>>(points, n);
-    case 7: return std::make_unique<NearestKd<7>>(points, n);
+    case 1:
+      return std::make_unique<NearestKd<1>>(points, n, isa);
+    case 2:
+      return std::make_unique<NearestKd<2>>(points, n, isa);
+    case 3:
+      return std::make_unique<NearestKd<3>>(points, n, isa);
+    case 4:
+      return std::make_unique<NearestKd<4>>(points, n, isa);
+    case 5:
+      return std::make_unique<NearestKd<5>>(points, n, isa);
+    case 6:
+      return std::make_unique<NearestKd<6>>(points, n, isa);
+    case 7:
+      return std::make_unique<NearestKd<7>>(points, n, isa);
     default:
       throw InvalidInputError("NearestKd: " + std::to_string(dims) +
                               " coordinates per point; 1 to " +

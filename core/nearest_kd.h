@@ -5,10 +5,10 @@
 // planes' reflection scoring, the 3D embeddings (symmetry in 3D, symmetrization, the flip
 // scorers' candidate maps, matching on positions) and the embedded points with normals (6D) of
 // matching and of the refined flip term. The tree splits each cell at the median of its widest
-// coordinate, keeps 8 points per leaf with their coordinates contiguous, and prunes with the
-// incremental distance to a cell [Arya & Mount 1993, Algorithms for fast vector quantization]:
-// the squared distance from the query to the box of splits taken so far, updated one coordinate
-// per level.
+// coordinate, keeps up to 16 points per leaf, their coordinates contiguous coordinate by
+// coordinate (measured four at a time with AVX2), and prunes with the incremental distance to a
+// cell [Arya & Mount 1993, Algorithms for fast vector quantization]: the squared distance from
+// the query to the box of splits taken so far, updated one coordinate per level.
 //
 // A squared distance is the sum of (p_c - q_c)^2 in coordinate order. Up to 7 coordinates that is
 // the order of FLANN's L2 distance too (which adds coordinates four at a time to a running sum
@@ -23,6 +23,11 @@
 namespace symembed {
 
 constexpr int kMaxNearestKdDims = 7;
+
+// The build of the leaves' scan: AVX2 (four points per instruction) or the x86-64 baseline, one
+// point at a time; both compute each distance by the same operations, so they give the same
+// answers and distances bit for bit. kAuto: AVX2 where the processor has it.
+enum class NearestKdIsa { kAuto, kAvx2, kBaseline };
 
 // The search, whatever the dimension.
 class NearestSearch {
@@ -43,8 +48,9 @@ class NearestKd final : public NearestSearch {
 
  public:
   // points: n x D, row-major (point i's coordinates at points[i * D ...]), copied. Throws
-  // InvalidInputError for n < 1 or a non-finite coordinate.
-  NearestKd(const double* points, int n);
+  // InvalidInputError for n < 1 or a non-finite coordinate, InternalError for an isa this
+  // processor lacks.
+  NearestKd(const double* points, int n, NearestKdIsa isa = NearestKdIsa::kAuto);
 
   int dims() const override { return D; }
   int Nearest(const double* q, double* sq_dist, int hint = -1) const override;
@@ -55,6 +61,7 @@ class NearestKd final : public NearestSearch {
     int dim = -1;               // -1: a leaf holding slots [begin, end)
     int left = -1, right = -1;  // children (inner nodes)
     int begin = 0, end = 0;
+    int leaf = -1;  // a leaf's number in leaf_coords_ / leaf_ids_
   };
   int Build(const double* points, int begin, int end);
   void Search(int node, const double* q, double off[D], double bound, double* best,
@@ -65,9 +72,18 @@ class NearestKd final : public NearestSearch {
   std::vector<int> ids_;         // point index of each slot, in tree order
   std::vector<int> slots_;       // slot of each point index
   std::vector<double> coords_;   // slot-major: slot s's coordinates at coords_[s * D ...]
+  // Per leaf, its points' coordinates as D rows of 16 (leaf_coords_[(leaf * D + c) * 16 + k])
+  // and their ids (leaf_ids_[leaf * 16 + k]), padded with points at +infinity and id INT_MAX.
+  std::vector<double> leaf_coords_;
+  std::vector<int> leaf_ids_;
+  bool avx2_ = false;
 };
 
 // The tree for `dims` (1 to kMaxNearestKdDims) coordinates per point; points as for NearestKd.
-std::unique_ptr<NearestSearch> MakeNearestSearch(const double* points, int n, int dims);
+std::unique_ptr<NearestSearch> MakeNearestSearch(const double* points, int n, int dims,
+                                                 NearestKdIsa isa = NearestKdIsa::kAuto);
+
+// Whether this processor runs that build of the leaf scan (kAuto and kBaseline: always).
+bool NearestKdSupports(NearestKdIsa isa);
 
 }  // namespace symembed

@@ -92,7 +92,26 @@ TEST_P(NearestKdDims, MatchesAScanAndFlannOnASurfaceAndOnQueriesAwayFromIt) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(SeveralDims, NearestKdDims, testing::Values(1, 2, 3, 4, 6, 7));
+TEST_P(NearestKdDims, EveryBuildOfTheLeafScanGivesTheSameAnswersAndDistances) {
+  if (!NearestKdSupports(NearestKdIsa::kAvx2)) GTEST_SKIP() << "no AVX2 on this processor";
+  const int dims = GetParam();
+  RowMajor points, queries;
+  SurfaceAndQueries(dims, &points, &queries);
+  const int n = static_cast<int>(points.rows());
+  const auto baseline = MakeNearestSearch(points.data(), n, dims, NearestKdIsa::kBaseline);
+  const auto avx2 = MakeNearestSearch(points.data(), n, dims, NearestKdIsa::kAvx2);
+  // The points themselves too: each query at distance 0 from one point.
+  for (const RowMajor* set : {&queries, &points}) {
+    for (int r = 0; r < set->rows(); ++r) {
+      const double* q = set->row(r).data();
+      double sq_base = 0.0, sq_avx2 = 0.0;
+      EXPECT_EQ(baseline->Nearest(q, &sq_base), avx2->Nearest(q, &sq_avx2)) << "query " << r;
+      EXPECT_EQ(sq_base, sq_avx2) << "query " << r;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SeveralDims, NearestKdDims, testing::Values(1, 2, 3, 4, 5, 6, 7));
 
 TEST(NearestKd, EquallyNearPointsGoToTheLowestIndex) {
   // A grid of 5 x 5 x 5 points, each present three times (indices i, i + 125, i + 250) and
@@ -108,16 +127,20 @@ TEST(NearestKd, EquallyNearPointsGoToTheLowestIndex) {
     queries.row(i) = points.row(i);
     queries.row(125 + i) = points.row(i) + Eigen::RowVector3d(0.5, 0.5, 0.0);
   }
-  const NearestKd<3> index(points.data(), 375);
-  for (int r = 0; r < queries.rows(); ++r) {
-    const double* q = queries.row(r).data();
-    double sq = 0.0, scan_sq = 0.0;
-    const int nearest = index.Nearest(q, &sq);
-    EXPECT_EQ(nearest, ScanNearest(points, q, &scan_sq)) << "query " << r;
-    EXPECT_LT(nearest, 125) << "query " << r;
-    // Hinted with an equally near copy of a higher index, the lowest index still wins.
-    for (const int hint : {nearest + 125, nearest + 250}) {
-      EXPECT_EQ(index.Nearest(q, &sq, hint), nearest) << "query " << r << " hint " << hint;
+  for (const NearestKdIsa isa : {NearestKdIsa::kBaseline, NearestKdIsa::kAvx2}) {
+    if (!NearestKdSupports(isa)) continue;
+    const NearestKd<3> index(points.data(), 375, isa);
+    for (int r = 0; r < queries.rows(); ++r) {
+      const double* q = queries.row(r).data();
+      double sq = 0.0, scan_sq = 0.0;
+      const int nearest = index.Nearest(q, &sq);
+      EXPECT_EQ(nearest, ScanNearest(points, q, &scan_sq)) << "query " << r;
+      EXPECT_EQ(sq, scan_sq) << "query " << r;
+      EXPECT_LT(nearest, 125) << "query " << r;
+      // Hinted with an equally near copy of a higher index, the lowest index still wins.
+      for (const int hint : {nearest + 125, nearest + 250}) {
+        EXPECT_EQ(index.Nearest(q, &sq, hint), nearest) << "query " << r << " hint " << hint;
+      }
     }
   }
 }
