@@ -136,19 +136,34 @@ void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Sc
   dist[source] = 0;
   buckets[0].push_back(source);
   long long queued = 1;  // entries in the buckets, stale ones included
+  // Plain pointers, held in registers: through the vectors, every store (a char of settled may
+  // alias anything) would make the compiler load their data pointers again.
+  const int* offsets = g.offsets.data();
+  const int* neighbors = g.neighbors.data();
+  const double* lengths = g.lengths.data();
+  char* settled = ws->settled.data();
+  std::vector<int>* slots = buckets.data();
   for (long long current = 0; queued > 0; ++current) {
-    std::vector<int>& bucket = buckets[current & mask];
+    std::vector<int>& bucket = slots[current & mask];
     // By index: nothing lands in the current bucket (see above), but an iterator would not
     // survive it.
     for (size_t i = 0; i < bucket.size(); ++i) {
       const int v = bucket[i];
       // A stale entry: v was settled already, or lowered into an earlier bucket and settled there.
-      if (ws->settled[v]) continue;
-      ws->settled[v] = 1;
-      LowerNeighbours(g, v, dist[v], dist, [&](int w, Scalar nd) {
-        buckets[bucket_of(nd) & mask].push_back(w);
-        ++queued;
-      });
+      if (settled[v]) continue;
+      settled[v] = 1;
+      // LowerNeighbours, on the pointers.
+      const Scalar d = dist[v];
+      const int end = offsets[v + 1];
+      for (int k = offsets[v]; k < end; ++k) {
+        const int w = neighbors[k];
+        const Scalar nd = d + static_cast<Scalar>(lengths[k]);
+        if (nd < dist[w]) {
+          dist[w] = nd;
+          slots[bucket_of(nd) & mask].push_back(w);
+          ++queued;
+        }
+      }
     }
     queued -= static_cast<long long>(bucket.size());
     bucket.clear();
