@@ -13,29 +13,44 @@ namespace symembed {
 
 MeshGraph BuildMeshGraph(const Surface& s) {
   const int n = s.NumVertices();
-  // Collect each directed edge (both directions of every face edge), then deduplicate.
-  std::vector<std::pair<int, int>> edges;
-  edges.reserve(6 * s.F.rows());
+  // Each directed edge (both directions of every face edge) in its first vertex's list: counted,
+  // placed, then each list sorted and deduplicated, which orders the edges by (from, to) as one
+  // sort of all of them would, in time linear in the faces.
+  std::vector<int> start(n + 1, 0);
   for (int f = 0; f < s.F.rows(); ++f) {
     for (int k = 0; k < 3; ++k) {
       const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
       SYMEMBED_CHECK(a >= 0 && a < n && b >= 0 && b < n, "face " << f << " has a bad vertex id");
       if (a == b) continue;
-      edges.emplace_back(a, b);
-      edges.emplace_back(b, a);
+      ++start[a + 1];
+      ++start[b + 1];
     }
   }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<int> to(start[n]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int f = 0; f < s.F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
+      if (a == b) continue;
+      to[fill[a]++] = b;
+      to[fill[b]++] = a;
+    }
+  }
   MeshGraph g;
   g.offsets.assign(n + 1, 0);
-  for (const auto& e : edges) ++g.offsets[e.first + 1];
-  for (int v = 0; v < n; ++v) g.offsets[v + 1] += g.offsets[v];
-  g.neighbors.resize(edges.size());
-  g.lengths.resize(edges.size());
-  for (size_t i = 0; i < edges.size(); ++i) {
-    g.neighbors[i] = edges[i].second;
-    g.lengths[i] = (s.V.row(edges[i].first) - s.V.row(edges[i].second)).norm();
+  g.neighbors.reserve(to.size() / 2 + 1);
+  for (int v = 0; v < n; ++v) {
+    const auto first = to.begin() + start[v], last = to.begin() + start[v + 1];
+    std::sort(first, last);
+    g.neighbors.insert(g.neighbors.end(), first, std::unique(first, last));
+    g.offsets[v + 1] = static_cast<int>(g.neighbors.size());
+  }
+  g.lengths.resize(g.neighbors.size());
+  for (int v = 0; v < n; ++v) {
+    for (int e = g.offsets[v]; e < g.offsets[v + 1]; ++e) {
+      g.lengths[e] = (s.V.row(v) - s.V.row(g.neighbors[e])).norm();
+    }
   }
   if (!g.lengths.empty()) {
     const auto [lo, hi] = std::minmax_element(g.lengths.begin(), g.lengths.end());

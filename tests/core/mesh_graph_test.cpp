@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "core/errors.h"
@@ -47,6 +48,45 @@ void ExpectBucketsMatchTheHeap(const Surface& s, int stride) {
       }
       ASSERT_EQ(d[v], best) << "source " << source << " vertex " << v;
     }
+  }
+}
+
+TEST(MeshGraph, EachEdgeOnceInEachDirectionOrderedByItsEnds) {
+  // A sphere whose faces come in shuffled order, with a face repeated, one reversed and one
+  // degenerate (two equal corners): the graph is the set of distinct directed edges between
+  // different vertices, ordered by (from, to), each with its Euclidean length.
+  Surface s = Icosphere(2);
+  std::mt19937 rng(4);
+  std::vector<int> order(s.F.rows());
+  for (size_t f = 0; f < order.size(); ++f) order[f] = static_cast<int>(f);
+  std::shuffle(order.begin(), order.end(), rng);
+  Eigen::MatrixXi F(s.F.rows() + 3, 3);
+  for (size_t f = 0; f < order.size(); ++f) F.row(f) = s.F.row(order[f]);
+  F.row(order.size()) = s.F.row(7);
+  F.row(order.size() + 1) << s.F(9, 2), s.F(9, 1), s.F(9, 0);
+  F.row(order.size() + 2) << s.F(3, 0), s.F(3, 0), s.F(3, 1);
+  s.F = F;
+  std::vector<std::pair<int, int>> edges;
+  for (int f = 0; f < s.F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
+      if (a == b) continue;
+      edges.emplace_back(a, b);
+      edges.emplace_back(b, a);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const MeshGraph g = BuildMeshGraph(s);
+  ASSERT_EQ(g.NumVertices(), s.NumVertices());
+  ASSERT_EQ(g.neighbors.size(), edges.size());
+  ASSERT_EQ(g.lengths.size(), edges.size());
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const auto [a, b] = edges[e];
+    EXPECT_GE(static_cast<int>(e), g.offsets[a]);
+    EXPECT_LT(static_cast<int>(e), g.offsets[a + 1]);
+    EXPECT_EQ(g.neighbors[e], b);
+    EXPECT_EQ(g.lengths[e], (s.V.row(a) - s.V.row(b)).norm());
   }
 }
 
