@@ -53,7 +53,8 @@ __attribute__((target("avx2"))) void ScanLeafAvx2(const double* coords, const in
   m = _mm256_min_pd(m, _mm256_permute4x64_pd(m, 0x4e));
   m = _mm256_min_pd(m, _mm256_permute_pd(m, 0x5));
   const double lowest = _mm256_cvtsd_f64(m);
-  if (lowest > *best) return;
+  // Not "lowest > *best": a NaN distance (a NaN query) changes nothing, as in the baseline.
+  if (!(lowest <= *best)) return;
   alignas(32) double values[kLeafSize];
   for (int h = 0; h < kBlocks; ++h) _mm256_store_pd(values + 4 * h, d[h]);
   int id = *best_id;
