@@ -42,8 +42,11 @@ struct Local {
 // Weighted stress sum_j w_j (||y - p_j|| - d_j)^2 of y and, when A and g are given, the
 // Gauss-Newton normal equations of its residuals. A sample at distance 0 contributes
 // w_j ||y - p_j||^2, which is smooth, so its exact (identity) Hessian term is used.
+double LocalStress3(const Local& local, const Vec& y, Sym* A, Vec* g);
+
 double LocalStress(const Local& local, const Vec& y, Sym* A, Vec* g) {
   const int dims = static_cast<int>(y.size());
+  if (dims == 3) return LocalStress3(local, y, A, g);
   double stress = 0.0;
   if (A != nullptr) {
     A->setZero(dims, dims);
@@ -63,6 +66,46 @@ double LocalStress(const Local& local, const Vec& y, Sym* A, Vec* g) {
       const Vec u = diff / len;
       A->noalias() += w * u * u.transpose();
       *g += (w * r) * u;
+    }
+  }
+  return stress;
+}
+
+// LocalStress in three dimensions on scalars: the Eigen expressions' operations one by one, in
+// their order (a squared norm sums (x^2 + y^2) + z^2; the outer product adds u_c (w u_r) to
+// A(r, c)), so the values are the same, without the loops over a run-time size.
+double LocalStress3(const Local& local, const Vec& y, Sym* A, Vec* g) {
+  const double y0 = y(0), y1 = y(1), y2 = y(2);
+  double a[3][3] = {}, gs[3] = {};
+  double stress = 0.0;
+  for (int j = 0; j < local.P.rows(); ++j) {
+    const double diff[3] = {y0 - local.P(j, 0), y1 - local.P(j, 1), y2 - local.P(j, 2)};
+    const double len = std::sqrt(diff[0] * diff[0] + diff[1] * diff[1] + diff[2] * diff[2]);
+    const double r = len - local.d[j];
+    const double w = local.w[j];
+    stress += w * r * r;
+    if (A == nullptr) continue;
+    if (local.d[j] == 0.0) {
+      for (int c = 0; c < 3; ++c) {
+        a[c][c] += w;
+        gs[c] += w * diff[c];
+      }
+    } else if (len > 0.0) {
+      const double u[3] = {diff[0] / len, diff[1] / len, diff[2] / len};
+      const double wu[3] = {w * u[0], w * u[1], w * u[2]};
+      for (int c = 0; c < 3; ++c) {
+        for (int row = 0; row < 3; ++row) a[row][c] += u[c] * wu[row];
+      }
+      const double wr = w * r;
+      for (int c = 0; c < 3; ++c) gs[c] += wr * u[c];
+    }
+  }
+  if (A != nullptr) {
+    A->resize(3, 3);
+    g->resize(3);
+    for (int row = 0; row < 3; ++row) {
+      for (int c = 0; c < 3; ++c) (*A)(row, c) = a[row][c];
+      (*g)(row) = gs[row];
     }
   }
   return stress;
