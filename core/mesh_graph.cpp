@@ -87,11 +87,23 @@ struct MinHeap {
   bool Empty() const { return items.empty(); }
 };
 
+// A graph's arrays as plain pointers. A loop that holds them (by value) keeps them in registers;
+// through the vectors, each store the compiler cannot tell apart (a char flag may alias
+// anything) would make it load their data pointers again.
+struct GraphArrays {
+  GraphArrays(const MeshGraph& g)  // NOLINT: implicit, so LowerNeighbours takes a MeshGraph too
+      : offsets(g.offsets.data()), neighbors(g.neighbors.data()), lengths(g.lengths.data()) {}
+  const int* offsets;
+  const int* neighbors;
+  const double* lengths;
+};
+
 // Relaxes the edges out of v, settled at distance d: wherever d + length is below dist[w], lowers
 // dist[w] to it and calls on_lower(w, the new value).
 template <typename Scalar, typename OnLower>
-inline void LowerNeighbours(const MeshGraph& g, int v, Scalar d, Scalar* dist, OnLower on_lower) {
-  for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+inline void LowerNeighbours(GraphArrays g, int v, Scalar d, Scalar* dist, OnLower on_lower) {
+  const int end = g.offsets[v + 1];
+  for (int k = g.offsets[v]; k < end; ++k) {
     const int w = g.neighbors[k];
     const Scalar nd = d + static_cast<Scalar>(g.lengths[k]);
     if (nd < dist[w]) {
@@ -151,11 +163,8 @@ void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Sc
   dist[source] = 0;
   buckets[0].push_back(source);
   long long queued = 1;  // entries in the buckets, stale ones included
-  // Plain pointers, held in registers: through the vectors, every store (a char of settled may
-  // alias anything) would make the compiler load their data pointers again.
-  const int* offsets = g.offsets.data();
-  const int* neighbors = g.neighbors.data();
-  const double* lengths = g.lengths.data();
+  // Plain pointers, held in registers (GraphArrays).
+  const GraphArrays arrays(g);
   char* settled = ws->settled.data();
   std::vector<int>* slots = buckets.data();
   for (long long current = 0; queued > 0; ++current) {
@@ -167,18 +176,10 @@ void Dijkstra(const MeshGraph& g, int source, Scalar* dist, DijkstraWorkspace<Sc
       // A stale entry: v was settled already, or lowered into an earlier bucket and settled there.
       if (settled[v]) continue;
       settled[v] = 1;
-      // LowerNeighbours, on the pointers.
-      const Scalar d = dist[v];
-      const int end = offsets[v + 1];
-      for (int k = offsets[v]; k < end; ++k) {
-        const int w = neighbors[k];
-        const Scalar nd = d + static_cast<Scalar>(lengths[k]);
-        if (nd < dist[w]) {
-          dist[w] = nd;
-          slots[bucket_of(nd) & mask].push_back(w);
-          ++queued;
-        }
-      }
+      LowerNeighbours(arrays, v, dist[v], dist, [&](int w, Scalar nd) {
+        slots[bucket_of(nd) & mask].push_back(w);
+        ++queued;
+      });
     }
     queued -= static_cast<long long>(bucket.size());
     bucket.clear();

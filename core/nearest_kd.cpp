@@ -66,19 +66,12 @@ __attribute__((target("avx2"))) void ScanLeafAvx2(const double* coords, const in
   *best_id = id;
 }
 
-bool KdTreeHasAvx2() {
-  // __builtin_cpu_supports also checks that the operating system saves the wider registers.
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  return avx2;
-}
-
 }  // namespace
 
 template <int D>
-NearestKd<D>::NearestKd(const double* points, int n, NearestKdIsa isa) {
-  SYMEMBED_CHECK(isa != NearestKdIsa::kAvx2 || KdTreeHasAvx2(),
-                 "NearestKd: AVX2 asked for on a processor without it");
-  avx2_ = isa == NearestKdIsa::kAvx2 || (isa == NearestKdIsa::kAuto && KdTreeHasAvx2());
+NearestKd<D>::NearestKd(const double* points, int n, NearestIsa isa) {
+  SYMEMBED_CHECK(NearestKernelSupports(isa), "NearestKd: a build this processor cannot run");
+  avx2_ = isa != NearestIsa::kBaseline && NearestKernelSupports(NearestIsa::kAvx2);
   if (n < 1) throw InvalidInputError("NearestKd: empty point set");
   for (long i = 0; i < static_cast<long>(n) * D; ++i) {
     if (!std::isfinite(points[i])) {
@@ -217,10 +210,8 @@ template class NearestKd<5>;
 template class NearestKd<6>;
 template class NearestKd<7>;
 
-bool NearestKdSupports(NearestKdIsa isa) { return isa != NearestKdIsa::kAvx2 || KdTreeHasAvx2(); }
-
 std::unique_ptr<NearestSearch> MakeNearestSearch(const double* points, int n, int dims,
-                                                 NearestKdIsa isa) {
+                                                 NearestIsa isa) {
   switch (dims) {
     case 1:
       return std::make_unique<NearestKd<1>>(points, n, isa);

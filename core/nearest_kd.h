@@ -20,14 +20,11 @@
 #include <memory>
 #include <vector>
 
+#include "core/fmap/nearest_kernel.h"
+
 namespace symembed {
 
 constexpr int kMaxNearestKdDims = 7;
-
-// The build of the leaves' scan: AVX2 (four points per instruction) or the x86-64 baseline, one
-// point at a time; both compute each distance by the same operations, so they give the same
-// answers and distances bit for bit. kAuto: AVX2 where the processor has it.
-enum class NearestKdIsa { kAuto, kAvx2, kBaseline };
 
 // The search, whatever the dimension.
 class NearestSearch {
@@ -47,10 +44,12 @@ class NearestKd final : public NearestSearch {
   static_assert(D >= 1 && D <= kMaxNearestKdDims, "NearestKd: 1 to kMaxNearestKdDims dimensions");
 
  public:
-  // points: n x D, row-major (point i's coordinates at points[i * D ...]), copied. Throws
-  // InvalidInputError for n < 1 or a non-finite coordinate, InternalError for an isa this
-  // processor lacks.
-  NearestKd(const double* points, int n, NearestKdIsa isa = NearestKdIsa::kAuto);
+  // points: n x D, row-major (point i's coordinates at points[i * D ...]), copied. isa: the
+  // leaves' scan, AVX2 (kAvx2 or kAvx512; kAuto where NearestKernelSupports it) or the x86-64
+  // baseline one point at a time, the same operations, so the same answers and distances bit
+  // for bit. Throws InvalidInputError for n < 1 or a non-finite coordinate, InternalError for an
+  // isa this processor lacks.
+  NearestKd(const double* points, int n, NearestIsa isa = NearestIsa::kAuto);
 
   int dims() const override { return D; }
   int Nearest(const double* q, double* sq_dist, int hint = -1) const override;
@@ -81,9 +80,6 @@ class NearestKd final : public NearestSearch {
 
 // The tree for `dims` (1 to kMaxNearestKdDims) coordinates per point; points as for NearestKd.
 std::unique_ptr<NearestSearch> MakeNearestSearch(const double* points, int n, int dims,
-                                                 NearestKdIsa isa = NearestKdIsa::kAuto);
-
-// Whether this processor runs that build of the leaf scan (kAuto and kBaseline: always).
-bool NearestKdSupports(NearestKdIsa isa);
+                                                 NearestIsa isa = NearestIsa::kAuto);
 
 }  // namespace symembed

@@ -153,19 +153,13 @@ RowSums RowKernelAvx2(const Row& r, int dims, bool weighted, bool with_bx) {
 
 }  // namespace
 
-bool StressKernelSupports(StressIsa isa) {
-  // __builtin_cpu_supports also checks that the operating system saves the wider registers.
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  return isa != StressIsa::kAvx2 || avx2;
-}
-
 double StressPass(const Eigen::MatrixXd& D, const Eigen::MatrixXd* W, const Eigen::MatrixXd& X,
-                  Eigen::MatrixXd* BX, int threads, StressIsa isa) {
-  SYMEMBED_CHECK(StressKernelSupports(isa),
+                  Eigen::MatrixXd* BX, int threads, NearestIsa isa) {
+  SYMEMBED_CHECK(NearestKernelSupports(isa),
                  "stress pass: a build this processor cannot run was asked for");
   const int n = static_cast<int>(D.rows());
   const int dims = static_cast<int>(X.cols());
-  const bool avx2 = isa != StressIsa::kBaseline && StressKernelSupports(StressIsa::kAvx2) &&
+  const bool avx2 = isa != NearestIsa::kBaseline && NearestKernelSupports(NearestIsa::kAvx2) &&
                     dims >= 1 && dims <= kMaxKernelDims;
   const int blocks = (n + kRowBlock - 1) / kRowBlock;
   std::vector<double> lane_stress(kLanes, 0.0);

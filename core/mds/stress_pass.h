@@ -17,17 +17,15 @@
 
 #include <Eigen/Core>
 
+#include "core/fmap/nearest_kernel.h"
+
 namespace symembed {
 
-enum class StressIsa { kAuto, kAvx2, kBaseline };
-
-// Whether this processor runs that build of the row kernel (kAuto and kBaseline: always).
-bool StressKernelSupports(StressIsa isa);
-
-// threads: 0 for DefaultThreadCount(). `isa` forces one build of the row kernel (AVX2 applies to
-// 1 to 4 dimensions, the baseline to the others); one the processor does not support throws
-// InternalError. Every build gives the same result bit for bit.
+// threads: 0 for DefaultThreadCount(). `isa` (the kernels' builds, core/fmap/nearest_kernel.h)
+// forces one build of the row kernel: kBaseline the baseline, kAvx2 or kAvx512 the AVX2 build
+// (for 1 to 4 dimensions; the baseline for the others); one the processor does not run
+// (NearestKernelSupports) throws InternalError. Every build gives the same result bit for bit.
 double StressPass(const Eigen::MatrixXd& D, const Eigen::MatrixXd* W, const Eigen::MatrixXd& X,
-                  Eigen::MatrixXd* BX, int threads, StressIsa isa = StressIsa::kAuto);
+                  Eigen::MatrixXd* BX, int threads, NearestIsa isa = NearestIsa::kAuto);
 
 }  // namespace symembed

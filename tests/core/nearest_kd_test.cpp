@@ -95,13 +95,13 @@ TEST_P(NearestKdDims, MatchesAScanAndFlannOnASurfaceAndOnQueriesAwayFromIt) {
 }
 
 TEST_P(NearestKdDims, EveryBuildOfTheLeafScanGivesTheSameAnswersAndDistances) {
-  if (!NearestKdSupports(NearestKdIsa::kAvx2)) GTEST_SKIP() << "no AVX2 on this processor";
+  if (!NearestKernelSupports(NearestIsa::kAvx2)) GTEST_SKIP() << "no AVX2 on this processor";
   const int dims = GetParam();
   RowMajor points, queries;
   SurfaceAndQueries(dims, &points, &queries);
   const int n = static_cast<int>(points.rows());
-  const auto baseline = MakeNearestSearch(points.data(), n, dims, NearestKdIsa::kBaseline);
-  const auto avx2 = MakeNearestSearch(points.data(), n, dims, NearestKdIsa::kAvx2);
+  const auto baseline = MakeNearestSearch(points.data(), n, dims, NearestIsa::kBaseline);
+  const auto avx2 = MakeNearestSearch(points.data(), n, dims, NearestIsa::kAvx2);
   // The points themselves too: each query at distance 0 from one point.
   for (const RowMajor* set : {&queries, &points}) {
     for (int r = 0; r < set->rows(); ++r) {
@@ -136,8 +136,8 @@ TEST(NearestKd, EquallyNearPointsGoToTheLowestIndex) {
     queries.row(i) = points.row(i);
     queries.row(125 + i) = points.row(i) + Eigen::RowVector3d(0.5, 0.5, 0.0);
   }
-  for (const NearestKdIsa isa : {NearestKdIsa::kBaseline, NearestKdIsa::kAvx2}) {
-    if (!NearestKdSupports(isa)) continue;
+  for (const NearestIsa isa : {NearestIsa::kBaseline, NearestIsa::kAvx2}) {
+    if (!NearestKernelSupports(isa)) continue;
     const NearestKd<3> index(points.data(), 375, isa);
     for (int r = 0; r < queries.rows(); ++r) {
       const double* q = queries.row(r).data();
