@@ -206,7 +206,11 @@ std::string SymmetrizeMessage(const SymmetrizeResult& result, const Eigen::Matri
     message << "warm start: " << warm.iterations << " majorization iterations, energy "
             << warm.energy_before << " -> " << warm.energy_after << "; ";
   }
-  message << summary.BriefReport();
+  if (options.max_iterations > 0) {
+    message << summary.BriefReport();
+  } else {
+    message << "no Levenberg-Marquardt iterations (max_iterations 0)";
+  }
   return message.str();
 }
 
@@ -231,29 +235,37 @@ SymmetrizeResult SymmetrizeCeres(const Eigen::MatrixXd& Y_in, const std::vector<
     warm = MajorizeSymmetrizeEnergy(energy, P, options.warm_start_iterations,
                                     options.warm_start_tolerance);
   }
-  std::vector<double> x(3 * static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) x[3 * i + c] = warm.X(i, c);
-  }
-  ceres::Problem problem;
-  BuildSymmetrizeProblem(energy, P, options, 1.0 / size, &x, &problem);
+  Eigen::MatrixX3d X = warm.X;
   ceres::Solver::Summary summary;
-  ceres::Solve(SymmetrizeSolverOptions(options), &problem, &summary);
-  if (!summary.IsSolutionUsable()) {
-    throw SolverError("symmetrize ceres: " + summary.message);
-  }
-
-  Eigen::MatrixX3d X(n, 3);
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) X(i, c) = x[3 * i + c];
+  if (options.max_iterations > 0) {
+    std::vector<double> x(3 * static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) x[3 * i + c] = warm.X(i, c);
+    }
+    ceres::Problem problem;
+    BuildSymmetrizeProblem(energy, P, options, 1.0 / size, &x, &problem);
+    ceres::Solve(SymmetrizeSolverOptions(options), &problem, &summary);
+    if (!summary.IsSolutionUsable()) {
+      throw SolverError("symmetrize ceres: " + summary.message);
+    }
+    for (int i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) X(i, c) = x[3 * i + c];
+    }
   }
   SymmetrizeResult result;
   result.asymmetry_before = Asymmetry(P, symmetry.sigma);
   result.Y = FollowSamples(Y, samples, X, options.follow_neighbors);
   result.asymmetry_after = Asymmetry(X, symmetry.sigma);
-  result.status.converged = summary.termination_type == ceres::CONVERGENCE;
-  result.status.iterations = static_cast<int>(summary.iterations.size());
-  result.status.residual = summary.final_cost;
+  if (options.max_iterations > 0) {
+    result.status.converged = summary.termination_type == ceres::CONVERGENCE;
+    result.status.iterations = static_cast<int>(summary.iterations.size());
+    result.status.residual = summary.final_cost;
+  } else {
+    // Ceres' cost of the same positions: half the sum of squared residuals, each divided by size.
+    result.status.converged = warm.iterations < options.warm_start_iterations;
+    result.status.iterations = warm.iterations;
+    result.status.residual = 0.5 * energy.Evaluate(X) / (size * size);
+  }
   result.status.message = SymmetrizeMessage(result, P, X, energy, options, warm, summary);
   return result;
 }

@@ -2,8 +2,8 @@
 // symmetry plane while keeping its shape.
 //
 // With the plane moved to x = 0 (MovePlaneToX0) and sample positions x_i (#S x 3) as unknowns,
-// Ceres minimises (all residuals divided by the size s of the sample set, so weights are
-// scale-free)
+// stress majorization from y, then Ceres' Levenberg-Marquardt (max_iterations), lower (all
+// residuals divided by the size s of the sample set, so weights are scale-free)
 //   sum_{(i,j) in kNN graph} (||x_i - x_j|| - d0_ij)^2                     shape (stress)
 // + symmetry_weight * sum_i c_i ||M x_i - m_i||^2, M = diag(-1,1,1)         symmetry
 // + plane_weight * sum_{i: sigma(i) = i} x_i,x^2        self-symmetric samples (mirror_neighbors 1)
@@ -68,7 +68,9 @@ struct CeresSymmetrizeOptions {
   static constexpr Range kWarmStartIterations = Range::AtLeast(0);
   double warm_start_tolerance = 1e-6;
   static constexpr Range kWarmStartTolerance = Range::AtLeast(0.0);
-  // Ceres limits.
+  // Levenberg-Marquardt iterations of Ceres after the majorization (0: none, the majorization's
+  // positions are the result and Ceres is not called). Stopping there lowered the base error on
+  // every set but moved the refined maps of a few SMAL pairs (docs/analysis.md).
   int max_iterations = 10;
   static constexpr Range kMaxIterations = Range::AtLeast(0);
   double function_tolerance = 1e-7;

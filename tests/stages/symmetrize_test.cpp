@@ -238,6 +238,31 @@ TEST(CeresSymmetrize, WarmStartReachesTheSameResult) {
   EXPECT_LT(GraphStress(a.Y, b.Y, 10), 1e-3);
 }
 
+TEST(CeresSymmetrize, WithoutIterationsTheMajorizationsPositionsWithoutCeres) {
+  // max_iterations 0: the samples end where the majorization leaves them, and the
+  // residual is Ceres' cost of those positions (half the energy over the squared size); one
+  // Levenberg-Marquardt iteration more lowers that cost further.
+  const AsymmetricFigure f = MakeAsymmetricFigure();
+  const std::vector<int> samples = AllVertices(f.surface.NumVertices());
+  CeresSymmetrizeOptions options;
+  options.max_iterations = 0;
+  const SymmetrizeResult r = SymmetrizeCeres(f.Y, samples, f.symmetry, options);
+  const Eigen::MatrixX3d P = MovePlaneToX0(f.Y, f.symmetry.normal, f.symmetry.offset);
+  const SymmetrizeEnergy energy = CeresSymmetrizeEnergy(P, f.symmetry, options);
+  const MajorizationResult warm = MajorizeSymmetrizeEnergy(energy, P, options.warm_start_iterations,
+                                                           options.warm_start_tolerance);
+  EXPECT_EQ(r.status.iterations, warm.iterations);
+  const double size = RmsRadius(P);
+  EXPECT_DOUBLE_EQ(r.status.residual, 0.5 * warm.energy_after / (size * size));
+  EXPECT_NE(r.status.message.find("no Levenberg-Marquardt"), std::string::npos) << r.status.message;
+  EXPECT_LT(r.asymmetry_after, 0.5 * r.asymmetry_before);
+  CeresSymmetrizeOptions polished = options;
+  polished.max_iterations = 1;
+  const SymmetrizeResult p = SymmetrizeCeres(f.Y, samples, f.symmetry, polished);
+  EXPECT_EQ(p.status.message.find("no Levenberg-Marquardt"), std::string::npos);
+  EXPECT_LT(p.status.residual, r.status.residual);
+}
+
 TEST(AverageSymmetrize, ExactlySymmetricForAnInvolution) {
   const AsymmetricFigure f = MakeAsymmetricFigure();
   const std::vector<int> samples = AllVertices(f.surface.NumVertices());
