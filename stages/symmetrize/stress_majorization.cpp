@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "core/ldlt_columns.h"
 
 namespace symembed {
 
@@ -84,7 +85,7 @@ MajorizationResult MajorizeSymmetrizeEnergy(const SymmetrizeEnergy& energy,
   // A proximal term eps ||x - z||^2 makes the systems definite (without anchors the energy does
   // not change under translations along the plane); it vanishes at a fixed point.
   const double eps = 1e-6 * std::max(A[1].diagonal().mean(), 1e-300);
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver[2];
+  SparseLdlt solver[2];
   for (int m = 0; m < 2; ++m) {
     for (int i = 0; i < n; ++i) A[m].coeffRef(i, i) += energy.anchor_weight + eps;
     solver[m].compute(A[m]);
@@ -92,6 +93,9 @@ MajorizationResult MajorizeSymmetrizeEnergy(const SymmetrizeEnergy& energy,
       throw InvalidInputError("symmetrize: stress majorization could not factor its system");
     }
   }
+  // The systems share their pattern (the plane term adds to diagonal entries the edges already
+  // have), so the three coordinates are solved in one pass over L: Eigen's solves, bit for bit.
+  const bool same_structure = SameLdltStructure(solver[0], solver[1]);
   MajorizationResult result;
   result.X = X0;
   result.energy_before = result.energy_after = energy.Evaluate(X0);
@@ -110,8 +114,12 @@ MajorizationResult MajorizeSymmetrizeEnergy(const SymmetrizeEnergy& energy,
       B.row(j) -= pull;
     }
     Eigen::MatrixX3d X(n, 3);
-    X.col(0) = solver[0].solve(B.col(0));
-    X.rightCols<2>() = solver[1].solve(B.rightCols<2>());
+    if (same_structure) {
+      SolveLdltColumns({&solver[0], &solver[1], &solver[1]}, B, X);
+    } else {
+      X.col(0) = solver[0].solve(B.col(0));
+      X.rightCols<2>() = solver[1].solve(B.rightCols<2>());
+    }
     const double e = energy.Evaluate(X);
     ++result.iterations;
     const double decrease = result.energy_after - e;
