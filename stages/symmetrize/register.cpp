@@ -46,8 +46,9 @@ class NoneStage : public SymmetrizeStage {
 
 void RegisterSymmetrizeStages(Registry& registry) {
   registry.Add("symmetrize", "ceres",
-               "stress on a sample k-NN graph + symmetry_weight * ||M y_i - y_sigma(i)||^2, by stress "
-               "majorization (then max_iterations of Ceres); dense vertices follow the samples",
+               "stress on a sample k-NN graph + symmetry_weight * ||M y_i - y_sigma(i)||^2, by "
+               "stress majorization (then max_iterations of Ceres); dense vertices follow the "
+               "samples",
                FieldsFactory<CeresStage, CeresSymmetrizeOptions>());
   registry.Add("symmetrize", "average",
                "closed form y_i <- (y_i + M y_sigma(i)) / 2 on the samples; dense vertices follow",
