@@ -1,6 +1,7 @@
 #include "core/ldlt_columns.h"
 
 #include <string>
+#include <utility>
 
 #include "core/errors.h"
 
@@ -12,6 +13,7 @@ namespace {
 // column): the same operations per column as Eigen's solve, in one pass per step.
 template <int K>
 void Solve(const std::vector<const SparseLdlt*>& factors,
+           const std::vector<Eigen::VectorXd>& inverse_diagonals,
            const Eigen::Ref<const Eigen::MatrixXd>& B, Eigen::Ref<Eigen::MatrixXd> X) {
   const SparseLdlt& first = *factors[0];
   const Eigen::SparseMatrix<double>& L0 = first.matrixL().nestedExpression();
@@ -19,10 +21,10 @@ void Solve(const std::vector<const SparseLdlt*>& factors,
   const int* outer = L0.outerIndexPtr();
   const int* inner = L0.innerIndexPtr();
   const double* values[K];
-  Eigen::VectorXd diag[K];  // vectorD() returns a copy
+  const double* inverse_diagonal[K];
   for (int c = 0; c < K; ++c) {
     values[c] = factors[c]->matrixL().nestedExpression().valuePtr();
-    diag[c] = factors[c]->vectorD();
+    inverse_diagonal[c] = inverse_diagonals[c].data();
   }
   const bool permuted = first.permutationP().size() > 0;
   const int* perm = permuted ? first.permutationP().indices().data() : nullptr;
@@ -59,7 +61,8 @@ void Solve(const std::vector<const SparseLdlt*>& factors,
   // dest = D^-1 dest: Eigen multiplies by the inverted entry.
   for (int i = 0; i < n; ++i) {
     for (int c = 0; c < K; ++c) {
-      w[static_cast<size_t>(i) * K + c] = (1.0 / diag[c](i)) * w[static_cast<size_t>(i) * K + c];
+      w[static_cast<size_t>(i) * K + c] =
+          inverse_diagonal[c][i] * w[static_cast<size_t>(i) * K + c];
     }
   }
   if (L0.nonZeros() > 0) {
@@ -105,28 +108,34 @@ bool SameLdltStructure(const SparseLdlt& a, const SparseLdlt& b) {
   return true;
 }
 
-void SolveLdltColumns(const std::vector<const SparseLdlt*>& factors,
-                      const Eigen::Ref<const Eigen::MatrixXd>& B, Eigen::Ref<Eigen::MatrixXd> X) {
-  const int k = static_cast<int>(factors.size());
+LdltColumns::LdltColumns(std::vector<const SparseLdlt*> factors) : factors_(std::move(factors)) {
+  const int k = static_cast<int>(factors_.size());
   if (k < 1 || k > 3) {
-    throw InvalidInputError("SolveLdltColumns: " + std::to_string(k) + " factors (1 to 3)");
+    throw InvalidInputError("LdltColumns: " + std::to_string(k) + " factors (1 to 3)");
   }
-  for (const SparseLdlt* f : factors) {
+  for (const SparseLdlt* f : factors_) {
     if (f == nullptr || f->info() != Eigen::Success) {
-      throw InvalidInputError("SolveLdltColumns: a factorisation was not computed");
+      throw InvalidInputError("LdltColumns: a factorisation was not computed");
     }
-    if (!SameLdltStructure(*factors[0], *f)) {
-      throw InvalidInputError("SolveLdltColumns: the factorisations differ in structure");
+    if (!SameLdltStructure(*factors_[0], *f)) {
+      throw InvalidInputError("LdltColumns: the factorisations differ in structure");
     }
+    // Eigen's solve multiplies by the diagonal's inverse, 1 / d each (vectorD() is a copy).
+    inverse_diagonals_.push_back(f->vectorD().cwiseInverse());
   }
-  const Eigen::Index n = factors[0]->matrixL().nestedExpression().rows();
+}
+
+void LdltColumns::Solve(const Eigen::Ref<const Eigen::MatrixXd>& B,
+                        Eigen::Ref<Eigen::MatrixXd> X) const {
+  const int k = static_cast<int>(factors_.size());
+  const Eigen::Index n = factors_[0]->matrixL().nestedExpression().rows();
   if (B.rows() != n || X.rows() != n || B.cols() != k || X.cols() != k) {
-    throw InvalidInputError("SolveLdltColumns: B and X must be " + std::to_string(n) + " x " +
+    throw InvalidInputError("LdltColumns: B and X must be " + std::to_string(n) + " x " +
                             std::to_string(k));
   }
-  if (k == 1) Solve<1>(factors, B, X);
-  if (k == 2) Solve<2>(factors, B, X);
-  if (k == 3) Solve<3>(factors, B, X);
+  if (k == 1) symembed::Solve<1>(factors_, inverse_diagonals_, B, X);
+  if (k == 2) symembed::Solve<2>(factors_, inverse_diagonals_, B, X);
+  if (k == 3) symembed::Solve<3>(factors_, inverse_diagonals_, B, X);
 }
 
 }  // namespace symembed

@@ -3,6 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <cmath>
+#include <optional>
 
 #include "core/errors.h"
 #include "core/ldlt_columns.h"
@@ -95,7 +96,9 @@ MajorizationResult MajorizeSymmetrizeEnergy(const SymmetrizeEnergy& energy,
   }
   // The systems share their pattern (the plane term adds to diagonal entries the edges already
   // have), so the three coordinates are solved in one pass over L: Eigen's solves, bit for bit.
-  const bool same_structure = SameLdltStructure(solver[0], solver[1]);
+  std::optional<LdltColumns> columns;
+  if (SameLdltStructure(solver[0], solver[1]))
+    columns.emplace(std::vector<const SparseLdlt*>{&solver[0], &solver[1], &solver[1]});
   MajorizationResult result;
   result.X = X0;
   result.energy_before = result.energy_after = energy.Evaluate(X0);
@@ -114,8 +117,8 @@ MajorizationResult MajorizeSymmetrizeEnergy(const SymmetrizeEnergy& energy,
       B.row(j) -= pull;
     }
     Eigen::MatrixX3d X(n, 3);
-    if (same_structure) {
-      SolveLdltColumns({&solver[0], &solver[1], &solver[1]}, B, X);
+    if (columns) {
+      columns->Solve(B, X);
     } else {
       X.col(0) = solver[0].solve(B.col(0));
       X.rightCols<2>() = solver[1].solve(B.rightCols<2>());

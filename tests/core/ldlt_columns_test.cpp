@@ -64,13 +64,13 @@ TEST(LdltColumns, EigensSolveBitForBitForOneToThreeColumns) {
         expected.col(c) = f[(c + 1) % 3].solve(B.col(c));
       }
       Eigen::MatrixXd X(n, k);
-      SolveLdltColumns(factors, B.leftCols(k), X);
+      LdltColumns(factors).Solve(B.leftCols(k), X);
       EXPECT_TRUE(SameBits(X, expected)) << "n " << n << " k " << k;
     }
     // One factor for two columns, as Eigen solves a block of two.
     const Eigen::MatrixXd expected = f[1].solve(B.rightCols<2>());
     Eigen::MatrixXd X(n, 2);
-    SolveLdltColumns({&f[1], &f[1]}, B.rightCols<2>(), X);
+    LdltColumns({&f[1], &f[1]}).Solve(B.rightCols<2>(), X);
     EXPECT_TRUE(SameBits(X, expected)) << "n " << n;
   }
 }
@@ -84,10 +84,10 @@ TEST(LdltColumns, RefusesFactorsOfAnotherStructureOrSize) {
   b.compute(other);
   EXPECT_FALSE(SameLdltStructure(a, b));
   Eigen::MatrixXd B = Eigen::MatrixXd::Ones(20, 2), X(20, 2);
-  EXPECT_THROW(SolveLdltColumns({&a, &b}, B, X), InvalidInputError);
+  EXPECT_THROW(LdltColumns({&a, &b}), InvalidInputError);
   Eigen::MatrixXd wrong(19, 1), Y(19, 1);
-  EXPECT_THROW(SolveLdltColumns({&a}, wrong, Y), InvalidInputError);
-  EXPECT_THROW(SolveLdltColumns({}, B, X), InvalidInputError);
+  EXPECT_THROW(LdltColumns({&a}).Solve(wrong, Y), InvalidInputError);
+  EXPECT_THROW(LdltColumns({}), InvalidInputError);
 }
 
 }  // namespace
