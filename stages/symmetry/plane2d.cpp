@@ -100,7 +100,12 @@ class Plane2dCandidates {
         P_(SamplePoints(Y, samples)),
         index3_(P_),
         size2_(RmsRadius(X_)),
-        size3_(RmsRadius(P_)) {}
+        size3_(RmsRadius(P_)),
+        intrinsic_check_(Dss_, options.intrinsic.pairs,
+                         static_cast<unsigned>(options.intrinsic.seed)) {}
+  // intrinsic_check_ refers to Dss_.
+  Plane2dCandidates(const Plane2dCandidates&) = delete;
+  Plane2dCandidates& operator=(const Plane2dCandidates&) = delete;
 
   // Each line direction of the 2D embedding refined on its own (in parallel) into the lifted
   // candidate and its refinement in 3D.
@@ -126,7 +131,7 @@ class Plane2dCandidates {
     o3.threads = options_.threads;
     double total = 0.0, distortion = 0.0;
     const ReflectionFit fit3 =
-        SearchPlanes3d(P_, index3_, Dss_, o3, &total, &distortion, &iterations_);
+        SearchPlanes3d(P_, index3_, intrinsic_check_, o3, &total, &distortion, &iterations_);
     if (std::isfinite(total)) Consider(FromFit3d(fit3, distortion, "3D search"), &candidates_);
   }
 
@@ -215,9 +220,7 @@ class Plane2dCandidates {
 
   double Intrinsic(const std::vector<int>& sigma) const {
     return options_.intrinsic.weight > 0.0
-               ? IntrinsicDistortion(Dss_, sigma, options_.search.trim_fraction,
-                                     options_.intrinsic.pairs,
-                                     static_cast<unsigned>(options_.intrinsic.seed))
+               ? intrinsic_check_.Distortion(sigma, options_.search.trim_fraction)
                : 0.0;
   }
 
@@ -334,6 +337,7 @@ class Plane2dCandidates {
   const Eigen::MatrixXd P_;  // #S x 3
   const KnnIndex index3_;
   const double size2_, size3_;
+  const IntrinsicCheck intrinsic_check_;  // of Dss_
   std::vector<Candidate> candidates_;  // the lines' and the 3D search's
   int iterations_ = 0;
 };

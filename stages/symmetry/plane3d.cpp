@@ -41,7 +41,7 @@ std::vector<Eigen::VectorXd> StartingNormals(const Eigen::MatrixXd& P, int n) {
 }  // namespace
 
 ReflectionFit SearchPlanes3d(const Eigen::MatrixXd& P, const KnnIndex& index,
-                             const Eigen::MatrixXd& Dss, const Plane3dOptions& options,
+                             const IntrinsicCheck& intrinsic_check, const Plane3dOptions& options,
                              double* total, double* intrinsic, int* iterations) {
   const Eigen::VectorXd centroid = P.colwise().mean().transpose();
   *total = std::numeric_limits<double>::infinity();
@@ -57,9 +57,7 @@ ReflectionFit SearchPlanes3d(const Eigen::MatrixXd& P, const KnnIndex& index,
         const Eigen::VectorXd& n = starts[k];
         fits[k] = RefineReflection(P, index, n, n.dot(centroid), options.search);
         if (std::isfinite(fits[k].score) && options.intrinsic.weight > 0.0) {
-          distortions[k] = IntrinsicDistortion(Dss, fits[k].sigma, options.search.trim_fraction,
-                                               options.intrinsic.pairs,
-                                               static_cast<unsigned>(options.intrinsic.seed));
+          distortions[k] = intrinsic_check.Distortion(fits[k].sigma, options.search.trim_fraction);
         }
       },
       options.threads);
@@ -88,7 +86,10 @@ SymmetryResult DetectSymmetryPlane3d(const Eigen::MatrixXd& D, const std::vector
   const KnnIndex index(P);
   double total = 0.0, intrinsic = 0.0;
   int iterations = 0;
-  const ReflectionFit best = SearchPlanes3d(P, index, Dss, options, &total, &intrinsic, &iterations);
+  const IntrinsicCheck intrinsic_check(Dss, options.intrinsic.pairs,
+                                       static_cast<unsigned>(options.intrinsic.seed));
+  const ReflectionFit best =
+      SearchPlanes3d(P, index, intrinsic_check, options, &total, &intrinsic, &iterations);
   if (!std::isfinite(total)) {
     throw InvalidInputError("symmetry plane3d: every candidate plane was rejected (flat or "
                             "degenerate sample set)");

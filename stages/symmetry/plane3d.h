@@ -41,12 +41,12 @@ struct Plane3dOptions {
   }
 };
 
-// The best refined candidate plane on the sample positions P (#S x 3, index built on P), Dss the
-// #S x #S sample distances: minimises score + intrinsic_weight * distortion, returned through
-// *total and *intrinsic (+inf total when every candidate was rejected). *iterations adds up the
-// refinement iterations.
+// The best refined candidate plane on the sample positions P (#S x 3, index built on P),
+// intrinsic_check that of the #S x #S sample distances: minimises score + intrinsic_weight *
+// distortion, returned through *total and *intrinsic (+inf total when every candidate was
+// rejected). *iterations adds up the refinement iterations.
 ReflectionFit SearchPlanes3d(const Eigen::MatrixXd& P, const KnnIndex& index,
-                             const Eigen::MatrixXd& Dss, const Plane3dOptions& options,
+                             const IntrinsicCheck& intrinsic_check, const Plane3dOptions& options,
                              double* total, double* intrinsic, int* iterations);
 
 // D: #S x #V geodesic distances from the samples; samples: #S >= 4 vertex ids; Y: #V x 3

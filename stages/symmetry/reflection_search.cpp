@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 
 #include "core/errors.h"
 #include "core/procrustes.h"
@@ -132,16 +133,19 @@ ReflectionFit RefineReflection(const Eigen::MatrixXd& P, const KnnIndex& index,
   return best;
 }
 
-double IntrinsicDistortion(const Eigen::MatrixXd& Dss, const std::vector<int>& sigma,
-                           double trim_fraction, int num_pairs, unsigned seed) {
+IntrinsicCheck::IntrinsicCheck(const Eigen::MatrixXd& Dss, int num_pairs, unsigned seed)
+    : Dss_(Dss) {
+  if (Dss.rows() != Dss.cols()) {
+    throw InvalidInputError("intrinsic check: distances of " + std::to_string(Dss.rows()) + " x " +
+                            std::to_string(Dss.cols()) + " points");
+  }
   const int n = static_cast<int>(Dss.rows());
-  SYMEMBED_CHECK(Dss.cols() == n && static_cast<int>(sigma.size()) == n, "shape mismatch");
-  if (n < 2) return 0.0;
-  std::vector<double> diff;
-  double d_sum = 0.0;
+  if (n < 2) return;
   auto add = [&](int i, int j) {
-    diff.push_back(std::abs(Dss(i, j) - Dss(sigma[i], sigma[j])));
-    d_sum += Dss(i, j);
+    first_.push_back(i);
+    second_.push_back(j);
+    distance_.push_back(Dss(i, j));
+    distance_sum_ += Dss(i, j);
   };
   const long long all_pairs = static_cast<long long>(n) * (n - 1) / 2;
   if (all_pairs <= num_pairs) {
@@ -151,17 +155,28 @@ double IntrinsicDistortion(const Eigen::MatrixXd& Dss, const std::vector<int>& s
   } else {
     std::mt19937 rng(seed);
     std::uniform_int_distribution<int> pick(0, n - 1);
-    while (static_cast<int>(diff.size()) < num_pairs) {
+    while (static_cast<int>(distance_.size()) < num_pairs) {
       const int i = pick(rng), j = pick(rng);
       if (i != j) add(i, j);
     }
   }
-  if (d_sum <= 0.0) return 0.0;
+}
+
+double IntrinsicCheck::Distortion(const std::vector<int>& sigma, double trim_fraction) const {
+  if (static_cast<Eigen::Index>(sigma.size()) != Dss_.rows()) {
+    throw InvalidInputError("intrinsic check: a self map of " + std::to_string(sigma.size()) +
+                            " points for " + std::to_string(Dss_.rows()));
+  }
+  if (distance_.empty() || distance_sum_ <= 0.0) return 0.0;
+  std::vector<double> diff(distance_.size());
+  for (size_t k = 0; k < diff.size(); ++k) {
+    diff[k] = std::abs(distance_[k] - Dss_(sigma[first_[k]], sigma[second_[k]]));
+  }
   std::sort(diff.begin(), diff.end());
   const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(trim_fraction * diff.size())));
   double sum = 0.0;
   for (size_t k = 0; k < keep; ++k) sum += diff[k];
-  return (sum / keep) / (d_sum / diff.size());
+  return (sum / keep) / (distance_sum_ / diff.size());
 }
 
 Eigen::VectorXd SymmetryConfidence(const Eigen::VectorXd& residual, const std::vector<int>& sigma,

@@ -111,12 +111,27 @@ ReflectionFit EvaluateReflection(const Eigen::MatrixXd& P, const KnnIndex& index
                                  const Eigen::VectorXd& normal, double offset,
                                  const ReflectionSearchOptions& options);
 
-// Intrinsic distortion of a self map: trimmed mean over sampled pairs (i, j) of
-// |D(i, j) - D(sigma i, sigma j)|, divided by the mean of D(i, j) over the same pairs.
-// Dss: #S x #S distances between the points; num_pairs random pairs (fixed seed), or all pairs
-// when there are fewer. 0 means distances are preserved exactly.
-double IntrinsicDistortion(const Eigen::MatrixXd& Dss, const std::vector<int>& sigma,
-                           double trim_fraction, int num_pairs, unsigned seed);
+// Intrinsic distortion of self maps of one point set: trimmed mean over sampled pairs (i, j) of
+// |D(i, j) - D(sigma i, sigma j)|, divided by the mean of D(i, j) over the same pairs; 0 means
+// distances are preserved exactly. The pairs and their distances are drawn once, so checking
+// each of many self maps costs one lookup per pair.
+class IntrinsicCheck {
+ public:
+  // Dss: #S x #S distances between the points, kept by reference (it must outlive the check);
+  // num_pairs (>= 1) random pairs (fixed seed), or all pairs when there are fewer. Throws
+  // InvalidInputError when Dss is not square.
+  IntrinsicCheck(const Eigen::MatrixXd& Dss, int num_pairs, unsigned seed);
+
+  // sigma: #S, a point of Dss for each point. Throws InvalidInputError when its size is not #S.
+  // Thread-safe.
+  double Distortion(const std::vector<int>& sigma, double trim_fraction) const;
+
+ private:
+  const Eigen::MatrixXd& Dss_;
+  std::vector<int> first_, second_;  // the pairs (i, j), in the order drawn
+  std::vector<double> distance_;     // D(i, j) of each pair
+  double distance_sum_ = 0.0;        // their sum, in the order drawn
+};
 
 // Per-point confidence in [0, 1]: exp(-(r / h)^2) with h = max(2 median(r), 1e-3 size), halved
 // where sigma is not an involution (sigma(sigma(i)) != i).

@@ -116,6 +116,51 @@ TEST(ReflectionSearch, FitSumsEachPairAsTheVectorFormulaDoes) {
   }
 }
 
+// Four points on a line at 0, 1, 2, 3: distances |x_i - x_j|.
+Eigen::MatrixXd LineDistances() {
+  Eigen::MatrixXd D(4, 4);
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) D(i, j) = std::abs(i - j);
+  }
+  return D;
+}
+
+TEST(IntrinsicCheck, TrimmedMeanOfTheDistanceChangesOverTheMeanDistance) {
+  const Eigen::MatrixXd D = LineDistances();
+  // All 6 pairs (fewer than asked for): their mean distance is 10 / 6.
+  const IntrinsicCheck check(D, 100, 1);
+  EXPECT_DOUBLE_EQ(check.Distortion({3, 2, 1, 0}, 1.0), 0.0);  // the reversal keeps distances
+  // Swapping the first two points changes the distances of pairs (0,2), (0,3), (1,2), (1,3) by
+  // 1 each and keeps (0,1), (2,3): changes 0, 0, 1, 1, 1, 1.
+  EXPECT_DOUBLE_EQ(check.Distortion({1, 0, 2, 3}, 1.0), (4.0 / 6.0) / (10.0 / 6.0));
+  EXPECT_DOUBLE_EQ(check.Distortion({1, 0, 2, 3}, 0.5), (1.0 / 3.0) / (10.0 / 6.0));
+}
+
+TEST(IntrinsicCheck, EachSelfMapIsCheckedOnTheSamePairsWhateverCameBefore) {
+  Eigen::MatrixXd V = Eigen::MatrixXd::Random(200, 3);
+  const Eigen::MatrixXd D = EuclideanDistances(V, AllVertices(200));
+  std::vector<int> a(200), b(200);
+  for (int i = 0; i < 200; ++i) {
+    a[i] = (i * 37 + 11) % 200;
+    b[i] = 199 - i;
+  }
+  const IntrinsicCheck once(D, 4000, 7);
+  const double first = once.Distortion(a, 0.8);
+  EXPECT_GT(first, 0.0);
+  EXPECT_NE(once.Distortion(b, 0.8), first);
+  EXPECT_EQ(once.Distortion(a, 0.8), first);
+  EXPECT_EQ(IntrinsicCheck(D, 4000, 7).Distortion(a, 0.8), first);
+  // Another seed draws other pairs.
+  EXPECT_NE(IntrinsicCheck(D, 4000, 8).Distortion(a, 0.8), first);
+}
+
+TEST(IntrinsicCheck, RejectsDistancesThatAreNotSquareAndSelfMapsOfAnotherSize) {
+  EXPECT_THROW(IntrinsicCheck(Eigen::MatrixXd::Zero(3, 4), 10, 1), InvalidInputError);
+  const Eigen::MatrixXd D = LineDistances();
+  const IntrinsicCheck check(D, 10, 1);
+  EXPECT_THROW(check.Distortion({0, 1, 2}, 0.8), InvalidInputError);
+}
+
 TEST(Plane3d, FindsThePlaneOfAnExactlySymmetricFigure) {
   const MovedFigure f(true);
   const SymmetryResult r = DetectSymmetryPlane3d(f.D, f.samples, f.Y, Plane3dOptions{});
