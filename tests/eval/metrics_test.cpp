@@ -3,6 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
 #include <utility>
 
 #include "eval/json.h"
@@ -313,6 +318,50 @@ TEST(Json, ParseErrorsNameLineAndColumn) {
   EXPECT_THROW(ParseJson("{\"a\": 1} x"), InvalidInputError);
   EXPECT_EQ(ParseJson("\"\\u00e9\\n\"").AsString(), "\xc3\xa9\n");
   EXPECT_TRUE(std::isnan(ParseJson("null").NumberOr(std::nan(""))));
+}
+
+// The doubles of the number tests: bit patterns of every exponent, decimal fractions, and the
+// extremes (subnormals, the largest, signed zeros).
+std::vector<double> TestDoubles() {
+  std::vector<double> values = {
+      0.0,   -0.0, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308, 0.1, 0.3, 1.0 / 3.0,
+      100.0, 1e21, 1e-5,   123456789012345678.0};
+  std::mt19937_64 rng(5);
+  for (int i = 0; i < 20000; ++i) {
+    const uint64_t bits = rng();
+    double x = 0.0;
+    std::memcpy(&x, &bits, sizeof x);
+    if (std::isfinite(x)) values.push_back(x);
+    values.push_back(static_cast<double>(static_cast<int64_t>(bits % 2000001) - 1000000) / 1e4);
+  }
+  return values;
+}
+
+TEST(Json, NumbersAreTheShortestOf15To17DigitsThatReadBack) {
+  for (const double x : TestDoubles()) {
+    char expected[40];
+    for (const int precision : {15, 16, 17}) {
+      std::snprintf(expected, sizeof expected, "%.*g", precision, x);
+      if (std::strtod(expected, nullptr) == x) break;
+    }
+    ASSERT_EQ(FormatExactDouble(x), expected);
+  }
+}
+
+TEST(Json, NumbersReadBackAsStrtodReadsThem) {
+  for (const double x : TestDoubles()) {
+    const std::string text = FormatExactDouble(x);
+    const double back = ParseJson(text).AsNumber();
+    ASSERT_EQ(std::memcmp(&back, &x, sizeof x), 0) << text;
+  }
+  for (const char* text : {"1.5e+3", "-0.25E-2", "-0", "1e-400", "2.5e-320"}) {
+    const double x = ParseJson(text).AsNumber();
+    const double expected = std::strtod(text, nullptr);
+    EXPECT_EQ(std::memcmp(&x, &expected, sizeof x), 0) << text;
+  }
+  for (const char* bad : {"-", "1e", "1.2.3", "1e400", "-1e999", "1+2", "--1"}) {
+    EXPECT_THROW(ParseJson(bad), InvalidInputError) << bad;
+  }
 }
 
 }  // namespace
