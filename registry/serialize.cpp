@@ -12,7 +12,9 @@
 namespace symembed {
 namespace {
 
-constexpr char kMagic[8] = {'S', 'Y', 'M', 'A', 'R', 'C', 'H', '1'};
+// The magic of frames checksummed with ChecksumBytes, and of the older ones with HashBytes.
+constexpr char kMagic[8] = {'S', 'Y', 'M', 'A', 'R', 'C', 'H', '2'};
+constexpr char kMagicFnv[8] = {'S', 'Y', 'M', 'A', 'R', 'C', 'H', '1'};
 
 void AppendU64(std::string* out, uint64_t value) { out->append(reinterpret_cast<char*>(&value), 8); }
 
@@ -71,14 +73,16 @@ std::string ArchiveWriter::Finish(const std::string& tag) const {
   AppendU64(&out, tag.size());
   out += tag;
   AppendU64(&out, payload_.size());
-  AppendU64(&out, HashBytes(payload_.data(), payload_.size()));
+  AppendU64(&out, ChecksumBytes(payload_.data(), payload_.size()));
   out += payload_;
   return out;
 }
 
 ArchiveReader::ArchiveReader(std::string bytes, const std::string& tag) : bytes_(std::move(bytes)) {
   const size_t fixed = sizeof kMagic + 8 + 8;
-  if (bytes_.size() < fixed || std::memcmp(bytes_.data(), kMagic, sizeof kMagic) != 0) {
+  if (bytes_.size() < fixed) throw ArchiveError("not a symembed archive");
+  const bool fnv = std::memcmp(bytes_.data(), kMagicFnv, sizeof kMagicFnv) == 0;
+  if (!fnv && std::memcmp(bytes_.data(), kMagic, sizeof kMagic) != 0) {
     throw ArchiveError("not a symembed archive");
   }
   const uint64_t version = LoadU64(bytes_, sizeof kMagic);
@@ -95,7 +99,8 @@ ArchiveReader::ArchiveReader(std::string bytes, const std::string& tag) : bytes_
   const uint64_t payload_size = LoadU64(bytes_, fixed + tag_size);
   const uint64_t checksum = LoadU64(bytes_, fixed + tag_size + 8);
   if (bytes_.size() - header != payload_size) throw ArchiveError("archive payload is truncated");
-  if (HashBytes(bytes_.data() + header, payload_size) != checksum) {
+  const char* payload = bytes_.data() + header;
+  if ((fnv ? HashBytes(payload, payload_size) : ChecksumBytes(payload, payload_size)) != checksum) {
     throw ArchiveError("archive checksum mismatch");
   }
   pos_ = header;

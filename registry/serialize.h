@@ -2,9 +2,11 @@
 // Eigen matrices (double, int, or double stored as float), and the per-shape results of
 // registry/types.h, each stored as the members it lists.
 //
-// Frame: "SYMARCH1" magic, format version (u32), tag (string), payload size (u64), FNV-1a
-// checksum of the payload (u64), payload. A reader rejects a frame whose magic, version, tag,
-// size or checksum does not match (a truncated or foreign file), so a cache treats it as a miss.
+// Frame: magic, layout version (u64), tag (string), payload size (u64), checksum of the payload
+// (u64), payload. The magic names the checksum: "SYMARCH2" (written) ChecksumBytes, "SYMARCH1"
+// (still read) HashBytes, byte-wise FNV-1a (registry/hash.h). A reader rejects a frame whose
+// magic, version, tag, size or checksum does not match (a truncated or foreign file), so a cache
+// treats it as a miss.
 // Numbers are stored little-endian (the only byte order this project builds for).
 #pragma once
 

@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "registry/hash.h"
 
@@ -23,6 +26,50 @@ TEST(Hash, LengthPrefixSeparatesFields) {
             Hasher().AddString("a").AddString("bc").Digest());
   EXPECT_EQ(Hasher(7).AddString("x").Digest(), Hasher(7).AddString("x").Digest());
   EXPECT_NE(Hasher(7).AddString("x").Digest(), Hasher(8).AddString("x").Digest());
+}
+
+TEST(Hash, ChecksumKeepsItsValuesAndSeesEveryByte) {
+  // The checksums of stored archives: these values must not change.
+  std::string bytes(77, '\0');
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 37 + 11);
+  EXPECT_EQ(HexDigest(ChecksumBytes("", 0)), "6596806ac622e65d");
+  EXPECT_EQ(HexDigest(ChecksumBytes("foobar", 6)), "3f87a34742ac934a");
+  EXPECT_EQ(HexDigest(ChecksumBytes(bytes.data(), bytes.size())), "4fbf02ae10fc13cb");
+  const uint64_t whole = ChecksumBytes(bytes.data(), bytes.size());
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    std::string changed = bytes;
+    changed[i] ^= static_cast<char>(0x80 >> (i % 8));
+    EXPECT_NE(ChecksumBytes(changed.data(), changed.size()), whole) << i;
+  }
+  // Words trading places, and a zero byte more.
+  std::string swapped = bytes;
+  std::swap_ranges(swapped.begin(), swapped.begin() + 8, swapped.begin() + 8);
+  EXPECT_NE(ChecksumBytes(swapped.data(), swapped.size()), whole);
+  EXPECT_NE(ChecksumBytes((bytes + '\0').data(), bytes.size() + 1), whole);
+}
+
+TEST(Archive, ReadsTheFramesOfTheByteWiseChecksum) {
+  ArchiveWriter out;
+  out.Doubles({1, 2, 3});
+  const std::string bytes = out.Finish("a");
+  // A frame as written before ChecksumBytes: magic SYMARCH1, the payload's FNV-1a.
+  const size_t header = 8 + 8 + 8 + 1 + 8 + 8;
+  const std::string payload = bytes.substr(header);
+  std::string old = bytes.substr(0, header - 8);
+  old[7] = '1';
+  const uint64_t fnv = HashBytes(payload.data(), payload.size());
+  old.append(reinterpret_cast<const char*>(&fnv), 8);
+  old += payload;
+  ArchiveReader in(old, "a");
+  EXPECT_EQ(in.Doubles(), std::vector<double>({1, 2, 3}));
+  in.ExpectEnd();
+  // Each checksum only with its own magic.
+  std::string mixed = bytes;
+  mixed[7] = '1';
+  EXPECT_THROW(ArchiveReader(mixed, "a"), ArchiveError);
+  old[7] = '2';
+  EXPECT_THROW(ArchiveReader(old, "a"), ArchiveError);
+  EXPECT_EQ(bytes.substr(0, 8), "SYMARCH2");
 }
 
 TEST(Archive, RoundTripsEveryFieldExactly) {
