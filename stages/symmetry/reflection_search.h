@@ -50,7 +50,7 @@ struct ReflectionSearchOptions {
   bool IsValid(std::string* error) const;
 };
 
-// The intrinsic check of candidate planes (IntrinsicDistortion below), weighed against their
+// The intrinsic check of candidate planes (IntrinsicCheck below), weighed against their
 // extrinsic score in the choice among them.
 struct IntrinsicCheckOptions {
   // Weight of the intrinsic distortion in the choice among candidates (0: off).
